@@ -1,0 +1,67 @@
+"""Evaluate a scene's columns with numpy: the cached values and ``compute()``."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from . import xlmath as xm
+from .errors import CannotAssembleError
+from .expr.numeric import compile_numpy
+from .model import Model, select
+from .scene import Scene
+
+STATUS_OK = "ok"
+
+
+@dataclass(frozen=True)
+class Evaluated:
+    scene: Scene
+    model: Model
+    inputs: np.ndarray
+    columns: dict[str, xm.XArray]   # every Table column by name, input included
+    status: np.ndarray              # object array of status texts
+
+    @property
+    def rows(self) -> int:
+        return len(self.inputs)
+
+    @property
+    def assembled(self) -> np.ndarray:
+        return self.status != "cannot assemble"
+
+
+def evaluate(scene: Scene) -> Evaluated:
+    """Every column of the scene's Table; refuses a sweep where nothing assembles."""
+    model = select(scene.template, scene.outputs)
+    inputs = np.array(scene.sweep.values())
+    n = len(inputs)
+    columns = {scene.template.input.name: xm.array(inputs)}
+    for quantity in model.columns:
+        columns[quantity.name] = compile_numpy(quantity.expr)(columns, scene.parameters, n)
+    status = compile_numpy(scene.template.status)(columns, scene.parameters, n)
+    texts = np.where(status.err != 0, "cannot assemble", status.val).astype(object)
+    if not np.any(texts != "cannot assemble"):
+        raise CannotAssembleError(
+            f"{scene.source}: the mechanism cannot be assembled anywhere in the sweep "
+            f"{scene.sweep.start:g}..{scene.sweep.stop:g}: "
+            f"{scene.template.assembly_failure(scene.parameters)}")
+    return Evaluated(scene, model, inputs, columns, texts)
+
+
+def headers(model: Model) -> list[str]:
+    """The Table's header row: ``name [unit]``, the input first, the status last."""
+    spec = model.template.input
+    return [f"{spec.name} [{spec.unit}]"] + [q.header for q in model.columns] + ["status"]
+
+
+def compute(scene: Scene) -> pd.DataFrame:
+    """The Table as a DataFrame (columns exactly the Table headers; errors as NaN)."""
+    result = evaluate(scene)
+    data = {}
+    for header, name in zip(headers(result.model), result.model.names):
+        data[header] = result.columns[name].val.astype(float)
+    data["status"] = result.status
+    return pd.DataFrame(data)

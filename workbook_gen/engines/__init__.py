@@ -1,0 +1,1 @@
+"""External spreadsheet engines used to cross-check workbooks (LibreOffice headless)."""

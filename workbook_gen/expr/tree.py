@@ -1,0 +1,194 @@
+"""The expression tree: the single source of truth of every formula.
+
+A quantity of a mechanism is written once, in Python, with ordinary operators:
+
+    x_B = l_AB * cos(radians(theta_1))
+
+and the printers in this package turn that one tree into Excel formula text,
+a numpy function (cached values, ``compute()``) and an mpmath function (the
+high-precision reference of the formula).  The dependency graph that prunes a
+scene's columns is read off the same trees (``variables``).
+
+Nodes are immutable and hashable.  ``==`` is plain structural equality; Excel
+comparisons are built with ``lt``/``le``/``eq``... so they cannot be confused.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Iterator, Union
+
+Operand = Union["Node", float, int]
+
+
+class Node:
+    """Base of all tree nodes; arithmetic operators build bigger trees."""
+
+    __slots__ = ()
+
+    def __add__(self, other: Operand) -> Node:
+        return Bin("+", self, wrap(other))
+
+    def __radd__(self, other: Operand) -> Node:
+        return Bin("+", wrap(other), self)
+
+    def __sub__(self, other: Operand) -> Node:
+        return Bin("-", self, wrap(other))
+
+    def __rsub__(self, other: Operand) -> Node:
+        return Bin("-", wrap(other), self)
+
+    def __mul__(self, other: Operand) -> Node:
+        return Bin("*", self, wrap(other))
+
+    def __rmul__(self, other: Operand) -> Node:
+        return Bin("*", wrap(other), self)
+
+    def __truediv__(self, other: Operand) -> Node:
+        return Bin("/", self, wrap(other))
+
+    def __rtruediv__(self, other: Operand) -> Node:
+        return Bin("/", wrap(other), self)
+
+    def __pow__(self, other: Operand) -> Node:
+        return Bin("^", self, wrap(other))
+
+    def __rpow__(self, other: Operand) -> Node:
+        return Bin("^", wrap(other), self)
+
+    def __neg__(self) -> Node:
+        return Neg(self)
+
+    def __pos__(self) -> Node:
+        return self
+
+
+@dataclass(frozen=True, slots=True)
+class Num(Node):
+    """A non-negative numeric literal (negative numbers are ``Neg(Num)``)."""
+
+    value: float
+
+    def __post_init__(self) -> None:
+        if not math.isfinite(self.value) or self.value < 0:
+            raise ValueError(f"Num needs a finite value >= 0, got {self.value!r}")
+
+
+@dataclass(frozen=True, slots=True)
+class Text(Node):
+    """A string literal (status texts, the empty string)."""
+
+    value: str
+
+
+@dataclass(frozen=True, slots=True)
+class Param(Node):
+    """A named parameter: a defined name in the workbook."""
+
+    name: str
+
+
+@dataclass(frozen=True, slots=True)
+class Var(Node):
+    """Another quantity of the same row (a Table column), or the input."""
+
+    name: str
+
+
+@dataclass(frozen=True, slots=True)
+class Neg(Node):
+    operand: Node
+
+
+BINARY_OPS = ("+", "-", "*", "/", "^", "&", "=", "<>", "<", ">", "<=", ">=")
+
+
+@dataclass(frozen=True, slots=True)
+class Bin(Node):
+    op: str
+    left: Node
+    right: Node
+
+    def __post_init__(self) -> None:
+        if self.op not in BINARY_OPS:
+            raise ValueError(f"unknown operator {self.op!r}")
+
+
+FUNCTIONS = {
+    # name: (min args, max args)
+    "SIN": (1, 1), "COS": (1, 1), "TAN": (1, 1), "ASIN": (1, 1), "ACOS": (1, 1),
+    "ATAN": (1, 1), "ATAN2": (2, 2), "SQRT": (1, 1), "ABS": (1, 1), "SIGN": (1, 1),
+    "PI": (0, 0), "RADIANS": (1, 1), "DEGREES": (1, 1), "MOD": (2, 2), "POWER": (2, 2),
+    "IF": (2, 3), "AND": (1, 255), "OR": (1, 255), "NOT": (1, 1), "MIN": (1, 255),
+    "MAX": (1, 255), "IFERROR": (2, 2), "ISERROR": (1, 1),
+}
+
+
+@dataclass(frozen=True, slots=True)
+class Call(Node):
+    fn: str
+    args: tuple[Node, ...]
+
+    def __post_init__(self) -> None:
+        if self.fn not in FUNCTIONS:
+            raise ValueError(f"function {self.fn} is not supported in trees")
+        lo, hi = FUNCTIONS[self.fn]
+        if not lo <= len(self.args) <= hi:
+            raise ValueError(f"{self.fn} takes {lo}..{hi} arguments, got {len(self.args)}")
+
+
+def wrap(value: Operand | str) -> Node:
+    """A node for ``value``: nodes pass through, numbers become literals."""
+    if isinstance(value, Node):
+        return value
+    if isinstance(value, bool):
+        raise TypeError("booleans are not tree literals")
+    if isinstance(value, (int, float)):
+        value = float(value)
+        return Neg(Num(-value)) if value < 0 else Num(value)
+    if isinstance(value, str):
+        return Text(value)
+    raise TypeError(f"cannot make a tree node of {value!r}")
+
+
+def children(node: Node) -> tuple[Node, ...]:
+    if isinstance(node, Neg):
+        return (node.operand,)
+    if isinstance(node, Bin):
+        return (node.left, node.right)
+    if isinstance(node, Call):
+        return node.args
+    return ()
+
+
+def walk(node: Node) -> Iterator[Node]:
+    """Every node of the tree, parents before children."""
+    stack = [node]
+    while stack:
+        current = stack.pop()
+        yield current
+        stack.extend(reversed(children(current)))
+
+
+def variables(node: Node) -> frozenset[str]:
+    """Names of the quantities (columns) the tree refers to."""
+    return frozenset(n.name for n in walk(node) if isinstance(n, Var))
+
+
+def parameters(node: Node) -> frozenset[str]:
+    """Names of the parameters the tree refers to."""
+    return frozenset(n.name for n in walk(node) if isinstance(n, Param))
+
+
+def substitute(node: Node, mapping: dict[str, Node]) -> Node:
+    """The tree with each ``Var`` named in ``mapping`` replaced by its tree."""
+    if isinstance(node, Var):
+        return mapping.get(node.name, node)
+    if isinstance(node, Neg):
+        return Neg(substitute(node.operand, mapping))
+    if isinstance(node, Bin):
+        return Bin(node.op, substitute(node.left, mapping), substitute(node.right, mapping))
+    if isinstance(node, Call):
+        return Call(node.fn, tuple(substitute(a, mapping) for a in node.args))
+    return node

@@ -1,0 +1,188 @@
+"""Parse Excel formula text into an AST by precedence climbing (Pratt parsing).
+
+Excel's precedence, tightest first: unary ``-``/``+``, postfix ``%``, ``^`` (left
+associative), ``* /``, ``+ -``, ``&``, comparisons. So ``-2^2`` is ``(-2)^2`` = 4 and
+``2^3^2`` is ``(2^3)^2`` = 64. Ranges are single tokens (``A1:B3``); the space
+(intersection) operator, whole rows/columns and array constants are rejected
+with a :class:`FormulaSyntaxError` that names the position.
+"""
+
+from __future__ import annotations
+
+from workbook_gen.errors import FormulaSyntaxError
+from workbook_gen.formula import ast
+from workbook_gen.formula import tokenizer as tk
+from workbook_gen.xlerror import ExcelError
+
+from workbook_gen.formula.ast import INFIX_POWER, PERCENT_POWER, PREFIX_POWER
+
+MAX_DEPTH = 128  # nesting of parentheses, functions and signs (Excel allows 64 functions)
+_FUNC_PREFIXES = ("_xlfn._xlws.", "_xlfn.", "_xlws.")
+
+
+def parse(formula: str) -> ast.Node:
+    """The AST of ``formula`` (the leading ``=`` is optional).
+
+    Raises FormulaSyntaxError with a message such as
+    ``unexpected ')' at position 16 in '=SQRT(B2^2+C2^2))'``.
+    """
+    return _Parser(formula).parse()
+
+
+class _Parser:
+    def __init__(self, formula: str):
+        self.text = formula
+        self.tokens = tk.tokenize(formula)
+        self.i = 0
+        self.depth = 0
+
+    # -- token access ----------------------------------------------------------------
+    def _skip_ws(self) -> bool:
+        skipped = False
+        while self.i < len(self.tokens) and self.tokens[self.i].kind in (tk.WSPACE, tk.START):
+            skipped = skipped or self.tokens[self.i].kind == tk.WSPACE
+            self.i += 1
+        return skipped
+
+    def _peek(self) -> tk.Token | None:
+        self._skip_ws()
+        return self.tokens[self.i] if self.i < len(self.tokens) else None
+
+    def _next(self) -> tk.Token | None:
+        token = self._peek()
+        self.i += 1
+        return token
+
+    def _fail(self, token: tk.Token | None, what: str | None = None) -> None:
+        if token is None:
+            raise FormulaSyntaxError(f"unexpected end of formula in '{self.text}'")
+        raise FormulaSyntaxError(tk.describe(self.text, token.pos, what or f"unexpected {token.text!r}"))
+
+    # -- grammar ---------------------------------------------------------------------
+    def parse(self) -> ast.Node:
+        if self._peek() is None:
+            raise FormulaSyntaxError(f"empty formula '{self.text}'")
+        node = self._expression(0)
+        token = self._peek()
+        if token is not None:
+            self._fail(token)
+        return node
+
+    def _expression(self, min_power: int) -> ast.Node:
+        self.depth += 1
+        try:
+            return self._climb(min_power)
+        finally:
+            self.depth -= 1
+
+    def _climb(self, min_power: int) -> ast.Node:
+        if self.depth > MAX_DEPTH:
+            token = self._peek()
+            raise FormulaSyntaxError(tk.describe(
+                self.text, token.pos if token else len(self.text),
+                f"formula nested deeper than {MAX_DEPTH} levels"))
+        left = self._prefix()
+        while True:
+            had_space = self.i < len(self.tokens) and self.tokens[self.i].kind == tk.WSPACE
+            token = self._peek()
+            if token is None:
+                return left
+            if token.kind == tk.POSTFIX:
+                if PERCENT_POWER < min_power:
+                    return left
+                self.i += 1
+                left = ast.Percent(left)
+            elif token.kind == tk.INFIX:
+                if token.text == ":":
+                    self._fail(token, "the range operator ':' is only supported inside a "
+                                      "reference such as A1:B3 or Sheet!A1:B3")
+                power = INFIX_POWER[token.text]
+                if power < min_power:
+                    return left
+                self.i += 1
+                left = ast.Binary(token.text, left, self._expression(power + 1))
+            elif had_space and token.kind in tk.OPERAND_KINDS | {tk.FUNC, tk.OPEN, tk.PREFIX}:
+                self._fail(token, "the intersection operator (space) is not supported: "
+                                  f"unexpected {token.text!r}")
+            else:
+                return left
+
+    def _prefix(self) -> ast.Node:
+        token = self._next()
+        if token is None:
+            self._fail(None)
+        kind = token.kind
+        if kind == tk.PREFIX:
+            return ast.Unary(token.text, self._expression(PREFIX_POWER))
+        if kind == tk.OPEN:
+            inner = self._expression(0)
+            self._expect_close(token)
+            return ast.Paren(inner)
+        if kind == tk.FUNC:
+            return self._call(token)
+        if kind == tk.NUMBER:
+            return ast.Number(float(token.text), token.text)
+        if kind == tk.STRING:
+            return ast.String(token.text[1:-1].replace('""', '"'))
+        if kind == tk.BOOL:
+            return ast.Bool(token.text.upper() == "TRUE")
+        if kind == tk.ERROR:
+            return ast.ErrorLit(ExcelError.from_text(token.text))
+        if kind == tk.REF:
+            return self._reference(token)
+        if kind == tk.NAME:
+            sheet, name = tk.split_sheet(token.text)
+            return ast.Name(name, sheet)
+        self._fail(token)
+
+    def _expect_close(self, opener: tk.Token) -> None:
+        token = self._next()
+        if token is None:
+            raise FormulaSyntaxError(tk.describe(self.text, opener.pos, "unclosed '('"))
+        if token.kind != tk.CLOSE:
+            self._fail(token)
+
+    def _call(self, token: tk.Token) -> ast.Func:
+        full = token.text[:-1]
+        prefix = ""
+        for candidate in _FUNC_PREFIXES:
+            if full.lower().startswith(candidate.lower()):
+                prefix = full[:len(candidate)]
+                break
+        name = full[len(prefix):].upper()
+        args: list[ast.Node] = []
+        nxt = self._peek()
+        if nxt is not None and nxt.kind == tk.CLOSE:
+            self.i += 1
+            return ast.Func(name, (), prefix)
+        while True:
+            nxt = self._peek()
+            if nxt is not None and nxt.kind in (tk.SEP, tk.CLOSE):
+                args.append(ast.Missing())
+            else:
+                args.append(self._expression(0))
+            sep = self._next()
+            if sep is None:
+                raise FormulaSyntaxError(tk.describe(self.text, token.pos, f"unclosed '{token.text}'"))
+            if sep.kind == tk.CLOSE:
+                return ast.Func(name, tuple(args), prefix)
+            if sep.kind != tk.SEP:
+                self._fail(sep)
+
+    def _reference(self, token: tk.Token) -> ast.Node:
+        sheet, body = tk.split_sheet(token.text)
+        parts = body.split(":")
+        cells = [_cell(p) for p in parts]
+        if any(c is None for c in cells):
+            self._fail(token, f"whole-row or whole-column reference {token.text!r} is not supported")
+        if len(cells) == 1:
+            return ast.CellRef(sheet, cells[0].col, cells[0].row, cells[0].col_abs, cells[0].row_abs)
+        return ast.RangeRef(sheet, cells[0], cells[1])
+
+
+def _cell(text: str) -> ast.CellRef | None:
+    m = tk.CELL_PARTS.fullmatch(text)
+    if m is None:
+        return None
+    return ast.CellRef(None, tk.column_number(m.group(2)), int(m.group(4)),
+                       col_abs=bool(m.group(1)), row_abs=bool(m.group(3)))

@@ -1,0 +1,194 @@
+"""A plain cell-by-cell evaluator of a formula AST with Excel's semantics.
+
+``evaluate(node, resolver)`` computes one cell. The resolver supplies cell values,
+range values (2-D lists) and defined names; values are ``float | str | bool | None
+| ExcelError``. Errors propagate, leftmost operand first. A function outside the
+supported list gives ``#NAME?`` and is reported through ``on_unsupported`` (or
+listed beforehand with :func:`unsupported_functions`), never raised.
+
+This is the reference path: the vectorised evaluator must agree with it.
+"""
+
+from __future__ import annotations
+
+from typing import Callable, Protocol
+
+from workbook_gen.formula import ast
+from workbook_gen.formula import functions as fx
+from workbook_gen.formula.functions import Range, Value
+from workbook_gen.formula.tokenizer import CELL_PARTS, column_number, split_sheet
+from workbook_gen.xlerror import ExcelError
+
+_COMPARISONS = {
+    "=": lambda c: c == 0, "<>": lambda c: c != 0, "<": lambda c: c < 0,
+    ">": lambda c: c > 0, "<=": lambda c: c <= 0, ">=": lambda c: c >= 0,
+}
+
+
+class Resolver(Protocol):
+    """What the evaluator needs from a workbook. Coordinates are 1-based."""
+
+    def cell(self, sheet: str | None, row: int, col: int) -> Value: ...
+
+    def range(self, sheet: str | None, row1: int, col1: int, row2: int, col2: int
+              ) -> list[list[Value]]: ...
+
+    def name(self, name: str, sheet: str | None) -> Value | list[list[Value]]:
+        """A defined name's value (a 2-D list for a range); #NAME? if undefined."""
+
+
+class DictResolver:
+    """A resolver over dicts, for tests and small uses.
+
+    ``cells`` maps ``"A1"`` or ``"Sheet!A1"`` to values (unqualified keys and
+    references belong to ``sheet``); ``names`` maps names (any case) to values or
+    2-D lists.
+    """
+
+    def __init__(self, cells: dict[str, Value] | None = None,
+                 names: dict[str, Value | list] | None = None, sheet: str = "Sheet1"):
+        self.sheet = sheet
+        self.cells: dict[tuple[str, int, int], Value] = {}
+        for key, value in (cells or {}).items():
+            sheet_name, body = split_sheet(key)
+            m = CELL_PARTS.fullmatch(body)
+            if m is None:
+                raise ValueError(f"not a cell address: {key!r}")
+            self.cells[(sheet_name or sheet, int(m.group(4)), column_number(m.group(2)))] = value
+        self.names = {k.upper(): v for k, v in (names or {}).items()}
+
+    def cell(self, sheet, row, col):
+        return self.cells.get((sheet or self.sheet, row, col))
+
+    def range(self, sheet, row1, col1, row2, col2):
+        return [[self.cell(sheet, r, c) for c in range(col1, col2 + 1)]
+                for r in range(row1, row2 + 1)]
+
+    def name(self, name, sheet):
+        return self.names.get(name.upper(), ExcelError.NAME)
+
+
+def unsupported_functions(node: ast.Node) -> set[str]:
+    """Names of the functions ``node`` calls that are outside the supported list."""
+    return {n.name for n in ast.walk(node)
+            if isinstance(n, ast.Func) and n.name not in fx.SUPPORTED}
+
+
+def evaluate(node: ast.Node, resolver: Resolver, *, dialect: str = "excel",
+             on_unsupported: Callable[[str], None] | None = None) -> Value:
+    """The value of the formula ``node`` (an empty result counts as 0, as in Excel).
+
+    ``dialect="libreoffice"`` applies LibreOffice's known deviations.
+    ``on_unsupported(name)`` is called for each call of an unsupported function.
+    """
+    if dialect not in ("excel", "libreoffice"):
+        raise ValueError(f"unknown dialect {dialect!r}")
+    result = fx.scalar_of(_Evaluator(resolver, dialect, on_unsupported).arg(node))
+    return 0.0 if result is None else result
+
+
+def _clean(x: float | ExcelError) -> float | ExcelError:
+    """#NUM! for inf/NaN; no negative zero (Excel has none)."""
+    if isinstance(x, ExcelError):
+        return x
+    x = fx.checked(x)
+    return 0.0 if x == 0 else x
+
+
+class _Evaluator:
+    def __init__(self, resolver: Resolver, dialect: str, on_unsupported):
+        self.resolver = resolver
+        self.dialect = dialect
+        self.on_unsupported = on_unsupported
+
+    def arg(self, node: ast.Node) -> Value | Range:
+        """Value of ``node``; references stay Ranges (functions need to know)."""
+        if isinstance(node, ast.CellRef):
+            return Range.of([[self.resolver.cell(node.sheet, node.row, node.col)]])
+        if isinstance(node, ast.RangeRef):
+            r1, r2 = sorted((node.first.row, node.last.row))
+            c1, c2 = sorted((node.first.col, node.last.col))
+            return Range.of(self.resolver.range(node.sheet, r1, c1, r2, c2))
+        if isinstance(node, ast.Name):
+            value = self.resolver.name(node.name, node.sheet)
+            return Range.of(value) if isinstance(value, list) else value
+        if isinstance(node, ast.Func):
+            return self.func(node)
+        return self.value(node)
+
+    def value(self, node: ast.Node) -> Value:
+        if isinstance(node, ast.Number):
+            return node.value
+        if isinstance(node, (ast.String, ast.Bool)):
+            return node.value
+        if isinstance(node, ast.ErrorLit):
+            return node.error
+        if isinstance(node, ast.Missing):
+            return 0.0
+        if isinstance(node, ast.Paren):
+            return self.arg(node.inner)
+        if isinstance(node, ast.Unary):
+            v = fx.scalar_of(self.arg(node.operand))
+            if node.op == "+":
+                return v
+            x = fx.to_number(v)
+            return x if isinstance(x, ExcelError) else _clean(-x)
+        if isinstance(node, ast.Percent):
+            x = fx.to_number(fx.scalar_of(self.arg(node.operand)))
+            return x if isinstance(x, ExcelError) else _clean(x / 100.0)
+        if isinstance(node, ast.Binary):
+            return self.binary(node)
+        return fx.scalar_of(self.arg(node))
+
+    def binary(self, node: ast.Binary) -> Value:
+        # Walk the left spine without recursion: A1+A2+...+A2000 is a left-deep tree.
+        spine = []
+        while isinstance(node, ast.Binary):
+            spine.append(node)
+            node = node.left
+        acc = fx.scalar_of(self.arg(node))
+        for step in reversed(spine):
+            acc = self.apply(step.op, acc, fx.scalar_of(self.arg(step.right)))
+        return acc
+
+    def apply(self, op: str, left: Value, right: Value) -> Value:
+        """Excel's binary operator ``op`` on two evaluated operands."""
+        if op in _COMPARISONS:
+            c = fx.compare(left, right)
+            return c if isinstance(c, ExcelError) else _COMPARISONS[op](c)
+        if op == "&":
+            a, b = fx.to_text(left), fx.to_text(right)
+            for v in (a, b):
+                if isinstance(v, ExcelError):
+                    return v
+            return a + b
+        a = fx.to_number(left)
+        if isinstance(a, ExcelError):
+            return a
+        b = fx.to_number(right)
+        if isinstance(b, ExcelError):
+            return b
+        if op == "+":
+            return _clean(a + b)
+        if op == "-":
+            return _clean(a - b)
+        if op == "*":
+            return _clean(a * b)
+        if op == "/":
+            return ExcelError.DIV0 if b == 0 else _clean(a / b)
+        if self.dialect == "libreoffice":
+            deviation = fx.libreoffice_result("^", (a, b))
+            if deviation is not None:
+                return deviation
+        return _clean(fx.power(a, b))
+
+    def func(self, node: ast.Func) -> Value | Range:
+        if node.name in fx.LAZY:
+            thunks = [lambda a=a: self.arg(a) for a in node.args]
+            return fx.LAZY[node.name](thunks)
+        if node.name not in fx.EAGER:
+            if self.on_unsupported is not None:
+                self.on_unsupported(node.name)
+            return ExcelError.NAME
+        result = fx.call(node.name, [self.arg(a) for a in node.args], self.dialect)
+        return _clean(result) if isinstance(result, float) else result

@@ -1,0 +1,229 @@
+"""A lossless tokenizer for Excel formulas (A1 notation).
+
+Modelled on openpyxl's ``formula/tokenizer.py``: a dispatch table maps the first
+character of a token to a consumer. Every character of the input ends up in exactly
+one token, whitespace included, so ``render(tokenize(text)) == text``.
+
+A reference with its sheet and range (``'Other Sheet'!$A$2:$A$38``) is one REF token;
+``+``/``-`` are told apart as PREFIX or INFIX from the token before them.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from workbook_gen.errors import FormulaSyntaxError
+
+# Token kinds
+START = "START"          # the leading '='
+NUMBER = "NUMBER"
+STRING = "STRING"
+BOOL = "BOOL"
+ERROR = "ERROR"
+REF = "REF"              # cell or range, optionally sheet-qualified
+NAME = "NAME"            # defined name, optionally sheet-qualified
+FUNC = "FUNC"            # function name with its '(' : "SIN("
+OPEN = "OPEN"            # '(' of a parenthesised expression
+CLOSE = "CLOSE"          # ')' of a function or of a parenthesis
+SEP = "SEP"              # ',' between function arguments
+PREFIX = "PREFIX"        # unary + -
+INFIX = "INFIX"          # binary operators, ':' included
+POSTFIX = "POSTFIX"      # %
+WSPACE = "WSPACE"
+
+OPERAND_KINDS = frozenset({NUMBER, STRING, BOOL, ERROR, REF, NAME})
+# After these a '+' or '-' is unary.
+_PREFIX_CONTEXT = frozenset({START, OPEN, FUNC, SEP, PREFIX, INFIX, None})
+
+
+@dataclass(frozen=True, slots=True)
+class Token:
+    kind: str
+    text: str
+    pos: int  # offset of the first character in the formula text
+
+
+def describe(text: str, pos: int, what: str) -> str:
+    """The standard message: ``<what> at position <pos> in '<text>'``."""
+    return f"{what} at position {pos} in '{text}'"
+
+
+_SHEET = r"(?:'(?:[^']|'')+'|[A-Za-z_\\\u00a1-\uffff][\w.\u00a1-\uffff]*)!"
+_CELL = r"\$?[A-Za-z]{1,3}\$?[0-9]{1,7}"
+_END = r"(?![\w.(!\u00a1-\uffff])"
+_REF_RE = re.compile(rf"(?:{_SHEET})?{_CELL}(?::{_CELL})?{_END}")
+_COLS_RE = re.compile(rf"(?:{_SHEET})?\$?[A-Za-z]{{1,3}}:\$?[A-Za-z]{{1,3}}{_END}")
+_ROWS_RE = re.compile(rf"(?:{_SHEET})?\$?[0-9]{{1,7}}:\$?[0-9]{{1,7}}{_END}")
+_WORD_RE = re.compile(rf"(?:{_SHEET})?[A-Za-z_\\\u00a1-\uffff][\w.?\\\u00a1-\uffff]*")
+_NUMBER_RE = re.compile(r"(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+_STRING_RE = re.compile(r'"(?:[^"]|"")*"')
+_ERROR_RE = re.compile(r"#(?:NULL!|DIV/0!|VALUE!|REF!|NAME\?|NUM!|N/A)", re.IGNORECASE)
+_WSPACE_RE = re.compile(r"[ \n\r\t]+")
+CELL_PARTS = re.compile(r"(\$?)([A-Za-z]{1,3})(\$?)([0-9]+)")
+
+
+def column_number(letters: str) -> int:
+    """``A`` -> 1, ``XFD`` -> 16384."""
+    number = 0
+    for ch in letters.upper():
+        number = number * 26 + ord(ch) - 64
+    return number
+
+
+def is_cell_ref(text: str) -> bool:
+    """True for ``A1`` .. ``XFD1048576`` (with or without ``$``)."""
+    m = CELL_PARTS.fullmatch(text)
+    return bool(m) and column_number(m.group(2)) <= 16_384 and 1 <= int(m.group(4)) <= 1_048_576
+
+
+class Tokenizer:
+    """Split a formula into tokens; ``items`` holds them, ``render()`` joins them back."""
+
+    def __init__(self, formula: str):
+        self.formula = formula
+        self.items: list[Token] = []
+        self.offset = 0
+        self._parse()
+
+    def _parse(self) -> None:
+        dispatch = {}
+        consumers = (
+            ('"', self._string),
+            ("#", self._error),
+            (" \n\r\t", self._whitespace),
+            ("0123456789.", self._number),
+            ("+-*/^&=<>%:", self._operator),
+            ("(", self._open),
+            (")", self._close),
+            (",", self._separator),
+        )
+        for chars, consumer in consumers:
+            dispatch.update(dict.fromkeys(chars, consumer))
+        if self.formula.startswith("="):
+            self._add(START, "=")
+        while self.offset < len(self.formula):
+            ch = self.formula[self.offset]
+            consumer = dispatch.get(ch)
+            if consumer is None:
+                consumer = self._word if (ch.isalpha() or ch in "_\\$'" or ord(ch) > 160) \
+                    else self._unexpected
+            consumer()
+
+    # -- helpers -------------------------------------------------------------------
+    def _add(self, kind: str, text: str) -> None:
+        self.items.append(Token(kind, text, self.offset))
+        self.offset += len(text)
+
+    def _last_kind(self) -> str | None:
+        for token in reversed(self.items):
+            if token.kind != WSPACE:
+                return token.kind
+        return None
+
+    def _fail(self, what: str) -> None:
+        raise FormulaSyntaxError(describe(self.formula, self.offset, what))
+
+    def _unexpected(self) -> None:
+        ch = self.formula[self.offset]
+        if ch in "{}":
+            self._fail(f"array constants are not supported: unexpected {ch!r}")
+        if ch == "[":
+            self._fail("external or structured references are not supported: unexpected '['")
+        if ch == ";":
+            self._fail("unexpected ';' (argument separator must be ',')")
+        self._fail(f"unexpected character {ch!r}")
+
+    # -- consumers -----------------------------------------------------------------
+    def _string(self) -> None:
+        m = _STRING_RE.match(self.formula, self.offset)
+        if m is None:
+            self._fail("unterminated string")
+        self._add(STRING, m.group(0))
+
+    def _error(self) -> None:
+        m = _ERROR_RE.match(self.formula, self.offset)
+        if m is None:
+            self._fail("unknown error literal")
+        self._add(ERROR, m.group(0))
+
+    def _whitespace(self) -> None:
+        self._add(WSPACE, _WSPACE_RE.match(self.formula, self.offset).group(0))
+
+    def _number(self) -> None:
+        rows = _ROWS_RE.match(self.formula, self.offset)
+        if rows:
+            self._add(REF, rows.group(0))
+            return
+        m = _NUMBER_RE.match(self.formula, self.offset)
+        if m is None:
+            self._fail("unexpected '.'")
+        self._add(NUMBER, m.group(0))
+
+    def _operator(self) -> None:
+        two = self.formula[self.offset:self.offset + 2]
+        if two in ("<>", "<=", ">="):
+            self._add(INFIX, two)
+            return
+        ch = self.formula[self.offset]
+        if ch == "%":
+            self._add(POSTFIX, ch)
+        elif ch in "+-" and self._last_kind() in _PREFIX_CONTEXT:
+            self._add(PREFIX, ch)
+        else:
+            self._add(INFIX, ch)
+
+    def _open(self) -> None:
+        self._add(OPEN, "(")
+
+    def _close(self) -> None:
+        self._add(CLOSE, ")")
+
+    def _separator(self) -> None:
+        self._add(SEP, ",")
+
+    def _word(self) -> None:
+        for regex in (_REF_RE, _COLS_RE, _ROWS_RE):
+            m = regex.match(self.formula, self.offset)
+            if m and self._valid_ref(m.group(0)):
+                self._add(REF, m.group(0))
+                return
+        m = _WORD_RE.match(self.formula, self.offset)
+        if m is None:
+            if self.formula[self.offset] == "'":
+                self._fail("unterminated quoted sheet name")
+            self._fail(f"unexpected character {self.formula[self.offset]!r}")
+        word = m.group(0)
+        end = self.offset + len(word)
+        if end < len(self.formula) and self.formula[end] == "(" and "!" not in word:
+            self._add(FUNC, word + "(")
+        elif word.upper() in ("TRUE", "FALSE"):
+            self._add(BOOL, word)
+        else:
+            self._add(NAME, word)
+
+    @staticmethod
+    def _valid_ref(text: str) -> bool:
+        body = split_sheet(text)[1]
+        parts = body.split(":")
+        if CELL_PARTS.fullmatch(parts[0]):
+            return all(is_cell_ref(p) for p in parts)
+        return True  # whole rows / columns: the parser rejects them with a message
+
+    def render(self) -> str:
+        return "".join(t.text for t in self.items)
+
+
+def split_sheet(text: str) -> tuple[str | None, str]:
+    """``"'It''s'!A1"`` -> ``("It's", "A1")``; ``"A1"`` -> ``(None, "A1")``."""
+    if "!" not in text:
+        return None, text
+    sheet, _, rest = text.rpartition("!")
+    if sheet.startswith("'"):
+        sheet = sheet[1:-1].replace("''", "'")
+    return sheet, rest
+
+
+def tokenize(formula: str) -> list[Token]:
+    """The tokens of ``formula`` (with or without the leading ``=``)."""
+    return Tokenizer(formula).items

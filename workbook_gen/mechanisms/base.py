@@ -1,0 +1,144 @@
+"""What a mechanism template is: parameters, quantities as trees, checks, charts.
+
+A template is data.  It knows nothing of xlsx: the workbook writer reads the
+trees and prints them; ``model.py`` prunes them to what a scene asks for.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Mapping
+
+from ..expr import Node, Param, Var, variables
+from ..expr import parameters as params_of
+
+
+@dataclass(frozen=True)
+class ParamSpec:
+    name: str
+    default: float
+    unit: str
+    description: str
+    positive: bool = False  # lengths: must be > 0
+
+
+@dataclass(frozen=True)
+class InputSpec:
+    name: str
+    unit: str
+    description: str
+    start: float = 0.0
+    stop: float = 360.0
+    step: float = 10.0
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """One Table column: ``expr`` refers to parameters and to other quantities."""
+
+    name: str
+    unit: str
+    expr: Node
+    description: str
+    output: bool = True  # False: an intermediate column, present only when needed
+
+    @property
+    def header(self) -> str:
+        return f"{self.name} [{self.unit}]" if self.unit else self.name
+
+
+@dataclass(frozen=True)
+class Check:
+    """A dimensionless closure residual over Table columns (0 when they agree)."""
+
+    name: str
+    level: str  # "position" | "velocity" | "acceleration"
+    expr: Node
+    description: str
+
+
+@dataclass(frozen=True)
+class Chart:
+    title: str
+    x: str
+    ys: tuple[str, ...]
+    y_title: str
+    path: bool = False  # True: y against x of a point, equal axis scales
+
+
+@dataclass(frozen=True)
+class Span:
+    """A Summary row: max - min of a quantity over the sweep (stroke, swing)."""
+
+    label: str
+    quantity: str
+
+
+@dataclass(frozen=True)
+class Figure:
+    """A Summary row computed from parameters alone (time ratio, exact stroke)."""
+
+    label: str
+    unit: str
+    expr: Node
+    description: str
+
+
+@dataclass(frozen=True)
+class Template:
+    id: str
+    title: str
+    description: str
+    input: InputSpec
+    parameters: tuple[ParamSpec, ...]
+    quantities: tuple[Quantity, ...]
+    status: Node  # a text per row: "ok", "cannot assemble", "dead centre"
+    checks: tuple[Check, ...] = ()
+    charts: tuple[Chart, ...] = ()
+    spans: tuple[Span, ...] = ()
+    figures: tuple[Figure, ...] = ()
+    options: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
+    # Cross-parameter rule: a message naming the offending parameter, or None.
+    validate: Callable[[Mapping[str, float]], tuple[str, str] | None] = lambda p: None
+    # Why nothing assembles, for the error message.
+    assembly_failure: Callable[[Mapping[str, float]], str] = lambda p: "no row assembles"
+
+    def __post_init__(self) -> None:
+        params = {p.name for p in self.parameters}
+        earlier = {self.input.name}
+        for q in self.quantities:  # each refers only to earlier columns: a valid order
+            _check_refs(self.id, q.name, q.expr, earlier, params)
+            earlier.add(q.name)
+        known = earlier
+        for c in self.checks:
+            _check_refs(self.id, c.name, c.expr, known, params)
+        _check_refs(self.id, "status", self.status, known, params)
+
+    def quantity(self, name: str) -> Quantity:
+        for q in self.quantities:
+            if q.name == name:
+                return q
+        raise KeyError(name)
+
+    @property
+    def outputs(self) -> tuple[str, ...]:
+        return tuple(q.name for q in self.quantities if q.output)
+
+    @property
+    def defaults(self) -> dict[str, float]:
+        return {p.name: p.default for p in self.parameters}
+
+
+def _check_refs(template: str, what: str, expr: Node, known: set[str], params: set[str]) -> None:
+    unknown = (variables(expr) - known) | (params_of(expr) - params)
+    if unknown:
+        raise ValueError(f"template {template}: {what} refers to unknown {sorted(unknown)}")
+
+
+def symbols(names: str, kind: type = Param) -> tuple[Node, ...]:
+    """``l_AB, l_BC = symbols("l_AB l_BC")``: parameter (or Var) nodes by name."""
+    return tuple(kind(n) for n in names.split())
+
+
+def quantity_vars(names: str) -> tuple[Var, ...]:
+    return symbols(names, Var)  # type: ignore[return-value]

@@ -1,0 +1,124 @@
+"""Offset slider-crank with an inclined slide line.
+
+Crank pivot A at the origin; the slide line has direction
+u = (cos phi_slide, sin phi_slide) and lies at offset e along
+n = (-sin phi_slide, cos phi_slide).  In slide coordinates the crank pin is
+(u_B, n_B) = l_AB (cos psi, sin psi), psi = theta_1 - phi_slide, and the
+slider is at s_C = u_B + h with h = sqrt(l_BC^2 - (e - n_B)^2) > 0 (the
+slider ahead of the crank pin).  The rod's angle relative to the slide is
+ATAN2(h, e - n_B), within +-90 deg, so theta_2 is continuous.
+
+Rates (q = e - n_B, q' = -omega_1 u_B, q'' = omega_1^2 n_B):
+h' = -q q' / h, h'' = -(q'^2 + q q'' + h'^2) / h, omega_2 = q' / h,
+alpha_2 = (q'' h - q' h') / h^2.
+"""
+
+from __future__ import annotations
+
+from ..expr import Node, asin, atan2, cos, degrees, eq, if_, iserror, radians, root, sin, sqrt
+from .base import Chart, Check, Figure, InputSpec, ParamSpec, Quantity, Span, Template
+from .base import quantity_vars, symbols
+
+l_AB, l_BC, e, phi_slide, omega_1 = symbols("l_AB l_BC e phi_slide omega_1")
+(theta_1, u_B, n_B, h_BC, dh_BC, ddh_BC, s_C, v_C, a_C, theta_2, omega_2,
+ alpha_2) = quantity_vars("theta_1 u_B n_B h_BC dh_BC ddh_BC s_C v_C a_C theta_2 omega_2 alpha_2")
+
+w2 = omega_1 ** 2
+q = e - n_B
+
+PARAMETERS = (
+    ParamSpec("l_AB", 40.0, "mm", "crank AB", positive=True),
+    ParamSpec("l_BC", 120.0, "mm", "connecting rod BC", positive=True),
+    ParamSpec("e", 10.0, "mm", "offset of the slide line from A, along n"),
+    ParamSpec("phi_slide", 0.0, "deg", "direction of the slide line"),
+    ParamSpec("omega_1", 10.0, "rad/s", "crank speed, counter-clockwise"),
+)
+
+Q = Quantity
+QUANTITIES = (
+    Q("u_B", "mm", l_AB * cos(radians(theta_1 - phi_slide)), "crank pin along the slide",
+      output=False),
+    Q("n_B", "mm", l_AB * sin(radians(theta_1 - phi_slide)), "crank pin across the slide",
+      output=False),
+    Q("h_BC", "mm", root(l_BC ** 2 - q ** 2), "rod's projection on the slide", output=False),
+    Q("dh_BC", "mm/s", omega_1 * u_B * q / h_BC, "rate of h_BC", output=False),
+    Q("ddh_BC", "mm/s^2", -(w2 * u_B ** 2 + q * w2 * n_B + dh_BC ** 2) / h_BC,
+      "second rate of h_BC", output=False),
+    Q("s_C", "mm", u_B + h_BC, "slider C along the slide line"),
+    Q("v_C", "mm/s", -omega_1 * n_B + dh_BC, "slider velocity"),
+    Q("a_C", "mm/s^2", -w2 * u_B + ddh_BC, "slider acceleration"),
+    Q("theta_2", "deg", phi_slide + degrees(atan2(h_BC, q)), "rod angle (direction B->C)"),
+    Q("omega_2", "rad/s", -omega_1 * u_B / h_BC, "rod angular velocity"),
+    Q("alpha_2", "rad/s^2", (w2 * n_B * h_BC + omega_1 * u_B * dh_BC) / h_BC ** 2,
+      "rod angular acceleration"),
+)
+
+STATUS = if_(iserror(h_BC), "cannot assemble", if_(eq(h_BC, 0), "dead centre", "ok"))
+
+
+def _checks() -> tuple[Check, ...]:
+    psi = radians(theta_1 - phi_slide)
+    ub, nb = l_AB * cos(psi), l_AB * sin(psi)
+    ubv, nbv = -omega_1 * nb, omega_1 * ub
+    uba, nba = -w2 * ub, -w2 * nb
+    r = (s_C - ub, e - nb)             # C - B in slide coordinates
+    rv = (v_C - ubv, -nbv)
+    ra = (a_C - uba, -nba)
+    rel = radians(theta_2 - phi_slide)
+    c2, s2 = cos(rel), sin(rel)
+    pos, vel, acc = l_BC, omega_1 * l_AB * l_BC, w2 * l_AB * l_BC
+    return (
+        Check("rod_length", "position", (sqrt(r[0] ** 2 + r[1] ** 2) - l_BC) / pos,
+              "|C - B| - l_BC, over l_BC"),
+        Check("rod_velocity", "velocity", (r[0] * rv[0] + r[1] * rv[1]) / vel,
+              "(C - B).(C' - B'), over omega_1 l_AB l_BC"),
+        Check("rod_acceleration", "acceleration",
+              (rv[0] ** 2 + rv[1] ** 2 + r[0] * ra[0] + r[1] * ra[1]) / acc,
+              "|C' - B'|^2 + (C - B).(C'' - B''), over omega_1^2 l_AB l_BC"),
+        Check("rod_angle", "position", (r[0] * s2 - r[1] * c2) / l_BC,
+              "(C - B) x e_2, over l_BC"),
+        Check("rod_angular_velocity", "velocity",
+              (rv[0] * s2 - rv[1] * c2 + (r[0] * c2 + r[1] * s2) * omega_2) / (omega_1 * l_BC),
+              "rate of (C - B) x e_2, over omega_1 l_BC"),
+        Check("rod_angular_acceleration", "acceleration",
+              (ra[0] * s2 - ra[1] * c2 + 2 * (rv[0] * c2 + rv[1] * s2) * omega_2
+               - (r[0] * s2 - r[1] * c2) * omega_2 ** 2 + (r[0] * c2 + r[1] * s2) * alpha_2)
+              / (w2 * l_BC), "second rate of (C - B) x e_2, over omega_1^2 l_BC"),
+    )
+
+
+def _why_not(p) -> str:
+    return (f"the rod l_BC = {p['l_BC']:g} cannot reach the slide line at offset "
+            f"e = {p['e']:g} from the crank pin at any crank angle of the sweep")
+
+
+TIME_RATIO: Node = (180 + degrees(asin(e / (l_BC - l_AB)) - asin(e / (l_BC + l_AB)))) / (
+    180 - degrees(asin(e / (l_BC - l_AB)) - asin(e / (l_BC + l_AB))))
+
+TEMPLATE = Template(
+    id="slider_crank",
+    title="Offset slider-crank",
+    description="Crank, connecting rod and slider on an inclined, offset slide line.",
+    input=InputSpec("theta_1", "deg", "crank angle"),
+    parameters=PARAMETERS,
+    quantities=QUANTITIES,
+    status=STATUS,
+    checks=_checks(),
+    charts=(
+        Chart("Slider displacement", "theta_1", ("s_C",), "s_C [mm]"),
+        Chart("Slider velocity", "theta_1", ("v_C",), "v_C [mm/s]"),
+        Chart("Slider acceleration", "theta_1", ("a_C",), "a_C [mm/s^2]"),
+        Chart("Rod angle", "theta_1", ("theta_2",), "theta_2 [deg]"),
+        Chart("Rod angular velocity", "theta_1", ("omega_2",), "omega_2 [rad/s]"),
+        Chart("Rod angular acceleration", "theta_1", ("alpha_2",), "alpha_2 [rad/s^2]"),
+    ),
+    spans=(Span("stroke", "s_C"), Span("rod swing", "theta_2")),
+    figures=(
+        Figure("stroke, exact", "mm", sqrt((l_BC + l_AB) ** 2 - e ** 2)
+               - sqrt((l_BC - l_AB) ** 2 - e ** 2),
+               "between the dead centres (rod and crank in line); needs l_BC > l_AB + |e|"),
+        Figure("time ratio", "", TIME_RATIO,
+               "working stroke time over return stroke time; needs l_BC > l_AB + |e|"),
+    ),
+    assembly_failure=_why_not,
+)

@@ -1,0 +1,115 @@
+"""Reference solution of the sewing machine (SPEC section 7, template 2).
+
+Two stages, each solved by Newton on its closure equations:
+1. needle bar: q = (y_C, theta_2) with B + l_BC*(cos theta_2, sin theta_2) = (0, y_C);
+   branch C below B (sin theta_2 < 0).
+2. take-up lever: q = (theta_5, s_FE) with F + s_FE*(cos theta_5, sin theta_5) = E, where
+   E = B + l_BE*(cos(theta_2 + beta_E), sin(theta_2 + beta_E)); branch s_FE > 0, and theta_5
+   reported within 180 deg of the direction F->A.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Mapping
+
+import numpy as np
+
+from .newton import Jet, jcos, jsin, solve_stage, wrap_deg
+
+DEFAULTS = {
+    "l_AB": 32.0, "l_BC": 100.0, "l_BE": 28.0, "beta_E": 0.0,
+    "x_F": -60.0, "y_F": -20.0, "l_FG": 90.0, "omega_1": 2.0 * math.pi,
+}
+LENGTHS = ("l_AB", "l_BC")
+OUTPUTS = (
+    "y_C", "v_C", "a_C", "theta_5", "omega_5", "alpha_5", "s_FE", "v_FE", "a_FE",
+    "x_G", "y_G", "vx_G", "vy_G", "ax_G", "ay_G",
+    "x_B", "y_B", "h_BC", "dh_BC", "ddh_BC", "x_E", "y_E", "vx_E", "vy_E", "ax_E", "ay_E",
+    "theta_2", "omega_2", "alpha_2",
+)
+
+
+def _needle_closure(l_ab: float, l_bc: float):
+    def closure(q, d):
+        y_c, th2 = q
+        (t1,) = d
+        return (l_ab * jcos(t1) + l_bc * jcos(th2), l_ab * jsin(t1) + l_bc * jsin(th2) - y_c)
+
+    return closure
+
+
+def _lever_closure(x_f: float, y_f: float):
+    def closure(q, d):
+        th5, s = q
+        x_e, y_e = d
+        return (s * jcos(th5) + x_f - x_e, s * jsin(th5) + y_f - y_e)
+
+    return closure
+
+
+def _mask(jet: Jet, assembled: np.ndarray, singular: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    v = np.where(assembled, jet.v, np.nan)
+    d = np.where(assembled & ~singular, jet.d, np.nan)
+    dd = np.where(assembled & ~singular, jet.dd, np.nan)
+    return v, d, dd
+
+
+def solve(p: Mapping[str, float], theta_1_deg: np.ndarray) -> dict[str, np.ndarray]:
+    """All outputs (and auxiliaries) of the sewing machine for crank angles theta_1 (deg)."""
+    t1v = np.radians(np.asarray(theta_1_deg, dtype=float))
+    rows = t1v.shape[0]
+    l_ab, l_bc, l_be, l_fg = p["l_AB"], p["l_BC"], p["l_BE"], p["l_FG"]
+    x_f, y_f = p["x_F"], p["y_F"]
+    t1 = Jet(t1v, np.full(rows, p["omega_1"]), np.zeros(rows))
+    x_b, y_b = l_ab * jcos(t1), l_ab * jsin(t1)
+
+    # stage 1: needle bar; guess rod vertical, C one rod length below B
+    q0 = np.stack([y_b.v - l_bc, np.full(rows, -0.5 * np.pi)], axis=1)
+
+    def needle_branch(q):
+        wrong = ~(np.sin(q[:, 1]) < 0.0) & np.isfinite(q[:, 1])
+        return wrong, np.stack([y_b.v - l_bc, -q[:, 1]], axis=1)
+
+    rod = solve_stage(_needle_closure(l_ab, l_bc), q0, [t1], l_ab + l_bc, needle_branch)
+    y_c, th2 = rod.jets()
+    beta = math.radians(p["beta_E"])
+    x_e = x_b + l_be * jcos(th2 + beta)
+    y_e = y_b + l_be * jsin(th2 + beta)
+
+    # stage 2: lever; guess lever pointing at A
+    theta_fa = math.atan2(0.0 - y_f, 0.0 - x_f)  # no negative zero, as in Excel
+    q0 = np.stack([np.full(rows, theta_fa), np.full(rows, math.hypot(x_f, y_f))], axis=1)
+
+    def lever_branch(q):
+        wrong = ~(q[:, 1] > 0.0) & np.isfinite(q[:, 1])
+        return wrong, np.stack([q[:, 0] + np.pi, -q[:, 1]], axis=1)
+
+    scale = math.hypot(x_f, y_f) + l_ab + l_be
+    lever = solve_stage(_lever_closure(x_f, y_f), q0, [x_e, y_e], scale, lever_branch)
+    th5, s_fe = lever.jets()
+    x_g = x_f + l_fg * jcos(th5)
+    y_g = y_f + l_fg * jsin(th5)
+
+    ok = rod.assembled & lever.assembled
+    sing = rod.singular | lever.singular
+    out: dict[str, np.ndarray] = {}
+    for names, jet, singular in (
+        (("y_C", "v_C", "a_C"), y_c, rod.singular),
+        (("s_FE", "v_FE", "a_FE"), s_fe, sing),
+        (("x_G", "vx_G", "ax_G"), x_g, sing),
+        (("y_G", "vy_G", "ay_G"), y_g, sing),
+        (("x_B", None, None), x_b, np.zeros(rows, bool)),
+        (("y_B", None, None), y_b, np.zeros(rows, bool)),
+        (("h_BC", "dh_BC", "ddh_BC"), y_b - y_c, rod.singular),
+        (("x_E", "vx_E", "ax_E"), x_e, rod.singular),
+        (("y_E", "vy_E", "ay_E"), y_e, rod.singular),
+    ):
+        for name, arr in zip(names, _mask(jet, ok, singular)):
+            if name is not None:
+                out[name] = arr
+    th5_v, out["omega_5"], out["alpha_5"] = _mask(th5, ok, sing)
+    out["theta_5"] = wrap_deg(th5_v, math.degrees(theta_fa) - 180.0)
+    th2_v, out["omega_2"], out["alpha_2"] = _mask(th2, ok, rod.singular)
+    out["theta_2"] = wrap_deg(th2_v, -180.0)
+    return {name: out[name] for name in OUTPUTS}

@@ -1,0 +1,45 @@
+"""The Charts sheet: native scatter charts over Table ranges."""
+
+from __future__ import annotations
+
+from ..compute import Evaluated
+from .layout import CHARTS, FIRST_ROW, TABLE, TableLayout, add_sheet
+
+_COLUMNS = 2
+_ROWS_PER_CHART = 20
+_COLS_PER_CHART = 9
+
+
+def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
+    sheet = add_sheet(workbook, CHARTS)
+    model = result.model
+    first, last = FIRST_ROW - 1, layout.last_row - 1
+    index = {name: i for i, name in enumerate(model.names)}
+    template = model.template
+    for n, spec in enumerate(model.charts):
+        chart = workbook.add_chart({"type": "scatter", "subtype": "straight"})
+        x = index[spec.x]
+        for y in spec.ys:
+            chart.add_series({
+                "name": template.quantity(y).header,
+                "categories": [TABLE, first, x, last, x],
+                "values": [TABLE, first, index[y], last, index[y]],
+                "line": {"width": 1.75},
+            })
+        x_title = (f"{spec.x} [{template.input.unit}]" if spec.x == template.input.name
+                   else template.quantity(spec.x).header)
+        x_axis = {"name": x_title, "major_gridlines": {"visible": True,
+                                                       "line": {"color": "#D9D9D9"}}}
+        if spec.x == template.input.name:
+            sweep = result.scene.sweep
+            x_axis.update(min=sweep.start, max=result.inputs[-1])
+            if sweep.stop - sweep.start == 360:
+                x_axis["major_unit"] = 30
+        chart.set_x_axis(x_axis)
+        chart.set_y_axis({"name": spec.y_title,
+                          "major_gridlines": {"visible": True, "line": {"color": "#D9D9D9"}}})
+        chart.set_title({"name": spec.title, "name_font": {"size": 12}})
+        chart.set_legend({"none": True})
+        chart.set_size({"width": 560, "height": 380})
+        row, col = divmod(n, _COLUMNS)
+        sheet.insert_chart(row * _ROWS_PER_CHART, col * _COLS_PER_CHART, chart)

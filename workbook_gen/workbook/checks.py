@@ -1,0 +1,97 @@
+"""The Checks sheet: closure residuals per row, their maxima, PASS/FAIL.
+
+Each residual cell is the template's check tree guarded by the row's status,
+``IF(Table!status="ok", residual, "")``, built and printed as one tree.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from xlsxwriter.utility import xl_col_to_name
+
+from .. import xlmath as xm
+from ..compute import Evaluated
+from ..expr import Node, Var, eq, if_
+from ..expr.excel import row_template
+from ..expr.numeric import compile_numpy
+from .layout import CHECK_FIRST_ROW, CHECKS, FIRST_ROW, STATUS, TableLayout, add_sheet
+
+TOLERANCE = 1e-9
+TOLERANCE_NAME = "check_tol"
+
+
+def guarded(check: Node) -> Node:
+    """The residual where the row is 'ok', else the empty string."""
+    return if_(eq(Var(STATUS), "ok"), check, "")
+
+
+def cannot_assemble_flag() -> Node:
+    return if_(eq(Var(STATUS), "cannot assemble"), 1, 0)
+
+
+def residuals(result: Evaluated) -> dict[str, xm.XArray]:
+    """Each check's guarded residual per row, as the cells hold it."""
+    columns = dict(result.columns)
+    columns[STATUS] = xm.XArray(result.status, np.zeros(result.rows, np.uint8))
+    return {c.name: compile_numpy(guarded(c.expr))(columns, result.scene.parameters,
+                                                   result.rows)
+            for c in result.model.checks}
+
+
+def _max_abs(column: xm.XArray) -> float:
+    """What MAX(MAX(r),-MIN(r)) gives: blanks ("") are skipped, none left is 0."""
+    numbers = [abs(v) for v in column.val if not isinstance(v, str)]
+    return max(numbers, default=0.0)
+
+
+def write_checks(workbook, formats, result: Evaluated, layout: TableLayout) -> None:
+    sheet = add_sheet(workbook, CHECKS)
+    checks = result.model.checks
+    values = residuals(result)
+    first, last = CHECK_FIRST_ROW, CHECK_FIRST_ROW + result.rows - 1
+    flag_col = len(checks) + 1
+    maxima = {name: _max_abs(column) for name, column in values.items()}
+
+    sheet.write_string(0, 0, "tolerance", formats["label"])
+    sheet.write_number(0, 1, TOLERANCE, formats["residual"])
+    workbook.define_name(TOLERANCE_NAME, f"={CHECKS}!$B$1")
+    sheet.write_string(0, 2, "Residuals of the loop-closure equations, each divided by its "
+                             "scale (dimensionless); rows that are not 'ok' are left blank.")
+    sheet.write_string(1, 0, "all checks", formats["label"])
+    if checks:
+        verdict = "PASS" if all(m <= TOLERANCE for m in maxima.values()) else "FAIL"
+        sheet.write_formula(1, 1, f'=IF(MAX(B4:{xl_col_to_name(len(checks))}4)<=check_tol,'
+                                  '"PASS","FAIL")', formats["label"], verdict)
+    for row, label in ((3, "max |r|"), (4, "result"), (5, "level")):
+        sheet.write_string(row, 0, label, formats["label"])
+    spec = result.scene.template.input
+    sheet.write_string(6, 0, f"{spec.name} [{spec.unit}]", formats["header"])
+    sheet.freeze_panes(CHECK_FIRST_ROW - 1, 1)
+    sheet.set_column(0, 0, 11, formats["input"])
+    sheet.set_column(1, len(checks), 14, formats["residual"])
+    sheet.set_row(2, 45)
+    for c, check in enumerate(checks, start=1):
+        col = xl_col_to_name(c)
+        rng = f"{col}{first}:{col}{last}"
+        sheet.write_string(2, c, check.description, formats["wrap"])
+        sheet.write_formula(3, c, f"=MAX(MAX({rng}),-MIN({rng}))", formats["residual"],
+                            maxima[check.name])
+        sheet.write_formula(4, c, f'=IF({col}4<=check_tol,"PASS","FAIL")', None,
+                            "PASS" if maxima[check.name] <= TOLERANCE else "FAIL")
+        sheet.write_string(5, c, check.level)
+        sheet.write_string(6, c, check.name, formats["header"])
+    sheet.write_string(6, flag_col, "cannot assemble", formats["header"])
+
+    source = row_template(Var(spec.name), layout.remote)
+    templates = [row_template(guarded(c.expr), layout.remote) for c in checks]
+    cells = [values[c.name].val.tolist() for c in checks]
+    flag = row_template(cannot_assemble_flag(), layout.remote)
+    inputs, texts = result.inputs.tolist(), result.status.tolist()
+    write_formula = sheet.write_formula
+    for i in range(result.rows):
+        t_row, r0 = FIRST_ROW + i, first + i - 1
+        write_formula(r0, 0, source.render(t_row), None, inputs[i])
+        for c, (template, column) in enumerate(zip(templates, cells), start=1):
+            write_formula(r0, c, template.render(t_row), None, column[i])
+        write_formula(r0, flag_col, flag.render(t_row), None,
+                      1 if texts[i] == "cannot assemble" else 0)

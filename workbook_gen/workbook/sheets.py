@@ -1,0 +1,50 @@
+"""The Parameters and About sheets."""
+
+from __future__ import annotations
+
+from ..compute import Evaluated
+from .layout import ABOUT, PARAMETERS, add_sheet
+
+
+def write_parameters(workbook, formats, result: Evaluated) -> None:
+    sheet = add_sheet(workbook, PARAMETERS)
+    for c, text in enumerate(("Name", "Value", "Unit", "Description")):
+        sheet.write_string(0, c, text, formats["header"])
+    sheet.set_column(0, 0, 12)
+    sheet.set_column(1, 1, 20)
+    sheet.set_column(2, 2, 8)
+    sheet.set_column(3, 3, 60)
+    sheet.freeze_panes(1, 0)
+    for row, spec in enumerate(result.scene.template.parameters, start=1):
+        sheet.write_string(row, 0, spec.name)
+        sheet.write_number(row, 1, result.scene.parameters[spec.name], formats["param"])
+        sheet.write_string(row, 2, spec.unit)
+        sheet.write_string(row, 3, spec.description)
+        workbook.define_name(spec.name, f"={PARAMETERS}!$B${row + 1}")
+
+
+def write_about(workbook, formats, result: Evaluated, version: str, filename: str) -> None:
+    sheet = add_sheet(workbook, ABOUT)
+    scene = result.scene
+    sheet.set_column(0, 0, 22)
+    sheet.set_column(1, 1, 100)
+    sheet.write_string(0, 0, scene.title, formats["title"])
+    rows = [
+        ("mechanism", scene.template.id),
+        ("generator", f"workbook-gen {version}"),
+        ("scene file", scene.source),
+        ("overrides", " ".join(f"--set {o}" for o in scene.overrides) or "none"),
+        ("sweep", f"{scene.sweep.start:g} to {scene.sweep.stop:g} by {scene.sweep.step:g} "
+                  f"{scene.template.input.unit} ({result.rows} rows)"),
+        ("outputs", ", ".join(scene.outputs)),
+        ("audit", f"workbook-gen audit {filename}"),
+        ("units", "lengths in the scene's unit (mm unless stated), input angles in degrees, "
+                  "formulas in radians, angular rates in rad/s and rad/s^2"),
+    ]
+    for r, (key, value) in enumerate(rows, start=2):
+        sheet.write_string(r, 0, key, formats["label"])
+        sheet.write_string(r, 1, value)
+    r = len(rows) + 3
+    sheet.write_string(r, 0, "scene as given", formats["label"])
+    for i, line in enumerate(scene.text.splitlines()):
+        sheet.write_string(r + i, 1, line)

@@ -1,0 +1,87 @@
+"""The Summary sheet: extremes of each output and where they occur, spans
+(stroke, swing), figures from the parameters, and the count of rows that
+cannot be assembled."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .. import xlmath as xm
+from ..compute import Evaluated
+from ..expr.excel import to_excel
+from ..expr.numeric import compile_numpy
+from ..xlerror import ExcelError
+from .layout import CHECK_FIRST_ROW, CHECKS, SUMMARY, TableLayout, add_sheet
+from xlsxwriter.utility import xl_col_to_name
+
+
+def _extreme(column: xm.XArray, inputs: np.ndarray, pick) -> tuple[object, object]:
+    """What MAX/MIN and INDEX(MATCH(...)) give: the first error of the range if any."""
+    if column.err.any():
+        first = ExcelError.from_code(int(column.err[np.flatnonzero(column.err)[0]])).value
+        return first, first
+    i = int(pick(column.val))
+    return float(column.val[i]), float(inputs[i])
+
+
+def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> None:
+    sheet = add_sheet(workbook, SUMMARY)
+    spec = result.scene.template.input
+    heads = ["quantity", "unit", "max", f"at {spec.name} [{spec.unit}]", "min",
+             f"at {spec.name} [{spec.unit}]"]
+    for c, text in enumerate(heads):
+        sheet.write_string(0, c, text, formats["header"])
+    sheet.set_column(0, 0, 30)
+    sheet.set_column(1, 1, 9)
+    sheet.set_column(2, 5, 14, formats["value"])
+    inputs_abs = layout.column(spec.name, absolute=True)
+    extremes: dict[str, tuple[int, object, object]] = {}
+    row = 1
+    for q in result.model.outputs():
+        column = result.columns[q.name]
+        rng = layout.column(q.name)
+        hi, at_hi = _extreme(column, result.inputs, np.argmax)
+        lo, at_lo = _extreme(column, result.inputs, np.argmin)
+        sheet.write_string(row, 0, q.name)
+        sheet.write_string(row, 1, q.unit)
+        sheet.write_formula(row, 2, f"=MAX({rng})", None, hi)
+        sheet.write_formula(row, 3, f"=INDEX({inputs_abs},MATCH(C{row + 1},{rng},0))", None,
+                            at_hi)
+        sheet.write_formula(row, 4, f"=MIN({rng})", None, lo)
+        sheet.write_formula(row, 5, f"=INDEX({inputs_abs},MATCH(E{row + 1},{rng},0))", None,
+                            at_lo)
+        extremes[q.name] = (row + 1, hi, lo)
+        row += 1
+
+    row += 1
+    sheet.write_string(row, 0, "value", formats["header"])
+    sheet.write_string(row, 1, "unit", formats["header"])
+    sheet.write_string(row, 2, "", formats["header"])
+    sheet.write_string(row, 3, "description", formats["header"])
+    row += 1
+    for span in result.model.spans:
+        line, hi, lo = extremes[span.quantity]
+        value = hi - lo if isinstance(hi, float) and isinstance(lo, float) else hi
+        sheet.write_string(row, 0, f"{span.label} (from the table)")
+        sheet.write_string(row, 1, result.model.template.quantity(span.quantity).unit)
+        sheet.write_formula(row, 2, f"=C{line}-E{line}", None, value)
+        sheet.write_string(row, 3, f"max - min of {span.quantity} over the sweep")
+        row += 1
+    for figure in result.model.figures:
+        value = compile_numpy(figure.expr)({}, result.scene.parameters, 1)
+        cached = (ExcelError.from_code(int(value.err[0])).value if value.err[0]
+                  else float(value.val[0]))
+        sheet.write_string(row, 0, figure.label)
+        sheet.write_string(row, 1, figure.unit)
+        sheet.write_formula(row, 2, to_excel(figure.expr), None, cached)
+        sheet.write_string(row, 3, figure.description)
+        row += 1
+    flags = xl_col_to_name(len(result.model.checks) + 1)
+    last = CHECK_FIRST_ROW + result.rows - 1
+    sheet.write_string(row, 0, "rows")
+    sheet.write_number(row, 2, result.rows)
+    row += 1
+    sheet.write_string(row, 0, "rows that cannot be assembled")
+    sheet.write_formula(row, 2, f"=SUM({CHECKS}!{flags}{CHECK_FIRST_ROW}:{flags}{last})", None,
+                        int(np.sum(result.status == "cannot assemble")))
+    sheet.write_string(row, 3, "these rows hold #NUM! in the Table")

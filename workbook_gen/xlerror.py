@@ -1,0 +1,39 @@
+"""Excel's error values as an Enum, so they are never confused with text."""
+
+from __future__ import annotations
+
+import enum
+
+
+class ExcelError(enum.Enum):
+    """An Excel error value; ``.value`` is the text Excel shows and stores."""
+
+    NULL = "#NULL!"
+    DIV0 = "#DIV/0!"
+    VALUE = "#VALUE!"
+    REF = "#REF!"
+    NAME = "#NAME?"
+    NUM = "#NUM!"
+    NA = "#N/A"
+
+    @property
+    def code(self) -> int:
+        """Small positive integer used in numpy error masks (0 means no error)."""
+        return _CODES[self]
+
+    @classmethod
+    def from_code(cls, code: int) -> "ExcelError":
+        return _BY_CODE[code]
+
+    @classmethod
+    def from_text(cls, text: str) -> "ExcelError | None":
+        """The error whose text is ``text`` (case-insensitive), or None."""
+        return _BY_TEXT.get(text.strip().upper())
+
+    def __str__(self) -> str:
+        return self.value
+
+
+_CODES = {err: i + 1 for i, err in enumerate(ExcelError)}
+_BY_CODE = {code: err for err, code in _CODES.items()}
+_BY_TEXT = {err.value: err for err in ExcelError}

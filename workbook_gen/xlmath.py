@@ -1,0 +1,244 @@
+"""Excel's arithmetic and functions over numpy arrays, with error masks.
+
+A column of values is an ``XArray``: ``val`` (float64, or object for text)
+and ``err`` (uint8, 0 = no error, else ``ExcelError.code``).  Errors
+propagate as in Excel: the leftmost operand's error wins, and a fresh error
+appears only where the operands had none.  Error entries hold NaN in ``val``.
+
+This module knows nothing of mechanisms or xlsx files; it is the numeric
+core shared by the tree printer (cached values) and the formula evaluator.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .xlerror import ExcelError
+
+NUM = ExcelError.NUM.code
+DIV0 = ExcelError.DIV0.code
+VALUE = ExcelError.VALUE.code
+
+
+@dataclass(frozen=True, slots=True)
+class XArray:
+    val: np.ndarray
+    err: np.ndarray
+
+    @property
+    def is_text(self) -> bool:
+        return self.val.dtype == object
+
+    def errors(self) -> list[ExcelError | None]:
+        return [ExcelError.from_code(int(c)) if c else None for c in self.err]
+
+
+def const(value: float | str, n: int) -> XArray:
+    """A column of ``n`` copies of a literal."""
+    if isinstance(value, str):
+        val = np.full(n, value, dtype=object)
+    else:
+        val = np.full(n, float(value))
+    return XArray(val, np.zeros(n, np.uint8))
+
+
+def array(values: np.ndarray) -> XArray:
+    values = np.asarray(values, dtype=float)
+    return _finish(values, np.zeros(values.shape, np.uint8))
+
+
+def _first_error(*errs: np.ndarray) -> np.ndarray:
+    out = errs[-1].copy()
+    for e in reversed(errs[:-1]):
+        out = np.where(e != 0, e, out)
+    return out
+
+
+def _finish(val: np.ndarray, err: np.ndarray, fresh: np.ndarray | None = None,
+            code: int = NUM) -> XArray:
+    """Apply a fresh error ``code`` where ``fresh``; non-finite results are #NUM!."""
+    err = err.copy()
+    if fresh is not None:
+        err[(err == 0) & fresh] = code
+    if val.dtype != object:
+        err[(err == 0) & ~np.isfinite(val)] = NUM
+        # Excel has no negative zero: -0.0 + 0.0 is +0.0 (ATAN2(-60, -0) must be +pi).
+        val = np.where(err != 0, np.nan, val + 0.0)
+    return XArray(val, err)
+
+
+def _num(a: XArray) -> tuple[np.ndarray, np.ndarray]:
+    """Numeric view of an operand: text that is not a number is #VALUE!."""
+    if not a.is_text:
+        return a.val, a.err
+    val = np.full(a.val.shape, np.nan)
+    err = a.err.copy()
+    for i, v in enumerate(a.val):
+        if err[i]:
+            continue
+        try:
+            val[i] = float(v) if v != "" else np.nan
+        except (TypeError, ValueError):
+            val[i] = np.nan
+        if np.isnan(val[i]):
+            err[i] = VALUE
+    return val, err
+
+
+def add(a: XArray, b: XArray) -> XArray:
+    (x, ex), (y, ey) = _num(a), _num(b)
+    with np.errstate(all="ignore"):
+        return _finish(x + y, _first_error(ex, ey))
+
+
+def sub(a: XArray, b: XArray) -> XArray:
+    (x, ex), (y, ey) = _num(a), _num(b)
+    with np.errstate(all="ignore"):
+        return _finish(x - y, _first_error(ex, ey))
+
+
+def mul(a: XArray, b: XArray) -> XArray:
+    (x, ex), (y, ey) = _num(a), _num(b)
+    with np.errstate(all="ignore"):
+        return _finish(x * y, _first_error(ex, ey))
+
+
+def div(a: XArray, b: XArray) -> XArray:
+    (x, ex), (y, ey) = _num(a), _num(b)
+    with np.errstate(all="ignore"):
+        return _finish(x / y, _first_error(ex, ey), y == 0, DIV0)
+
+
+def power(a: XArray, b: XArray) -> XArray:
+    """Excel's ^ and POWER: 0^0 and a negative base with a non-integer exponent
+    are #NUM!, 0 to a negative power is #DIV/0!."""
+    (x, ex), (y, ey) = _num(a), _num(b)
+    err = _first_error(ex, ey)
+    with np.errstate(all="ignore"):
+        val = np.power(x, y)
+        zero_base = x == 0
+        err[(err == 0) & zero_base & (y < 0)] = DIV0
+        bad = (zero_base & (y == 0)) | ((x < 0) & (np.floor(y) != y))
+    return _finish(val, err, bad)
+
+
+def neg(a: XArray) -> XArray:
+    x, ex = _num(a)
+    return _finish(-x, ex)
+
+
+def _unary(fn, domain=None):
+    def apply(a: XArray) -> XArray:
+        x, ex = _num(a)
+        with np.errstate(all="ignore"):
+            bad = None if domain is None else ~domain(x)
+            return _finish(fn(x), ex, bad)
+    return apply
+
+
+sin = _unary(np.sin)
+cos = _unary(np.cos)
+tan = _unary(np.tan)
+atan = _unary(np.arctan)
+abs_ = _unary(np.abs)
+sign = _unary(np.sign)
+radians = _unary(lambda x: x * (np.pi / 180.0))
+degrees = _unary(lambda x: x * (180.0 / np.pi))
+asin = _unary(np.arcsin, lambda x: (x >= -1) & (x <= 1))
+acos = _unary(np.arccos, lambda x: (x >= -1) & (x <= 1))
+sqrt = _unary(np.sqrt, lambda x: x >= 0)
+
+
+def atan2(a: XArray, b: XArray) -> XArray:
+    """Excel's ATAN2(x, y): the angle of (x, y); ATAN2(0, 0) is #DIV/0!."""
+    (x, ex), (y, ey) = _num(a), _num(b)
+    return _finish(np.arctan2(y, x), _first_error(ex, ey), (x == 0) & (y == 0), DIV0)
+
+
+def mod(a: XArray, b: XArray) -> XArray:
+    """Excel's MOD: n - d*INT(n/d), with the sign of the divisor."""
+    (x, ex), (y, ey) = _num(a), _num(b)
+    with np.errstate(all="ignore"):
+        val = x - y * np.floor(x / y)
+    return _finish(val, _first_error(ex, ey), y == 0, DIV0)
+
+
+def compare(op: str, a: XArray, b: XArray) -> XArray:
+    """Numeric or text comparison; the result is 1.0 (TRUE) or 0.0 (FALSE)."""
+    err = _first_error(a.err, b.err)
+    ops = {"=": np.equal, "<>": np.not_equal, "<": np.less, ">": np.greater,
+           "<=": np.less_equal, ">=": np.greater_equal}
+    if a.is_text or b.is_text:
+        fn = ops[op]
+        result = [bool(fn(_order_key(x), _order_key(y))) if not (ex or ey) else False
+                  for x, y, ex, ey in zip(a.val, b.val, a.err, b.err)]
+    else:
+        with np.errstate(all="ignore"):
+            result = ops[op](a.val, b.val)
+    return _finish(np.asarray(result, dtype=float), err)
+
+
+class _Key:
+    """Excel's order of values: numbers before text; text compares case-insensitively."""
+
+    __slots__ = ("rank", "value")
+
+    def __init__(self, value: object):
+        self.rank, self.value = ((1, value.casefold()) if isinstance(value, str)
+                                 else (0, float(value)))
+
+    def __eq__(self, other): return (self.rank, self.value) == (other.rank, other.value)
+    def __ne__(self, other): return not self == other
+    def __lt__(self, other): return (self.rank, self.value) < (other.rank, other.value)
+    def __gt__(self, other): return other < self
+    def __le__(self, other): return not other < self
+    def __ge__(self, other): return not self < other
+
+
+_order_key = _Key
+
+
+def where(cond: XArray, then: XArray, otherwise: XArray) -> XArray:
+    """IF: the chosen branch's value and error; an error condition wins."""
+    c, ec = _num(cond)
+    pick = (c != 0) & (ec == 0)
+    if then.is_text or otherwise.is_text:
+        val = np.where(pick, then.val.astype(object), otherwise.val.astype(object))
+    else:
+        val = np.where(pick, then.val, otherwise.val)
+    err = np.where(ec != 0, ec, np.where(pick, then.err, otherwise.err)).astype(np.uint8)
+    if val.dtype == object:
+        val[err != 0] = None
+        return XArray(val, err)
+    return _finish(val, err)
+
+
+def iserror(a: XArray) -> XArray:
+    return XArray((a.err != 0).astype(float), np.zeros(a.err.shape, np.uint8))
+
+
+def iferror(a: XArray, fallback: XArray) -> XArray:
+    bad = XArray((a.err == 0).astype(float), np.zeros(a.err.shape, np.uint8))
+    return where(bad, a, fallback)
+
+
+def logical(fn, *args: XArray) -> XArray:
+    """AND / OR over row-aligned arguments."""
+    vals = [_num(a) for a in args]
+    err = _first_error(*(e for _, e in vals))
+    result = fn.reduce(np.array([v != 0 for v, _ in vals]), axis=0)
+    return _finish(result.astype(float), err)
+
+
+def not_(a: XArray) -> XArray:
+    x, ex = _num(a)
+    return _finish((x == 0).astype(float), ex)
+
+
+def extreme(fn, *args: XArray) -> XArray:
+    """MIN / MAX over row-aligned arguments."""
+    vals = [_num(a) for a in args]
+    err = _first_error(*(e for _, e in vals))
+    return _finish(fn.reduce(np.array([v for v, _ in vals]), axis=0), err)

@@ -1,0 +1,157 @@
+"""What the xlsx reader returns: workbook, sheets, cells, names and external links."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+
+from workbook_gen.xlerror import ExcelError
+
+MAX_COL = 16_384
+
+Value = float | str | bool | ExcelError | None
+
+
+@dataclass(slots=True)
+class Cell:
+    """One non-empty cell: cached value and, for a formula cell, its text."""
+
+    ref: str
+    row: int
+    col: int
+    value: Value = None
+    formula: str | None = None
+    formula_type: str | None = None  # "normal", "shared", "array", "dataTable"
+    shared_index: int | None = None
+    shared_master: str | None = None  # ref of the master (itself on the master)
+    array_ref: str | None = None  # range of an array formula, on its master cell
+    array_master: str | None = None  # on the other cells an array formula fills
+
+    @property
+    def has_formula(self) -> bool:
+        """True for any formula cell, shared followers and data tables included."""
+        return self.formula_type is not None
+
+    @property
+    def is_array(self) -> bool:
+        return self.formula_type == "array"
+
+
+@dataclass(slots=True)
+class SharedFormula:
+    index: int
+    master: str  # cell ref holding the text
+    ref: str  # range the formula was filled over
+    text: str
+
+
+@dataclass
+class Sheet:
+    """A worksheet: cells in document (row-major) order, keyed by A1 ref."""
+
+    name: str
+    index: int  # position in xl/workbook.xml <sheets>, the localSheetId of its names
+    state: str = "visible"
+    cells: dict[str, Cell] = field(default_factory=dict)
+    defined_names: dict[str, str] = field(default_factory=dict)  # sheet-local names
+    shared_formulas: dict[int, SharedFormula] = field(default_factory=dict)
+    dimension: str | None = None
+    _rows: dict[int, list[Cell]] | None = field(default=None, repr=False)
+
+    def __getitem__(self, ref: str) -> Cell:
+        return self.cells[ref.replace("$", "").upper()]
+
+    def cell(self, row: int, col: int) -> Cell | None:
+        return self.cells.get(f"{column_letters(col)}{row}")
+
+    def row(self, row: int) -> list[Cell]:
+        if self._rows is None:
+            rows: dict[int, list[Cell]] = {}
+            for cell in self.cells.values():
+                rows.setdefault(cell.row, []).append(cell)
+            self._rows = {r: sorted(cs, key=lambda c: c.col) for r, cs in rows.items()}
+        return self._rows.get(row, [])
+
+    def column(self, col: int) -> list[Cell]:
+        return sorted((c for c in self.cells.values() if c.col == col), key=lambda c: c.row)
+
+    @property
+    def max_row(self) -> int:
+        return max((c.row for c in self.cells.values()), default=0)
+
+    @property
+    def max_col(self) -> int:
+        return max((c.col for c in self.cells.values()), default=0)
+
+    def formula_cells(self) -> Iterator[Cell]:
+        return (c for c in self.cells.values() if c.has_formula)
+
+    def formula_source(self, cell: Cell | str) -> tuple[str, str] | None:
+        """``(text, origin_ref)`` of the formula of ``cell``, None if it has none.
+
+        For a shared follower the text is the master's, written for ``origin_ref``:
+        shift its relative references by the offset from origin_ref to the cell.
+        """
+        cell = self[cell] if isinstance(cell, str) else cell
+        if cell.formula is not None:
+            return cell.formula, cell.ref
+        if cell.shared_index is not None and cell.shared_index in self.shared_formulas:
+            shared = self.shared_formulas[cell.shared_index]
+            return shared.text, shared.master
+        return None
+
+
+@dataclass(slots=True)
+class ExternalLink:
+    """A link to another workbook, reported and never followed."""
+
+    index: int  # the n of [n]Sheet!A1 in formula text
+    part: str
+    target: str | None  # the other workbook's path or URL as stored
+    sheet_names: list[str] = field(default_factory=list)
+
+
+@dataclass
+class Workbook:
+    path: str
+    sheets: list[Sheet]
+    defined_names: dict[str, str]  # workbook-level names; sheet-local ones are on Sheet
+    external_links: list[ExternalLink]
+    other_sheets: list[tuple[str, str]]  # (name, kind) of chartsheets, dialog sheets, ...
+    date1904: bool = False
+
+    @property
+    def sheet_names(self) -> list[str]:
+        return [s.name for s in self.sheets]
+
+    def sheet(self, name: str) -> Sheet:
+        """The worksheet called ``name`` (case-insensitive, as Excel compares them)."""
+        folded = name.casefold()
+        for sheet in self.sheets:
+            if sheet.name.casefold() == folded:
+                return sheet
+        raise KeyError(name)
+
+    __getitem__ = sheet
+
+    def resolve_name(self, name: str, sheet: str | None = None) -> str | None:
+        """Text of defined name ``name`` seen from ``sheet``: local first, then global."""
+        scopes = [self.sheet(sheet).defined_names] if sheet is not None else []
+        for scope in [*scopes, self.defined_names]:
+            for key, text in scope.items():
+                if key.casefold() == name.casefold():
+                    return text
+        return None
+
+    @property
+    def n_cells(self) -> int:
+        return sum(len(s.cells) for s in self.sheets)
+
+
+def column_letters(col: int) -> str:
+    """1 -> 'A', 28 -> 'AB'."""
+    letters = ""
+    while col > 0:
+        col, rem = divmod(col - 1, 26)
+        letters = chr(65 + rem) + letters
+    return letters
