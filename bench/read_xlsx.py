@@ -69,16 +69,23 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "bench.xlsx"
         make_workbook(path, args.rows, args.cols)
-        print(f"{args.rows} rows x {args.cols} formula columns, {path.stat().st_size / 1e6:.1f} MB; "
+        size = path.stat().st_size / 1e6
+        print(f"{args.rows} rows x {args.cols} formula columns, {size:.1f} MB; "
               f"Python {platform.python_version()}, openpyxl {openpyxl.__version__}, "
               f"{platform.machine()}; best of {args.repeat}")
         base, n_ours = best_time(ours, path, args.repeat)
-        print(f"{'workbook_gen read_workbook':44s} {base:7.3f} s  {n_ours} cells   1.00x")
+        print(f"{'workbook_gen read_workbook':48s} {base:7.3f} s  {n_ours} cells   1.00x")
+        times = {}
         for data_only in (False, True):
             for read_only in (False, True):
                 name = f"openpyxl data_only={data_only} read_only={read_only}"
                 t, n = best_time(openpyxl_mode(data_only, read_only), path, args.repeat)
-                print(f"{name:44s} {t:7.3f} s  {n} cells  {t / base:5.2f}x")
+                times[data_only, read_only] = t
+                print(f"{name:48s} {t:7.3f} s  {n} cells  {t / base:5.2f}x")
+        # the auditor needs formula text and cached values: openpyxl reads the file twice
+        both = times[False, True] + times[True, True]
+        print(f"{'openpyxl formulas + values (2 read_only loads)':48s} {both:7.3f} s"
+              f"{'':16s}{both / base:5.2f}x")
 
 
 if __name__ == "__main__":

@@ -509,3 +509,18 @@ def test_in_memory_zip_with_bad_crc(xw_file, tmp_path):
     path = tmp_path / "crc.xlsx"
     path.write_bytes(bytes(data))
     assert "corrupt" in _read_error(path)
+
+
+def test_strict_ooxml_namespaces(tmp_path):
+    """ISO strict files use purl.oclc.org namespaces and relationship types."""
+    plain = _package(tmp_path / "plain.xlsx", {"S": '<row r="1"><c r="A1"><f>1+1</f><v>2</v>'
+                                                    '</c><c r="B1" t="inlineStr"><is><t>s</t>'
+                                                    "</is></c></row>"})
+    strict = tmp_path / "strict.xlsx"
+    with zipfile.ZipFile(plain) as src, zipfile.ZipFile(strict, "w") as dst:
+        for info in src.infolist():
+            dst.writestr(info.filename, src.read(info).replace(
+                MAIN.encode(), b"http://purl.oclc.org/ooxml/spreadsheetml/main").replace(
+                REL.encode(), b"http://purl.oclc.org/ooxml/officeDocument/relationships"))
+    sheet = read_workbook(strict).sheet("S")
+    assert (sheet["A1"].formula, sheet["A1"].value, sheet["B1"].value) == ("1+1", 2.0, "s")

@@ -72,7 +72,9 @@ def _pieces(node: Node, resolve: Resolver, out: list[Piece]) -> None:
         _operand(node.operand, _precedence(node.operand) < _NEG, resolve, out)
     elif isinstance(node, Bin):
         p = _PRECEDENCE[node.op]
-        _operand(node.left, _precedence(node.left) < p, resolve, out)
+        # (-x)^2, not -x^2: the same in Excel (unary minus binds tighter), clearer to read.
+        left_parens = _precedence(node.left) < p or (node.op == "^" and isinstance(node.left, Neg))
+        _operand(node.left, left_parens, resolve, out)
         out.append(node.op)
         _operand(node.right, _precedence(node.right) <= p, resolve, out)
     elif isinstance(node, Call):

@@ -51,7 +51,18 @@ def solve(p: Mapping[str, float], theta_1_deg: np.ndarray) -> dict[str, np.ndarr
 
     drive = Jet(t1, np.full(rows, p["omega_1"]), np.zeros(rows))
     m = solve_stage(_closure(p), q0, [drive], scale, fix_branch)
-    return {
+    # Auxiliary columns: the crank pin in slide coordinates, and the rod's projection on
+    # the slide with its rates, from the solved rod angle (l_BC cos of the relative angle).
+    rel, w2, a2 = m.q[:, 1] - phi, m.dq[:, 1], m.ddq[:, 1]
+    assembled = np.where(np.isfinite(m.q[:, 0]), 1.0, np.nan)
+    aux = {
+        "u_B": p["l_AB"] * np.cos(t1 - phi) * assembled,
+        "n_B": p["l_AB"] * np.sin(t1 - phi) * assembled,
+        "h_BC": p["l_BC"] * np.cos(rel),
+        "dh_BC": -p["l_BC"] * np.sin(rel) * w2,
+        "ddh_BC": -p["l_BC"] * (np.cos(rel) * w2 ** 2 + np.sin(rel) * a2),
+    }
+    return aux | {
         "s_C": m.q[:, 0],
         "v_C": m.dq[:, 0],
         "a_C": m.ddq[:, 0],

@@ -12,6 +12,8 @@ _COLS_PER_CHART = 9
 
 def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
     sheet = add_sheet(workbook, CHARTS)
+    sheet.set_landscape()
+    sheet.fit_to_pages(1, 0)
     model = result.model
     first, last = FIRST_ROW - 1, layout.last_row - 1
     index = {name: i for i, name in enumerate(model.names)}
@@ -28,7 +30,7 @@ def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
             })
         x_title = (f"{spec.x} [{template.input.unit}]" if spec.x == template.input.name
                    else template.quantity(spec.x).header)
-        x_axis = {"name": x_title, "major_gridlines": {"visible": True,
+        x_axis = {"name": x_title, "label_position": "low", "major_gridlines": {"visible": True,
                                                        "line": {"color": "#D9D9D9"}}}
         if spec.x == template.input.name:
             sweep = result.scene.sweep
@@ -36,7 +38,7 @@ def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
             if sweep.stop - sweep.start == 360:
                 x_axis["major_unit"] = 30
         chart.set_x_axis(x_axis)
-        chart.set_y_axis({"name": spec.y_title,
+        chart.set_y_axis({"name": spec.y_title, "crossing": "min",
                           "major_gridlines": {"visible": True, "line": {"color": "#D9D9D9"}}})
         chart.set_title({"name": spec.title, "name_font": {"size": 12}})
         chart.set_legend({"none": True})

@@ -54,10 +54,8 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
         row += 1
 
     row += 1
-    sheet.write_string(row, 0, "value", formats["header"])
-    sheet.write_string(row, 1, "unit", formats["header"])
-    sheet.write_string(row, 2, "", formats["header"])
-    sheet.write_string(row, 3, "description", formats["header"])
+    for c, text in enumerate(("figure", "unit", "value", "description")):
+        sheet.write_string(row, c, text, formats["header"])
     row += 1
     for span in result.model.spans:
         line, hi, lo = extremes[span.quantity]

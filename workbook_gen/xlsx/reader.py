@@ -40,6 +40,7 @@ _ESCAPE = re.compile(r"_x([0-9A-Fa-f]{4})_")
 _UPPER = "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
 _COLS: dict[str, int] = {}
 
+
 def read_workbook(path: str | Path, *, max_cells: int = 5_000_000,
                   max_uncompressed: int = MAX_UNCOMPRESSED,
                   max_ratio: float = MAX_RATIO) -> Workbook:
@@ -77,8 +78,8 @@ def _read(pkg: Package, path: str, max_cells: int) -> Workbook:
             if kind != "worksheet":
                 book.other_sheets.append((name, kind or "unknown"))
                 continue
-            if part is None:
-                raise pkg.error(wb_part, f"sheet {name!r}: relationship target missing from the zip")
+            if part is None or part.startswith("external:"):
+                raise pkg.error(wb_part, f"sheet {name!r}: its part is missing from the zip")
             sheet = Sheet(name, index, el.get("state", "visible"))
             book.sheets.append(sheet)
             by_index[index] = sheet
@@ -87,7 +88,8 @@ def _read(pkg: Package, path: str, max_cells: int) -> Workbook:
         for n, el in enumerate(_children(_child(root, "externalReferences"), "externalReference")):
             part = rels.get(_rid(el), (None, None))[1]
             book.external_links.append(_external_link(pkg, n + 1, part))
-        sst_part = next((p for k, p in rels.values() if k == "sharedStrings" and p), None)
+        sst_part = next((p for k, p in rels.values() if k == "sharedStrings" and p
+                        and not p.startswith("external:")), None)
         strings = _shared_strings(pkg, sst_part, max_cells) if sst_part else []
         budget = max_cells
         for sheet, part in sheet_parts:
@@ -217,8 +219,9 @@ def _read_sheet(pkg: Package, part: str, sheet: Sheet, strings: list[str], budge
                 else:  # unusual spelling: lower case, $, leading zeros, or a new column
                     r_, col = _split_ref(ref, pkg, where)
                     ref = f"{column_letters(col)}{r_}"
-            if col > MAX_COL:
-                raise pkg.error(where, f"cell {ref} beyond Excel's {MAX_COL} columns")
+            if col > MAX_COL or not 0 < r_ <= MAX_ROW:
+                raise pkg.error(where, f"cell {ref} outside Excel's {MAX_ROW} rows x "
+                                       f"{MAX_COL} columns")
             v = f = inline = None
             for child in c:
                 t = local.get(child.tag)
@@ -235,7 +238,8 @@ def _read_sheet(pkg: Package, part: str, sheet: Sheet, strings: list[str], budge
                 else:
                     value = _value(kind, v, inline, strings)
             except (ValueError, IndexError):
-                raise pkg.error(where, f"cell {ref}: bad cached value {v!r} of type {kind!r}") from None
+                raise pkg.error(where, f"cell {ref}: bad cached value {v!r} "
+                                       f"of type {kind!r}") from None
             if value is None and f is None:
                 continue
             cell = Cell(ref, r_, col, value)
@@ -256,7 +260,11 @@ def _value(kind: str, v: str | None, inline: Element | None, strings: list[str])
     if kind == "n":
         return float(v) if v else None
     if kind == "s":
-        return strings[int(v)] if v else None
+        if not v:
+            return None
+        if (index := int(v)) < 0:
+            raise IndexError(index)
+        return strings[index]
     if kind == "str":
         return v
     if kind == "inlineStr":
@@ -302,16 +310,22 @@ def _formula(cell: Cell, f: Element, shared: dict[int, SharedFormula], pending: 
 
 def _mark_arrays(sheet: Sheet, arrays: list[Cell]) -> None:
     """Point the other cells an array formula fills at its master cell."""
+    budget = 4 * len(sheet.cells) + 1_000_000  # ranges of a sane sheet cover its cells once
     for master in arrays:
         first, _, last = (master.array_ref or "").replace("$", "").partition(":")
         if not last or not _REF.fullmatch(first) or not _REF.fullmatch(last):
             continue
         (r1, c1), (r2, c2) = _split_ref(first), _split_ref(last)
-        if (r2 - r1 + 1) * (c2 - c1 + 1) <= 1:
-            continue
-        for cell in sheet.cells.values():
-            if r1 <= cell.row <= r2 and c1 <= cell.col <= c2 and cell is not master:
-                cell.array_master = master.ref
+        budget -= (r2 - r1 + 1) * (c2 - c1 + 1)
+        if budget < 0:
+            log.warning("%s: array formula ranges cover too many cells; stopped at %s",
+                        sheet.name, master.ref)
+            return
+        for row in range(r1, r2 + 1):
+            for col in range(c1, c2 + 1):
+                cell = sheet.cells.get(f"{column_letters(col)}{row}")
+                if cell is not None and cell is not master:
+                    cell.array_master = master.ref
 
 
 def _split_ref(ref: str, pkg: Package | None = None, where: str = "") -> tuple[int, int]:

@@ -1,0 +1,112 @@
+"""The command line: ``workbook-gen list | generate | audit``.
+
+User errors print one line to stderr and exit 2; no tracebacks.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from typing import Sequence
+
+from .errors import SceneError, WorkbookGenError
+from .mechanisms import TEMPLATES
+from .version import VERSION
+
+
+def _overrides(scene: str, items: Sequence[str]) -> dict[str, float]:
+    values = {}
+    for item in items:
+        name, sep, text = item.partition("=")
+        try:
+            if not sep or not name:
+                raise ValueError
+            values[name.strip()] = float(text)
+        except ValueError:
+            raise SceneError(f"{scene}: --set {item!r}: expected NAME=VALUE with a number") from None
+    return values
+
+
+def _list(args: argparse.Namespace) -> int:
+    for template in TEMPLATES.values():
+        print(f"{template.id}: {template.title}")
+        print(f"  {template.description}")
+        spec = template.input
+        print(f"  input: {spec.name} [{spec.unit}] {spec.description}, default "
+              f"{spec.start:g}..{spec.stop:g} by {spec.step:g}")
+        print("  parameters:")
+        for p in template.parameters:
+            print(f"    {p.name:<10} = {p.default:<12.10g} {p.unit:<6} {p.description}")
+        print("  outputs: " + ", ".join(q.header for q in template.quantities if q.output))
+        if template.options:
+            for key, values in template.options.items():
+                print(f"  option {key}: {' | '.join(values)}")
+        print()
+    return 0
+
+
+def _generate(args: argparse.Namespace) -> int:
+    from .scene import load_scene
+    from .workbook import write_workbook
+    scene = load_scene(args.scene, overrides=_overrides(args.scene, args.set), step=args.step)
+    path = write_workbook(scene, args.out, force=args.force)
+    print(path)
+    return 0
+
+
+def _audit(args: argparse.Namespace) -> int:
+    from .audit import audit
+    from .audit.report import format_report
+    report = audit(args.file, engine=args.engine)
+    if args.json:
+        print(json.dumps(report.to_json(), indent=2, allow_nan=False))
+    else:
+        print(format_report(report))
+    return 0 if report.ok else 1
+
+
+def parser() -> argparse.ArgumentParser:
+    top = argparse.ArgumentParser(
+        prog="workbook-gen",
+        description="Planar linkage kinematics as live-formula workbooks, and their audit.")
+    top.add_argument("--version", action="version", version=f"workbook-gen {VERSION}")
+    sub = top.add_subparsers(dest="command", required=True)
+
+    p = sub.add_parser("list", help="templates, their parameters, inputs and outputs")
+    p.set_defaults(run=_list)
+
+    p = sub.add_parser("generate", help="write DIR/<name>.xlsx from a scene file")
+    p.add_argument("scene", metavar="SCENE", help="a scene file (TOML), e.g. "
+                                                  "templates/sewing_machine.toml")
+    p.add_argument("--out", default="outputs", metavar="DIR",
+                   help="output folder (default: outputs)")
+    p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                   help="override a parameter (repeatable)")
+    p.add_argument("--step", type=float, metavar="X", help="override the sweep step")
+    p.add_argument("--force", action="store_true", help="overwrite an existing file")
+    p.set_defaults(run=_generate)
+
+    p = sub.add_parser("audit", help="recompute and check every formula cell of a workbook")
+    p.add_argument("file", metavar="FILE")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--engine", choices=["libreoffice"],
+                   help="also recalculate the file in LibreOffice headless and compare")
+    p.set_defaults(run=_audit)
+    return top
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    args = parser().parse_args(argv)
+    try:
+        return args.run(args)
+    except WorkbookGenError as exc:
+        print(f"workbook-gen: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("workbook-gen: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())
