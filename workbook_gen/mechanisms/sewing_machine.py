@@ -13,7 +13,9 @@ With d = E - F = s (cos theta_5, sin theta_5):
 s' = d'.e, omega_5 = (d x d') / s^2, s'' = d''.e + s omega_5^2,
 alpha_5 = ((d x d'') / s - 2 s' omega_5) / s.
 theta_5 is measured on the branch within 180 deg of the direction F->A, so
-it is continuous over the sweep wherever F lies outside E's path.
+it is continuous over the sweep wherever F lies outside E's path.  The direction
+F->A is ATAN2(0-x_F, 0-y_F), not ATAN2(-x_F, -y_F): LibreOffice keeps the sign of
+a negated zero, and ATAN2(-60, -0) would be -180 deg there, +180 deg in Excel.
 """
 
 from __future__ import annotations
@@ -74,7 +76,7 @@ QUANTITIES = (
       output=False),
     Q("s_FE", "mm", sqrt(dx ** 2 + dy ** 2), "block E along the lever, distance from F"),
     Q("theta_5", "deg",
-      degrees(atan2(-x_F, -y_F) + atan2(-x_F * dx - y_F * dy, -x_F * dy + y_F * dx)),
+      degrees(atan2(0 - x_F, 0 - y_F) + atan2(-x_F * dx - y_F * dy, -x_F * dy + y_F * dx)),
       "take-up lever angle (direction F->E), continuous"),
     Q("v_FE", "mm/s", (dx * vx_E + dy * vy_E) / s_FE, "block sliding velocity along the lever"),
     Q("omega_5", "rad/s", (dx * vy_E - dy * vx_E) / s_FE ** 2, "take-up lever angular velocity"),

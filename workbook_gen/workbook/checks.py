@@ -20,9 +20,15 @@ TOLERANCE = 1e-9
 TOLERANCE_NAME = "check_tol"
 
 
+SKIPPED = "n/a"
+
+
 def guarded(check: Node) -> Node:
-    """The residual where the row is 'ok', else the empty string."""
-    return if_(eq(Var(STATUS), "ok"), check, "")
+    """The residual where the row is 'ok', else a text that MAX and MIN skip.
+
+    Not "": XlsxWriter cannot mark an empty cached string as text, and readers
+    then see an empty number where LibreOffice and Excel hold a string."""
+    return if_(eq(Var(STATUS), "ok"), check, SKIPPED)
 
 
 def cannot_assemble_flag() -> Node:
@@ -39,7 +45,7 @@ def residuals(result: Evaluated) -> dict[str, xm.XArray]:
 
 
 def _max_abs(column: xm.XArray) -> float:
-    """What MAX(MAX(r),-MIN(r)) gives: blanks ("") are skipped, none left is 0."""
+    """What MAX(MAX(r),-MIN(r)) gives: texts are skipped, none left is 0."""
     numbers = [abs(v) for v in column.val if not isinstance(v, str)]
     return max(numbers, default=0.0)
 
@@ -56,7 +62,7 @@ def write_checks(workbook, formats, result: Evaluated, layout: TableLayout) -> N
     sheet.write_number(0, 1, TOLERANCE, formats["residual"])
     workbook.define_name(TOLERANCE_NAME, f"={CHECKS}!$B$1")
     sheet.write_string(0, 2, "Residuals of the loop-closure equations, each divided by its "
-                             "scale (dimensionless); rows that are not 'ok' are left blank.")
+                             "scale (dimensionless); rows that are not 'ok' show n/a.")
     sheet.write_string(1, 0, "all checks", formats["label"])
     if checks:
         verdict = "PASS" if all(m <= TOLERANCE for m in maxima.values()) else "FAIL"

@@ -1,0 +1,266 @@
+"""Recompute every formula cell of a workbook: ``evaluate_cells(formulas, constants, names)``.
+
+Each column is cut into runs of formulas equal in R1C1 form (:mod:`grouping`); a run
+of two or more rows is compiled once (:mod:`vector`) and evaluated as arrays, any other
+formula cell by the scalar reference evaluator (``formula.scalar``). Runs and cells are
+ordered by their dependencies (:mod:`graph`); a run that reads its own rows, or takes
+part in a cycle of runs, is split into single cells.
+
+Documented choices:
+- a cell in a circular reference gets ``#REF!`` (Excel shows 0 with a warning; an
+  error can never pass for a number) and each cycle is reported once;
+- a formula that does not parse gets ``#NAME?`` and its message in ``syntax_errors``;
+- an external reference (``[1]Sheet!A1``) gives ``#REF!`` and the cell is in ``external``;
+- an unsupported function gives ``#NAME?`` where it is evaluated; volatile functions
+  (NOW, RAND, OFFSET, ...) are unsupported, so also ``#NAME?``, and listed in ``volatile``;
+- a reference to a sheet that has no cells reads empty cells.
+"""
+
+from __future__ import annotations
+
+import logging
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+from workbook_gen.errors import FormulaSyntaxError
+from workbook_gen.evaluator import graph
+from workbook_gen.evaluator.grouping import Run, group_formulas
+from workbook_gen.evaluator.ops import Const
+from workbook_gen.evaluator.store import Names, Num, Obj, SheetResolver, Store, value_scale
+from workbook_gen.evaluator.vector import Env, NotVectorizable, compile_block
+from workbook_gen.formula import ast
+from workbook_gen.formula.parser import parse
+from workbook_gen.formula.scalar import _Evaluator, evaluate, unsupported_functions
+from workbook_gen.xlerror import ExcelError
+
+log = logging.getLogger(__name__)
+
+Cell = tuple[str, int, int]
+VOLATILE = frozenset({"NOW", "TODAY", "RAND", "RANDBETWEEN", "OFFSET", "INDIRECT"})
+CYCLE_VALUE = ExcelError.REF
+SYNTAX_VALUE = ExcelError.NAME
+EXTERNAL_VALUE = ExcelError.REF
+_EXTERNAL = re.compile(r"\[[^\]]*\][^!]*!")
+
+
+@dataclass
+class GroupStats:
+    vector_groups: int = 0    # runs evaluated as arrays
+    vector_cells: int = 0     # formula cells in those runs
+    scalar_cells: int = 0     # formula cells evaluated one by one
+
+
+class CellMap(Mapping):
+    """Read-only {(sheet, row, col): value} over the formula cells, backed by the store."""
+
+    def __init__(self, keys: Mapping, getter):
+        self._keys, self._get = keys, getter
+
+    def __getitem__(self, key):
+        if key not in self._keys:
+            raise KeyError(key)
+        return self._get(*key)
+
+    def __iter__(self):
+        return iter(self._keys)
+
+    def __len__(self):
+        return len(self._keys)
+
+
+@dataclass
+class Evaluation:
+    values: Mapping[Cell, object]
+    operands_scale: Mapping[Cell, float]
+    cycles: list[list[Cell]] = field(default_factory=list)
+    unsupported: dict[Cell, list[str]] = field(default_factory=dict)
+    syntax_errors: dict[Cell, str] = field(default_factory=dict)
+    volatile: dict[Cell, list[str]] = field(default_factory=dict)
+    external: list[Cell] = field(default_factory=list)
+    groups: GroupStats = field(default_factory=GroupStats)
+
+
+@dataclass
+class _Unit:
+    sheet: str
+    col: int
+    first: int
+    last: int
+    node: ast.Node
+    block: object = None   # compiled vector Block, or None for a single cell
+
+    def cells(self):
+        return [(self.sheet, r, self.col) for r in range(self.first, self.last + 1)]
+
+
+def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object],
+                   names: Mapping[str, str], *, vectorize: bool = True) -> Evaluation:
+    """Recompute every formula (texts without '=') of a workbook; see the module doc."""
+    sheets = {k[0] for k in formulas} | {k[0] for k in constants}
+    store = Store(sheets)
+    for (sheet, row, col), value in constants.items():
+        store.put(sheet, row, col, value)
+    name_table = Names(dict(names))
+    result = Evaluation(CellMap(formulas, store.get), CellMap(formulas, store.scale))
+
+    runs, errors = _runs(formulas, vectorize)
+    for cell, message in errors.items():
+        if _EXTERNAL.search(formulas[cell]):
+            result.external.append(cell)
+            store.put(*cell, EXTERNAL_VALUE)
+        else:
+            result.syntax_errors[cell] = message
+            store.put(*cell, SYNTAX_VALUE)
+    units = _units(runs, vectorize, store, result)
+    _report_functions(units, result)
+
+    deps = []
+    while True:
+        inputs = [_rects(u, store, name_table) for u in units]
+        deps = graph.build([(u.sheet, u.col, u.first, u.last) for u in units], inputs)
+        components = graph.order(deps)
+        cyclic = [c for c in components if graph.is_cycle(c, deps)]
+        split = {u for c in cyclic for u in c if units[u].block is not None}
+        if not split:
+            break
+        units = [s for i, u in enumerate(units)
+                 for s in (_singles(u) if i in split else [u])]
+
+    for component in components:
+        if graph.is_cycle(component, deps):
+            cells = sorted(c for u in component for c in units[u].cells())
+            result.cycles.append(cells)
+            for cell in cells:
+                store.put(*cell, CYCLE_VALUE)
+            continue
+        for u in component:
+            _evaluate(units[u], store, name_table)
+    for u in units:
+        if u.block is not None:
+            result.groups.vector_groups += 1
+            result.groups.vector_cells += u.last - u.first + 1
+        else:
+            result.groups.scalar_cells += 1
+    result.external.sort()
+    return result
+
+
+def _runs(formulas, vectorize: bool) -> tuple[list[Run], dict]:
+    """Runs of R1C1-identical formulas; without ``vectorize`` every cell parsed alone."""
+    if vectorize:
+        return group_formulas(formulas)
+    runs, errors = [], {}
+    for (sheet, row, col), text in formulas.items():
+        try:
+            runs.append(Run(sheet, col, row, row, parse(text)))
+        except FormulaSyntaxError as exc:
+            errors[(sheet, row, col)] = str(exc)
+    return runs, errors
+
+
+def _external(node: ast.Node) -> bool:
+    return any(isinstance(n, (ast.CellRef, ast.RangeRef)) and (n.sheet or "").startswith("[")
+               for n in ast.walk(node))
+
+
+def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -> list[_Unit]:
+    units = []
+    for run in runs:
+        if _external(run.node):
+            for r in range(run.first, run.last + 1):
+                result.external.append((run.sheet, r, run.col))
+                store.put(run.sheet, r, run.col, EXTERNAL_VALUE)
+            continue
+        unit = _Unit(run.sheet, run.col, run.first, run.last, run.node)
+        if vectorize and run.last > run.first:
+            try:
+                unit.block = compile_block(run.node, run.sheet, run.col, run.first, run.last,
+                                           store.sheet)
+            except NotVectorizable as exc:
+                log.debug("cell by cell: %s!%s%s..: %s", run.sheet, run.col, run.first, exc)
+        units.extend([unit] if unit.block is not None or run.last == run.first
+                     else _singles(unit))
+    return units
+
+
+def _singles(unit: _Unit) -> list[_Unit]:
+    """A run as single cells, each with its own (shifted) tree."""
+    return [_Unit(unit.sheet, unit.col, r, r, ast.shift(unit.node, r - unit.first, 0))
+            for r in range(unit.first, unit.last + 1)]
+
+
+def _report_functions(units: list[_Unit], result: Evaluation) -> None:
+    for u in units:
+        bad = sorted(unsupported_functions(u.node))
+        if not bad:
+            continue
+        volatile = [f for f in bad if f in VOLATILE]
+        for cell in u.cells():
+            result.unsupported[cell] = bad
+            if volatile:
+                result.volatile[cell] = volatile
+
+
+def _rects(unit: _Unit, store: Store, names: Names) -> list[graph.Rect]:
+    """The rectangles of cells a unit reads (defined names followed)."""
+    span = unit.last - unit.first
+    out: list[graph.Rect] = []
+    pending = [(unit.node, unit.sheet)]
+    seen_names: set[str] = set()
+    while pending:
+        node, home = pending.pop()
+        for n in ast.walk(node):
+            if isinstance(n, ast.Name):
+                key = n.name.upper()
+                if key not in seen_names and names.node(key) is not None:
+                    seen_names.add(key)
+                    pending.append((names.node(key), home))
+                continue
+            if isinstance(n, ast.CellRef):
+                corners = [n]
+            elif isinstance(n, ast.RangeRef):
+                corners = [n.first, n.last]
+            else:
+                continue
+            sheet = home if n.sheet is None else store.sheet(n.sheet)
+            rows = [c.row for c in corners] + [c.row + span for c in corners if not c.row_abs]
+            cols = [c.col for c in corners]
+            out.append((sheet, min(rows), min(cols), max(rows), max(cols)))
+    return out
+
+
+def _evaluate(unit: _Unit, store: Store, names: Names) -> None:
+    resolver = SheetResolver(store, names, unit.sheet)
+    if unit.block is None:
+        value = evaluate(unit.node, resolver)
+        store.put(unit.sheet, unit.first, unit.col, value, cell_scale(unit.node, resolver))
+        return
+    reference = _Evaluator(resolver, "excel", None)
+    env = Env(unit.last - unit.first + 1, store.block, reference.arg)
+    value = unit.block.run(env)
+    scale = unit.block.scale(env)
+    if isinstance(value, Const):
+        value = Obj([0.0 if value.value is None else value.value] * env.n)
+    elif isinstance(value, Obj):
+        value = Obj([0.0 if v is None else v for v in value.items])
+    elif not isinstance(value, Num):
+        raise TypeError(f"unexpected block value {type(value).__name__}")
+    store.put_block(unit.sheet, unit.col, unit.first, value, scale)
+
+
+def cell_scale(node: ast.Node, resolver) -> float:
+    """Largest magnitude among the numbers a formula reads: literals, cells, names."""
+    scale = 0.0
+    for n in ast.walk(node):
+        if isinstance(n, ast.Number):
+            scale = max(scale, abs(n.value))
+        elif isinstance(n, ast.CellRef):
+            scale = max(scale, value_scale(resolver.cell(n.sheet, n.row, n.col)))
+        elif isinstance(n, ast.RangeRef):
+            r1, r2 = sorted((n.first.row, n.last.row))
+            c1, c2 = sorted((n.first.col, n.last.col))
+            scale = max(scale, value_scale(resolver.range(n.sheet, r1, c1, r2, c2)))
+        elif isinstance(n, ast.Name):
+            scale = max(scale, value_scale(resolver.name(n.name, n.sheet)))
+    return scale

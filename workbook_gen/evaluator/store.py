@@ -1,0 +1,197 @@
+"""Cell values held column by column, so that a block of rows is an array slice.
+
+A column keeps ``val`` (float64), ``err`` (uint8 error code) and ``irr`` (True where
+the cell holds anything but a number or an error: text, a boolean or nothing; those
+values live in a dict). ``scale`` holds each formula cell's operand scale. The
+:class:`SheetResolver` gives the scalar evaluator the same data, and resolves
+defined names (a name's text is itself a formula, e.g. ``Parameters!$B$2``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from workbook_gen.errors import FormulaSyntaxError
+from workbook_gen.formula import ast
+from workbook_gen.formula.functions import Range
+from workbook_gen.formula.parser import parse
+from workbook_gen.xlerror import ExcelError
+
+_GROW = 1024
+
+
+@dataclass(slots=True)
+class Num:
+    """A block of numbers (or booleans when ``boolean``) with error codes."""
+
+    val: np.ndarray
+    err: np.ndarray
+    boolean: bool = False
+
+
+@dataclass(slots=True)
+class Obj:
+    """A block of arbitrary values (text, booleans, empties, numbers, errors)."""
+
+    items: list
+
+
+class _Column:
+    __slots__ = ("val", "err", "irr", "objs", "scale")
+
+    def __init__(self, size: int):
+        self.val = np.full(size, np.nan)
+        self.err = np.zeros(size, np.uint8)
+        self.irr = np.ones(size, bool)
+        self.scale = np.zeros(size)
+        self.objs: dict[int, object] = {}
+
+    def reserve(self, size: int) -> None:
+        old = len(self.val)
+        if size <= old:
+            return
+        size = max(size, old + _GROW)
+        self.val = np.concatenate([self.val, np.full(size - old, np.nan)])
+        self.err = np.concatenate([self.err, np.zeros(size - old, np.uint8)])
+        self.irr = np.concatenate([self.irr, np.ones(size - old, bool)])
+        self.scale = np.concatenate([self.scale, np.zeros(size - old)])
+
+
+class Store:
+    """Every cell value of a workbook; rows index arrays directly (row 0 unused)."""
+
+    def __init__(self, sheets):
+        self.canonical = {s.lower(): s for s in sheets}
+        self.cols: dict[tuple[str, int], _Column] = {}
+
+    def sheet(self, name: str) -> str:
+        return self.canonical.get(name.lower(), name)
+
+    def _column(self, sheet: str, col: int, rows: int) -> _Column:
+        column = self.cols.get((sheet, col))
+        if column is None:
+            column = self.cols[(sheet, col)] = _Column(rows + 1)
+        column.reserve(rows + 1)
+        return column
+
+    def put(self, sheet: str, row: int, col: int, value, scale: float = 0.0) -> None:
+        c = self._column(sheet, col, row)
+        c.scale[row] = scale
+        if isinstance(value, ExcelError):
+            c.val[row], c.err[row], c.irr[row] = np.nan, value.code, False
+            c.objs.pop(row, None)
+        elif isinstance(value, (int, float)) and not isinstance(value, bool):
+            c.val[row], c.err[row], c.irr[row] = float(value), 0, False
+            c.objs.pop(row, None)
+        else:
+            c.val[row], c.err[row], c.irr[row] = np.nan, 0, True
+            c.objs[row] = value
+
+    def put_block(self, sheet: str, col: int, first: int, block, scale: np.ndarray) -> None:
+        """Write a Num or a list of values to rows ``first ..``."""
+        if isinstance(block, Num) and not block.boolean:
+            n = len(block.val)
+            c = self._column(sheet, col, first + n - 1)
+            sl = slice(first, first + n)
+            c.val[sl], c.err[sl], c.irr[sl], c.scale[sl] = block.val, block.err, False, scale
+            for r in range(first, first + n):
+                c.objs.pop(r, None)
+            return
+        items = block.items if isinstance(block, Obj) else to_items(block)
+        for i, v in enumerate(items):
+            self.put(sheet, first + i, col, v, float(scale[i]))
+
+    def get(self, sheet: str, row: int, col: int):
+        c = self.cols.get((sheet, col))
+        if c is None or row >= len(c.val) or row < 1:
+            return None
+        if c.irr[row]:
+            return c.objs.get(row)
+        e = c.err[row]
+        return ExcelError.from_code(int(e)) if e else float(c.val[row])
+
+    def scale(self, sheet: str, row: int, col: int) -> float:
+        c = self.cols.get((sheet, col))
+        return 0.0 if c is None or row >= len(c.val) else float(c.scale[row])
+
+    def block(self, sheet: str, col: int, first: int, last: int) -> Num | Obj:
+        """Rows ``first..last`` of a column: a Num view when all are numbers/errors."""
+        n = last - first + 1
+        c = self.cols.get((sheet, col))
+        if c is None:
+            return Obj([None] * n)
+        if last < len(c.val) and not c.irr[first:last + 1].any():
+            return Num(c.val[first:last + 1], c.err[first:last + 1])
+        return Obj([self.get(sheet, r, col) for r in range(first, last + 1)])
+
+    def rect(self, sheet: str, r1: int, c1: int, r2: int, c2: int) -> list[list]:
+        return [[self.get(sheet, r, c) for c in range(c1, c2 + 1)] for r in range(r1, r2 + 1)]
+
+
+def to_items(num: Num) -> list:
+    """Python values of a Num block."""
+    out = []
+    for v, e in zip(num.val.tolist(), num.err.tolist()):
+        if e:
+            out.append(ExcelError.from_code(e))
+        else:
+            out.append(bool(v) if num.boolean else v)
+    return out
+
+
+def value_scale(value) -> float:
+    """Largest magnitude among the numbers in a value, a Range or a 2-D list."""
+    if isinstance(value, Range):
+        value = value.rows
+    if isinstance(value, (list, tuple)):
+        return max((value_scale(v) for row in value for v in row), default=0.0)
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value):
+        return abs(float(value))
+    return 0.0
+
+
+class Names:
+    """Workbook-level defined names, each parsed once (case-insensitive)."""
+
+    def __init__(self, names: dict[str, str]):
+        self.nodes: dict[str, ast.Node] = {}
+        self.errors: dict[str, str] = {}
+        for name, text in names.items():
+            try:
+                self.nodes[name.upper()] = parse(str(text).lstrip("="))
+            except FormulaSyntaxError as exc:
+                self.errors[name.upper()] = str(exc)
+
+    def node(self, name: str) -> ast.Node | None:
+        return self.nodes.get(name.upper())
+
+
+class SheetResolver:
+    """The scalar evaluator's view of the store from cells of one sheet."""
+
+    MAX_NAME_DEPTH = 16
+
+    def __init__(self, store: Store, names: Names, sheet: str, depth: int = 0):
+        self.store, self.names, self.sheet, self.depth = store, names, sheet, depth
+
+    def _sheet(self, sheet):
+        return self.sheet if sheet is None else self.store.sheet(sheet)
+
+    def cell(self, sheet, row, col):
+        return self.store.get(self._sheet(sheet), row, col)
+
+    def range(self, sheet, row1, col1, row2, col2):
+        return self.store.rect(self._sheet(sheet), row1, col1, row2, col2)
+
+    def name(self, name, sheet):
+        node = self.names.node(name)
+        if node is None or self.depth >= self.MAX_NAME_DEPTH:
+            return ExcelError.NAME
+        from workbook_gen.formula.scalar import _Evaluator  # the reference semantics
+
+        inner = SheetResolver(self.store, self.names, self.sheet, self.depth + 1)
+        value = _Evaluator(inner, "excel", None).arg(node)
+        return [list(r) for r in value.rows] if isinstance(value, Range) else value

@@ -1,0 +1,222 @@
+"""Compile a formula, as seen from the first row of a column block, to a numpy function.
+
+``compile_block(node, sheet, col, first, last)`` returns a :class:`Block` whose
+``run(env)`` gives every row's value at once. The formula's references are classified:
+- a row-relative cell reference is an array slice of another column (``env.block``);
+- any sub-expression that is the same for every row (literals, ``$``-rows, defined
+  names, absolute ranges and everything built only from them) is computed once by the
+  scalar evaluator and broadcast;
+- relative ranges and references into the block's own rows are refused
+  (:class:`NotVectorizable`): the caller evaluates those cells one by one.
+Numbers and errors go through :mod:`kernels` (bit-identical to the scalar path);
+blocks holding text, booleans or empties fall back per element to the scalar
+functions (``formula.functions``), so the semantics are the scalar evaluator's.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from workbook_gen.evaluator import kernels as k
+from workbook_gen.evaluator.ops import (
+    Const, Num, Obj, binary, call, choose, is_num, items, scalar, to_bool_mask, unary,
+)
+from workbook_gen.evaluator.store import value_scale
+from workbook_gen.formula import ast
+from workbook_gen.formula import functions as fx
+
+
+class NotVectorizable(Exception):
+    """This formula must be evaluated cell by cell."""
+
+
+# Functions whose reference arguments behave unlike values (ranges skip text/booleans).
+REF_SENSITIVE = frozenset({"MIN", "MAX", "SUM", "AND", "OR"})
+
+
+@dataclass
+class Env:
+    """What a compiled block reads: ``block(sheet, col, first, last)`` and ``const(node)``."""
+
+    n: int
+    block: Callable
+    const: Callable
+
+
+@dataclass
+class Block:
+    sheet: str
+    col: int
+    first: int
+    last: int
+    run: Callable[[Env], object]         # -> Num | Obj | Const (scalar_of'd)
+    scale: Callable[[Env], np.ndarray]   # operand scale per row
+
+
+def row_invariant(node: ast.Node) -> bool:
+    """True when every reference in ``node`` has an absolute row."""
+    for n in ast.walk(node):
+        if isinstance(n, ast.CellRef) and not n.row_abs:
+            return False
+        if isinstance(n, ast.RangeRef) and not (n.first.row_abs and n.last.row_abs):
+            return False
+    return True
+
+
+def compile_block(node: ast.Node, sheet: str, col: int, first: int, last: int,
+                  sheet_of: Callable[[str], str] = lambda s: s) -> Block:
+    """Compile ``node`` (the formula of row ``first``) for rows ``first..last`` of a column."""
+    c = _Compiler(sheet, col, first, last, sheet_of)
+    fn, _ = c.compile(node)
+
+    def run(env: Env):
+        return scalar(fn(env), env.n)
+    return Block(sheet, col, first, last, run, c.scale_fn(node))
+
+
+class _Compiler:
+    def __init__(self, sheet, col, first, last, sheet_of):
+        self.sheet, self.col, self.first, self.last = sheet, col, first, last
+        self.sheet_of = sheet_of
+
+    # -- leaves -------------------------------------------------------------------------
+    def _slice(self, ref: ast.CellRef):
+        sheet = self.sheet if ref.sheet is None else self.sheet_of(ref.sheet)
+        if sheet.startswith("["):
+            raise NotVectorizable("external reference")
+        a, b = ref.row, ref.row + (self.last - self.first)
+        if sheet == self.sheet and ref.col == self.col and a <= self.last and b >= self.first:
+            raise NotVectorizable("reads its own block")
+        return sheet, ref.col, a, b
+
+    def compile(self, node: ast.Node):
+        """``(fn, is_ref)``: fn(env) -> Num | Obj | Const; is_ref True, False or 'maybe'."""
+        is_ref = isinstance(node, (ast.CellRef, ast.RangeRef, ast.Name))
+        if row_invariant(node):
+            return (lambda env: Const(env.const(node))), is_ref
+        if isinstance(node, ast.CellRef):
+            where = self._slice(node)
+            return (lambda env: env.block(*where)), True
+        if isinstance(node, ast.RangeRef):
+            raise NotVectorizable("relative range")
+        if isinstance(node, ast.Paren):
+            return self.compile(node.inner)
+        if isinstance(node, ast.Unary):
+            fn, _ = self.compile(node.operand)
+            return (lambda env: unary(node.op, scalar(fn(env), env.n), env.n)), False
+        if isinstance(node, ast.Percent):
+            fn, _ = self.compile(node.operand)
+            return (lambda env: unary("%", scalar(fn(env), env.n), env.n)), False
+        if isinstance(node, ast.Binary):
+            return self._binary(node), False
+        if isinstance(node, ast.Func):
+            return self._func(node)
+        raise NotVectorizable(type(node).__name__)
+
+    def _binary(self, node: ast.Binary):
+        spine = []  # left-deep chains iterated, never recursed
+        while isinstance(node, ast.Binary):
+            spine.append(node)
+            node = node.left
+        left, _ = self.compile(node)
+        steps = [(s.op, self.compile(s.right)[0]) for s in reversed(spine)]
+
+        def run(env):
+            acc = scalar(left(env), env.n)
+            for op, right in steps:
+                acc = binary(op, acc, scalar(right(env), env.n), env.n)
+            return acc
+        return run
+
+    def _func(self, node: ast.Func):
+        name = node.name
+        if name in ("IF", "IFERROR"):
+            return self._lazy(node)
+        if name not in fx.EAGER:
+            return (lambda env: Const(fx.ExcelError.NAME)), False
+        args = [self.compile(a) for a in node.args]
+        refs = [r for _, r in args]
+        if name in REF_SENSITIVE and "maybe" in refs:
+            raise NotVectorizable(f"{name} of a conditional reference")
+        fns = [f for f, _ in args]
+        return (lambda env: call(name, [f(env) for f in fns], refs, env.n)), False
+
+    def _lazy(self, node: ast.Func):
+        args = [self.compile(a) for a in node.args]
+        fns = [f for f, _ in args]
+        maybe = "maybe" if any(r for _, r in args[1:]) else False
+        if node.name == "IFERROR":
+            if len(fns) != 2:
+                return (lambda env: Const(fx.ExcelError.VALUE)), False
+            return (lambda env: _iferror(fns[0], fns[1], env)), maybe
+        if not 1 <= len(fns) <= 3:
+            return (lambda env: Const(fx.ExcelError.VALUE)), False
+        then = fns[1] if len(fns) > 1 else (lambda env: Const(True))
+        other = fns[2] if len(fns) > 2 else (lambda env: Const(False))
+        return (lambda env: _if(fns[0], then, other, env)), maybe
+
+    # -- operand scale --------------------------------------------------------------------
+    def scale_fn(self, node: ast.Node):
+        """Per row, the largest magnitude among the numeric leaves of the formula."""
+        fixed: list[ast.Node] = []
+        sliced = []
+        literal = 0.0
+        for n in ast.walk(node):
+            if isinstance(n, ast.Number):
+                literal = max(literal, abs(n.value))
+            elif isinstance(n, ast.CellRef) and not n.row_abs:
+                sliced.append(self._slice(n))
+            elif isinstance(n, (ast.CellRef, ast.RangeRef, ast.Name)):
+                fixed.append(n)
+
+        def scale(env):
+            out = np.full(env.n, literal)
+            for n in fixed:
+                out = np.maximum(out, value_scale(env.const(n)))
+            for where in sliced:
+                out = np.maximum(out, block_scale(env.block(*where)))
+            return out
+        return scale
+
+
+def block_scale(b) -> np.ndarray:
+    if isinstance(b, Num):
+        return np.where(b.err == 0, np.abs(b.val), 0.0)
+    return np.array([value_scale(v) for v in b.items])
+
+
+def _if(cond_fn, then_fn, other_fn, env):
+    cond = scalar(cond_fn(env), env.n)
+    if isinstance(cond, Const):
+        c = fx.to_bool(cond.value)
+        if isinstance(c, fx.ExcelError):
+            return Const(c)
+        return (then_fn if c else other_fn)(env)
+    pick, cerr = to_bool_mask(cond, env.n)
+    take = pick & (cerr == 0)
+    then = scalar(then_fn(env), env.n) if take.any() else Const(False)
+    drop = ~pick & (cerr == 0)
+    other = scalar(other_fn(env), env.n) if drop.any() else Const(False)
+    return choose(pick, cerr, then, other, env.n)
+
+
+def _iferror(value_fn, fallback_fn, env):
+    value = scalar(value_fn(env), env.n)
+    if isinstance(value, Const):
+        return fallback_fn(env) if isinstance(value.value, fx.ExcelError) else value
+    if is_num(value):
+        bad = value.err != 0
+    else:
+        bad = np.array([isinstance(v, fx.ExcelError) for v in value.items], bool)
+    if not bad.any():
+        return value
+    fallback = scalar(fallback_fn(env), env.n)
+    return choose(~bad, np.zeros(env.n, np.uint8), value, fallback, env.n)
+
+
+__all__ = ["Block", "Env", "NotVectorizable", "compile_block", "row_invariant", "items",
+           "k", "math"]
