@@ -26,6 +26,7 @@ VALUE = ExcelError.VALUE.code
 class XArray:
     val: np.ndarray
     err: np.ndarray
+    boolean: bool = False  # TRUE/FALSE held as 1.0/0.0 (they compare above all numbers)
 
     @property
     def is_text(self) -> bool:
@@ -57,7 +58,7 @@ def _first_error(*errs: np.ndarray) -> np.ndarray:
 
 
 def _finish(val: np.ndarray, err: np.ndarray, fresh: np.ndarray | None = None,
-            code: int = NUM) -> XArray:
+            code: int = NUM, boolean: bool = False) -> XArray:
     """Apply a fresh error ``code`` where ``fresh``; non-finite results are #NUM!."""
     err = err.copy()
     if fresh is not None:
@@ -66,7 +67,7 @@ def _finish(val: np.ndarray, err: np.ndarray, fresh: np.ndarray | None = None,
         err[(err == 0) & ~np.isfinite(val)] = NUM
         # Excel has no negative zero: -0.0 + 0.0 is +0.0 (ATAN2(-60, -0) must be +pi).
         val = np.where(err != 0, np.nan, val + 0.0)
-    return XArray(val, err)
+    return XArray(val, err, boolean)
 
 
 def _num(a: XArray) -> tuple[np.ndarray, np.ndarray]:
@@ -138,9 +139,10 @@ def _unary(fn, domain=None):
     return apply
 
 
-sin = _unary(np.sin)
-cos = _unary(np.cos)
-tan = _unary(np.tan)
+TRIG_LIMIT = 2.0 ** 27  # Excel's SIN, COS, TAN give #NUM! from here on
+sin = _unary(np.sin, lambda x: np.abs(x) < TRIG_LIMIT)
+cos = _unary(np.cos, lambda x: np.abs(x) < TRIG_LIMIT)
+tan = _unary(np.tan, lambda x: np.abs(x) < TRIG_LIMIT)
 atan = _unary(np.arctan)
 abs_ = _unary(np.abs)
 sign = _unary(np.sign)
@@ -166,18 +168,21 @@ def mod(a: XArray, b: XArray) -> XArray:
 
 
 def compare(op: str, a: XArray, b: XArray) -> XArray:
-    """Numeric or text comparison; the result is 1.0 (TRUE) or 0.0 (FALSE)."""
+    """Excel's comparison: numbers < text < booleans; text compares case-insensitively."""
     err = _first_error(a.err, b.err)
     ops = {"=": np.equal, "<>": np.not_equal, "<": np.less, ">": np.greater,
            "<=": np.less_equal, ">=": np.greater_equal}
+    fn = ops[op]
     if a.is_text or b.is_text:
-        fn = ops[op]
-        result = [bool(fn(_order_key(x), _order_key(y))) if not (ex or ey) else False
+        result = [bool(fn(_Key(x, a.boolean), _Key(y, b.boolean))) if not (ex or ey) else False
                   for x, y, ex, ey in zip(a.val, b.val, a.err, b.err)]
+    elif a.boolean != b.boolean:  # a boolean against a number: the type decides
+        rank = (int(a.boolean) > int(b.boolean)) - (int(a.boolean) < int(b.boolean))
+        result = np.full(a.val.shape, bool(fn(rank, 0)))
     else:
         with np.errstate(all="ignore"):
-            result = ops[op](a.val, b.val)
-    return _finish(np.asarray(result, dtype=float), err)
+            result = fn(a.val, b.val)
+    return _finish(np.asarray(result, dtype=float), err, boolean=True)
 
 
 class _Key:
@@ -185,9 +190,11 @@ class _Key:
 
     __slots__ = ("rank", "value")
 
-    def __init__(self, value: object):
-        self.rank, self.value = ((1, value.casefold()) if isinstance(value, str)
-                                 else (0, float(value)))
+    def __init__(self, value: object, boolean: bool = False):
+        if isinstance(value, str):
+            self.rank, self.value = 1, value.casefold()
+        else:
+            self.rank, self.value = (2 if boolean else 0), float(value)
 
     def __eq__(self, other): return (self.rank, self.value) == (other.rank, other.value)
     def __ne__(self, other): return not self == other
@@ -196,8 +203,6 @@ class _Key:
     def __le__(self, other): return not other < self
     def __ge__(self, other): return not self < other
 
-
-_order_key = _Key
 
 
 def where(cond: XArray, then: XArray, otherwise: XArray) -> XArray:
@@ -212,11 +217,11 @@ def where(cond: XArray, then: XArray, otherwise: XArray) -> XArray:
     if val.dtype == object:
         val[err != 0] = None
         return XArray(val, err)
-    return _finish(val, err)
+    return _finish(val, err, boolean=then.boolean and otherwise.boolean)
 
 
 def iserror(a: XArray) -> XArray:
-    return XArray((a.err != 0).astype(float), np.zeros(a.err.shape, np.uint8))
+    return XArray((a.err != 0).astype(float), np.zeros(a.err.shape, np.uint8), True)
 
 
 def iferror(a: XArray, fallback: XArray) -> XArray:
@@ -229,12 +234,12 @@ def logical(fn, *args: XArray) -> XArray:
     vals = [_num(a) for a in args]
     err = _first_error(*(e for _, e in vals))
     result = fn.reduce(np.array([v != 0 for v, _ in vals]), axis=0)
-    return _finish(result.astype(float), err)
+    return _finish(result.astype(float), err, boolean=True)
 
 
 def not_(a: XArray) -> XArray:
     x, ex = _num(a)
-    return _finish((x == 0).astype(float), ex)
+    return _finish((x == 0).astype(float), ex, boolean=True)
 
 
 def extreme(fn, *args: XArray) -> XArray:
