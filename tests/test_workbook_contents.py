@@ -127,3 +127,15 @@ def test_about_names_the_audit_command(sewing_workbook):
     texts = [c.value for row in about.iter_rows() for c in row if c.value]
     assert any(str(t).startswith("workbook-gen audit ") for t in texts)
     assert 'mechanism = "sewing_machine"' in texts
+
+
+def test_checks_sheet_has_maximum_and_verdict_for_every_check(sewing_workbook):
+    book = openpyxl.load_workbook(sewing_workbook)
+    formulas, values = book["Checks"], openpyxl.load_workbook(sewing_workbook, data_only=True)["Checks"]
+    names = [c.value for c in formulas[7][1:] if c.value != "cannot assemble"]
+    assert len(names) == 12
+    for col, _ in enumerate(names, start=2):
+        assert formulas.cell(4, col).value.startswith("=MAX(MAX(")
+        assert 0 <= values.cell(4, col).value <= 1e-12
+        assert values.cell(5, col).value == "PASS"
+        assert values.cell(6, col).value in ("position", "velocity", "acceleration")

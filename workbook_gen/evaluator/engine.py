@@ -249,7 +249,7 @@ def _evaluate(unit: _Unit, store: Store, names: Names) -> None:
     store.put_block(unit.sheet, unit.col, unit.first, value, scale)
 
 
-def cell_scale(node: ast.Node, resolver) -> float:
+def cell_scale(node: ast.Node, resolver: SheetResolver) -> float:
     """Largest magnitude among the numbers a formula reads: literals, cells, names."""
     scale = 0.0
     for n in ast.walk(node):
@@ -260,7 +260,7 @@ def cell_scale(node: ast.Node, resolver) -> float:
         elif isinstance(n, ast.RangeRef):
             r1, r2 = sorted((n.first.row, n.last.row))
             c1, c2 = sorted((n.first.col, n.last.col))
-            scale = max(scale, value_scale(resolver.range(n.sheet, r1, c1, r2, c2)))
+            scale = max(scale, resolver.range_scale(n.sheet, r1, c1, r2, c2))
         elif isinstance(n, ast.Name):
             scale = max(scale, value_scale(resolver.name(n.name, n.sheet)))
     return scale

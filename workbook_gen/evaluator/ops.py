@@ -103,6 +103,15 @@ def binary(op: str, a, b, n: int):
             if op in _ARITH:
                 return Num(*k.arith(op, x.val, x.err, y.val, y.err))
             return _compare(op, x, y, n)
+    if isinstance(a, Const) or isinstance(b, Const):  # one side varies: memoise on it
+        memo: dict = {}
+        out = []
+        for p, q in zip(items(a, n), items(b, n)):
+            key = (type(p), p, type(q), q)
+            if key not in memo:
+                memo[key] = _APPLY(op, p, q)
+            out.append(memo[key])
+        return _obj(out)
     return _obj([_APPLY(op, p, q) for p, q in zip(items(a, n), items(b, n))])
 
 

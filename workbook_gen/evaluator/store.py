@@ -66,6 +66,7 @@ class Store:
     def __init__(self, sheets):
         self.canonical = {s.lower(): s for s in sheets}
         self.cols: dict[tuple[str, int], _Column] = {}
+        self.rect_cache: dict[tuple, list[list]] = {}
 
     def sheet(self, name: str) -> str:
         return self.canonical.get(name.lower(), name)
@@ -101,8 +102,20 @@ class Store:
                 c.objs.pop(r, None)
             return
         items = block.items if isinstance(block, Obj) else to_items(block)
+        n = len(items)
+        c = self._column(sheet, col, first + n - 1)
+        sl = slice(first, first + n)
+        plain = np.array([type(v) is float for v in items], bool)
+        codes = np.array([v.code if isinstance(v, ExcelError) else 0 for v in items], np.uint8)
+        c.val[sl] = np.array([v if type(v) is float else np.nan for v in items])
+        c.err[sl] = codes
+        c.irr[sl] = ~plain & (codes == 0)
+        c.scale[sl] = scale
         for i, v in enumerate(items):
-            self.put(sheet, first + i, col, v, float(scale[i]))
+            if plain[i] or codes[i]:
+                c.objs.pop(first + i, None)
+            else:
+                c.objs[first + i] = v
 
     def get(self, sheet: str, row: int, col: int):
         c = self.cols.get((sheet, col))
@@ -127,12 +140,46 @@ class Store:
             return Num(c.val[first:last + 1], c.err[first:last + 1])
         return Obj([self.get(sheet, r, col) for r in range(first, last + 1)])
 
+    def column_values(self, sheet: str, col: int, r1: int, r2: int) -> list:
+        """The values of rows ``r1..r2`` of a column, as Python values."""
+        c = self.cols.get((sheet, col))
+        if c is None:
+            return [None] * (r2 - r1 + 1)
+        if r2 < len(c.val) and not c.irr[r1:r2 + 1].any():
+            return to_items(Num(c.val[r1:r2 + 1], c.err[r1:r2 + 1]))
+        return [self.get(sheet, r, col) for r in range(r1, r2 + 1)]
+
     def rect(self, sheet: str, r1: int, c1: int, r2: int, c2: int) -> list[list]:
-        return [[self.get(sheet, r, c) for c in range(c1, c2 + 1)] for r in range(r1, r2 + 1)]
+        """Values of a rectangle, row by row. Cached: evaluation in dependency order
+        reads a rectangle only once everything in it is final."""
+        key = (sheet, r1, c1, r2, c2)
+        rows = self.rect_cache.get(key)
+        if rows is None:
+            columns = [self.column_values(sheet, c, r1, r2) for c in range(c1, c2 + 1)]
+            rows = self.rect_cache[key] = [list(row) for row in zip(*columns)]
+        return rows
+
+    def rect_scale(self, sheet: str, r1: int, c1: int, r2: int, c2: int) -> float:
+        """Largest magnitude among the numbers of a rectangle."""
+        scale = 0.0
+        for col in range(c1, c2 + 1):
+            c = self.cols.get((sheet, col))
+            if c is None:
+                continue
+            top = min(r2 + 1, len(c.val))
+            ok = ~c.irr[r1:top] & (c.err[r1:top] == 0)
+            if ok.any():
+                scale = max(scale, float(np.abs(c.val[r1:top][ok]).max()))
+            for r, v in c.objs.items():
+                if r1 <= r <= r2 and c.irr[r]:
+                    scale = max(scale, value_scale(v))
+        return scale
 
 
 def to_items(num: Num) -> list:
     """Python values of a Num block."""
+    if not num.boolean and not num.err.any():
+        return num.val.tolist()
     out = []
     for v, e in zip(num.val.tolist(), num.err.tolist()):
         if e:
@@ -185,6 +232,9 @@ class SheetResolver:
 
     def range(self, sheet, row1, col1, row2, col2):
         return self.store.rect(self._sheet(sheet), row1, col1, row2, col2)
+
+    def range_scale(self, sheet, row1, col1, row2, col2) -> float:
+        return self.store.rect_scale(self._sheet(sheet), row1, col1, row2, col2)
 
     def name(self, name, sheet):
         node = self.names.node(name)

@@ -57,6 +57,7 @@ def write_checks(workbook, formats, result: Evaluated, layout: TableLayout) -> N
     first, last = CHECK_FIRST_ROW, CHECK_FIRST_ROW + result.rows - 1
     flag_col = len(checks) + 1
     maxima = {name: _max_abs(column) for name, column in values.items()}
+    spec = result.scene.template.input
 
     sheet.write_string(0, 0, "tolerance", formats["label"])
     sheet.write_number(0, 1, TOLERANCE, formats["residual"])
@@ -68,23 +69,27 @@ def write_checks(workbook, formats, result: Evaluated, layout: TableLayout) -> N
         verdict = "PASS" if all(m <= TOLERANCE for m in maxima.values()) else "FAIL"
         sheet.write_formula(1, 1, f'=IF(MAX(B4:{xl_col_to_name(len(checks))}4)<=check_tol,'
                                   '"PASS","FAIL")', formats["label"], verdict)
-    for row, label in ((3, "max |r|"), (4, "result"), (5, "level")):
-        sheet.write_string(row, 0, label, formats["label"])
-    spec = result.scene.template.input
-    sheet.write_string(6, 0, f"{spec.name} [{spec.unit}]", formats["header"])
     sheet.freeze_panes(CHECK_FIRST_ROW - 1, 1)
     sheet.set_column(0, 0, 11, formats["input"])
     sheet.set_column(1, len(checks), 14, formats["residual"])
     sheet.set_row(2, 45)
-    for c, check in enumerate(checks, start=1):
-        col = xl_col_to_name(c)
-        rng = f"{col}{first}:{col}{last}"
+    # constant_memory: each row is written whole, top to bottom
+    columns = [(c, xl_col_to_name(c), check) for c, check in enumerate(checks, start=1)]
+    for c, col, check in columns:
         sheet.write_string(2, c, check.description, formats["wrap"])
-        sheet.write_formula(3, c, f"=MAX(MAX({rng}),-MIN({rng}))", formats["residual"],
-                            maxima[check.name])
+    sheet.write_string(3, 0, "max |r|", formats["label"])
+    for c, col, check in columns:
+        sheet.write_formula(3, c, f"=MAX(MAX({col}{first}:{col}{last}),-MIN({col}{first}:{col}{last}))",
+                            formats["residual"], maxima[check.name])
+    sheet.write_string(4, 0, "result", formats["label"])
+    for c, col, check in columns:
         sheet.write_formula(4, c, f'=IF({col}4<=check_tol,"PASS","FAIL")', None,
                             "PASS" if maxima[check.name] <= TOLERANCE else "FAIL")
+    sheet.write_string(5, 0, "level", formats["label"])
+    for c, col, check in columns:
         sheet.write_string(5, c, check.level)
+    sheet.write_string(6, 0, f"{spec.name} [{spec.unit}]", formats["header"])
+    for c, col, check in columns:
         sheet.write_string(6, c, check.name, formats["header"])
     sheet.write_string(6, flag_col, "cannot assemble", formats["header"])
 

@@ -1,0 +1,156 @@
+"""workbook-gen audit: recompute every formula cell and check it; name what disagrees."""
+
+from __future__ import annotations
+
+import json
+import re
+import shutil
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import openpyxl
+import pytest
+
+from workbook_gen import audit
+from workbook_gen.engines.libreoffice import recalculate
+
+
+def run_cli(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "workbook_gen.cli", *args],
+                          capture_output=True, text=True, timeout=600)
+
+
+def rewrite_part(src: Path, dst: Path, part: str, edit) -> None:
+    """Copy an xlsx, passing one part's XML text through ``edit``."""
+    with zipfile.ZipFile(src) as zin, zipfile.ZipFile(dst, "w", zipfile.ZIP_DEFLATED) as zout:
+        for item in zin.infolist():
+            data = zin.read(item.filename)
+            if item.filename == part:
+                data = edit(data.decode()).encode()
+            zout.writestr(item, data)
+
+
+def test_our_workbook_passes_with_every_cell_checked(sewing_workbook):
+    report = audit(sewing_workbook)
+    assert report.ok, report.mismatches
+    assert report.cells_checked == report.formula_cells > 1500
+    assert report.vector_cells > 1000
+    assert report.mechanics is not None and len(report.reference) == 26
+    assert max(report.reference.values()) <= 1e-9
+    # the paper's table: alpha_5 per 10 deg against the model
+    assert [row[0] for row in report.mechanics.paper_table] == list(range(0, 361, 10))
+    assert max(row[3] for row in report.mechanics.paper_table) < 1e-6
+
+
+def test_tampered_formula_is_named_by_its_cell(sewing_workbook, tmp_path):
+    bad = tmp_path / "tampered.xlsx"
+    rewrite_part(sewing_workbook, bad, "xl/worksheets/sheet1.xml",
+                 lambda xml: xml.replace("<f>C11-D11</f>", "<f>C11-D11*1.001</f>"))
+    report = audit(bad)
+    assert not report.ok
+    roots = [m for m in report.mismatches if m.root]
+    assert [m.cell for m in roots] == ["Table!G11"]
+    assert roots[0].formula == "C11-D11*1.001"
+    assert len(report.mismatches) > 1  # what G11 feeds disagrees too, marked as following
+    # the wrong formula also disagrees with the reference model at that row
+    assert any(q.name == "y_C" and not q.ok for q in report.mechanics.quantities)
+
+
+def test_tampered_cached_value_is_named_by_its_cell(sewing_workbook, tmp_path):
+    bad = tmp_path / "tampered.xlsx"
+
+    def edit(xml: str) -> str:
+        return re.sub(r'(<c r="H20"[^>]*><f>[^<]*</f><v>)([^<]*)(</v>)',
+                      lambda m: m.group(1) + repr(float(m.group(2)) + 1e-6) + m.group(3), xml)
+    rewrite_part(sewing_workbook, bad, "xl/worksheets/sheet1.xml", edit)
+    report = audit(bad)
+    assert [m.cell for m in report.mismatches] == ["Table!H20"]
+
+
+@pytest.mark.parametrize("overrides", [{}, {"l_BC": 20.0}, {"x_F": 60.0, "y_F": 0.0}])
+def test_workbook_saved_by_libreoffice_passes(libreoffice, generate, tmp_path, overrides):
+    ours = generate("templates/sewing_machine.toml", overrides=overrides)
+    saved = recalculate(ours, tmp_path)
+    report = audit(saved)
+    assert report.ok, (report.mismatches[:5], report.findings[:5])
+    assert report.cells_checked == report.formula_cells
+
+
+def test_foreign_workbook_recalculated_by_libreoffice_passes(libreoffice, tmp_path):
+    book = openpyxl.Workbook()
+    sheet = book.active
+    sheet.title = "Data Sheet"
+    other = book.create_sheet("Other Sheet")
+    other["A1"] = 2.5
+    for r in range(1, 41):
+        sheet.cell(r, 1, r * 0.37 - 4)
+        sheet.cell(r, 2, f"=SIN(A{r})*'Other Sheet'!$A$1+A{r}^2")
+        sheet.cell(r, 3, f'=IF(A{r}<0,"neg",B{r}/A{r})')
+        sheet.cell(r, 4, f"=MOD(A{r},-3)+ATAN2(A{r},B{r})")
+        sheet.cell(r, 5, f"=SQRT(A{r})")           # #NUM! in Excel, #VALUE! in LibreOffice
+    sheet["G1"] = "=MAX(B1:B40)"
+    sheet["G2"] = "=INDEX(A1:A40,MATCH(G1,B1:B40,0))"
+    sheet["G3"] = "=SUM(B1:B40)/-2^2"
+    sheet["G4"] = "=IFERROR(1/0,\"none\")"
+    src = tmp_path / "foreign.xlsx"
+    book.save(src)
+    saved = recalculate(src, tmp_path / "lo")
+    report = audit(saved)
+    assert report.ok, report.mismatches[:5]
+    assert report.mechanics is None
+    assert report.libreoffice_semantics > 0   # the SQRT of negatives, explained
+    assert report.cells_checked == report.formula_cells == 40 * 4 + 4
+
+
+def test_cli_exit_codes_and_json(sewing_workbook, tmp_path):
+    result = run_cli("audit", str(sewing_workbook), "--json")
+    assert result.returncode == 0, result.stderr
+    data = json.loads(result.stdout)
+    for key in ("ok", "formula_cells", "cells_checked", "mismatches", "max_abs_error",
+                "max_rel_error", "reference", "seconds"):
+        assert key in data
+    bad = tmp_path / "bad.xlsx"
+    rewrite_part(sewing_workbook, bad, "xl/worksheets/sheet1.xml",
+                 lambda xml: xml.replace("<f>C11-D11</f>", "<f>C11+D11</f>"))
+    result = run_cli("audit", str(bad))
+    assert result.returncode == 1
+    assert "Table!G11" in result.stdout and "=C11+D11" in result.stdout
+    garbage = tmp_path / "garbage.xlsx"
+    garbage.write_text("not a workbook")
+    result = run_cli("audit", str(garbage))
+    assert result.returncode == 2 and "Traceback" not in result.stderr
+    assert len(result.stderr.strip().splitlines()) == 1
+
+
+def test_cycle_is_reported_not_looped_on(tmp_path):
+    book = openpyxl.Workbook()
+    book.active["A1"] = "=B1+1"
+    book.active["B1"] = "=A1*2"
+    path = tmp_path / "cycle.xlsx"
+    book.save(path)
+    result = run_cli("audit", str(path))
+    assert result.returncode == 2
+    assert "circular reference" in result.stderr and "A1" in result.stderr
+
+
+def test_unsupported_function_is_reported_by_cell(tmp_path):
+    import xlsxwriter
+    path = tmp_path / "vlookup.xlsx"
+    book = xlsxwriter.Workbook(path)
+    sheet = book.add_worksheet()
+    sheet.write_number("A1", 1)
+    sheet.write_formula("B1", "=VLOOKUP(A1,A1:A1,1,FALSE)", None, 1)
+    book.close()
+    report = audit(path)
+    assert not report.ok
+    assert any(f.kind == "unsupported function" and f.where == "Sheet1!B1" and "VLOOKUP" in f.detail
+               for f in report.findings)
+
+
+def test_engine_libreoffice_agrees_on_our_workbook(libreoffice, sewing_workbook):
+    report = audit(sewing_workbook, engine="libreoffice")
+    assert report.engine is not None and report.engine.cells == report.formula_cells
+    assert report.engine.mismatches == []
+    assert report.ok

@@ -1,0 +1,197 @@
+"""Audit a workbook: recompute every formula cell from its text and check it.
+
+    report = audit("outputs/sewing_machine.xlsx")
+    report.ok, report.cells_checked, report.mismatches, report.reference
+
+Checks, for every formula cell, the recomputed value against the cached one
+(Excel semantics; a LibreOffice-saved value explained only by LibreOffice's
+known deviations is accepted and counted); for workbooks made by
+workbook-gen, every Table column against the independent reference model and
+the closure residuals; the structure (names, references, functions, links).
+With ``engine="libreoffice"`` the file is also recalculated by LibreOffice.
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+from xlsxwriter.utility import xl_col_to_name, xl_rowcol_to_cell
+
+from ..errors import FormulaSyntaxError, WorkbookGenError, WorkbookReadError
+from ..evaluator import evaluate_cells
+from ..formula import ast, parse
+from ..formula.scalar import evaluate as evaluate_scalar
+from ..xlerror import ExcelError
+from .compare import ColumnStats, compare
+from .inputs import AuditInputs, read_inputs
+from .mechanics import check_mechanics
+from .report import AuditReport, EngineResult, Mismatch
+from .structure import check_structure
+
+__all__ = ["audit", "AuditReport"]
+
+
+def _cell_name(key: tuple[str, int, int]) -> str:
+    sheet = key[0] if key[0].replace("_", "").isalnum() else "'" + key[0].replace("'", "''") + "'"
+    return f"{sheet}!{xl_rowcol_to_cell(key[1] - 1, key[2] - 1)}"
+
+
+class _Resolver:
+    """The scalar evaluator's view of the recomputed workbook (for re-evaluating a cell
+    with LibreOffice's semantics)."""
+
+    def __init__(self, value_of, names: dict[str, str], sheet: str):
+        self.value_of, self.names, self.sheet = value_of, names, sheet
+        self._upper = {k.upper(): v for k, v in names.items()}
+
+    def cell(self, sheet, row, col):
+        return self.value_of(sheet or self.sheet, row, col)
+
+    def range(self, sheet, row1, col1, row2, col2):
+        return [[self.cell(sheet, r, c) for c in range(col1, col2 + 1)]
+                for r in range(row1, row2 + 1)]
+
+    def name(self, name, sheet):
+        text = self._upper.get(name.upper())
+        if text is None:
+            return ExcelError.NAME
+        node = parse(str(text).lstrip("="))
+        return evaluate_scalar(node, self)
+
+
+def _libreoffice_explains(inputs: AuditInputs, key, value_of, cached) -> bool:
+    """Does LibreOffice's evaluation of this cell (its known deviations from Excel:
+    SQRT(-1), ATAN2(0,0), 0^0, odd roots) give the cached value?"""
+    try:
+        node = parse(inputs.formulas[key])
+    except FormulaSyntaxError:
+        return False
+    resolver = _Resolver(value_of, inputs.book.defined_names, key[0])
+    value = evaluate_scalar(node, resolver, dialect="libreoffice")
+    return compare(cached, value, 0.0).agree
+
+
+MAX_ROOT_SEARCH = 5000  # mismatches beyond this are all listed as roots
+
+
+def _rectangles(node, sheet: str, names: dict[str, str], depth: int = 0):
+    """The cell rectangles (sheet, r1, c1, r2, c2) a formula reads."""
+    for n in ast.walk(node):
+        if isinstance(n, ast.CellRef):
+            yield (n.sheet or sheet, n.row, n.col, n.row, n.col)
+        elif isinstance(n, ast.RangeRef):
+            yield (n.sheet or sheet, min(n.first.row, n.last.row), min(n.first.col, n.last.col),
+                   max(n.first.row, n.last.row), max(n.first.col, n.last.col))
+        elif isinstance(n, ast.Name) and depth < 8:
+            text = {k.upper(): v for k, v in names.items()}.get(n.name.upper())
+            if text is not None:
+                try:
+                    yield from _rectangles(parse(str(text).lstrip("=")), sheet, names, depth + 1)
+                except FormulaSyntaxError:
+                    pass
+
+
+def _mark_roots(inputs: AuditInputs, mismatches: list[Mismatch]) -> None:
+    """A mismatch is a root when none of the cells its formula reads disagrees."""
+    if not mismatches or len(mismatches) > MAX_ROOT_SEARCH:
+        return
+    keys = {m.cell: m for m in mismatches}
+    by_sheet: dict[str, list[tuple[int, int]]] = {}
+    cell_keys = {_cell_name(k): k for k in inputs.formulas}
+    for name in keys:
+        sheet, row, col = cell_keys[name]
+        by_sheet.setdefault(sheet, []).append((row, col))
+    for m in mismatches:
+        sheet = cell_keys[m.cell][0]
+        try:
+            node = parse(m.formula)
+        except FormulaSyntaxError:
+            continue
+        for s, r1, c1, r2, c2 in _rectangles(node, sheet, inputs.book.defined_names):
+            if any(r1 <= r <= r2 and c1 <= c <= c2 for r, c in by_sheet.get(s, ())):
+                m.root = False
+                break
+
+
+def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True) -> AuditReport:
+    """Recompute and check every formula cell of the workbook at ``path``."""
+    started = time.perf_counter()
+    timings: dict[str, float] = {}
+    inputs = read_inputs(path)
+    timings["read"] = time.perf_counter() - started
+    t = time.perf_counter()
+    evaluation = evaluate_cells(inputs.formulas, inputs.constants, inputs.book.defined_names,
+                                vectorize=vectorize)
+    timings["evaluate"] = time.perf_counter() - t
+    if evaluation.cycles:
+        cycle = evaluation.cycles[0]
+        raise WorkbookReadError(
+            f"{path}: circular reference: " + " -> ".join(_cell_name(k) for k in cycle + cycle[:1])
+            + (f" (and {len(evaluation.cycles) - 1} more)" if len(evaluation.cycles) > 1 else ""))
+
+    values, constants = evaluation.values, inputs.constants
+
+    def value_of(sheet: str, row: int, col: int):
+        key = (sheet, row, col)
+        return values[key] if key in values else constants.get(key)
+
+    t = time.perf_counter()
+    columns: dict[tuple[str, int], ColumnStats] = {}
+    mismatches, explained, checked = [], 0, 0
+    max_abs = max_rel = 0.0
+    for key, cached in inputs.cached.items():
+        recomputed = values[key]
+        verdict = compare(cached, recomputed, evaluation.operands_scale.get(key, 0.0))
+        if not verdict.agree and _libreoffice_explains(inputs, key, value_of, cached):
+            explained += 1
+            continue
+        checked += 1
+        stats = columns.setdefault((key[0], key[2]), ColumnStats(key[0], xl_col_to_name(key[2] - 1)))
+        stats.add(inputs.refs[key], verdict)
+        if not verdict.agree:
+            mismatches.append(Mismatch(_cell_name(key), inputs.formulas[key], cached, recomputed,
+                                       verdict.abs_error))
+        else:
+            max_abs = max(max_abs, verdict.abs_error)
+            if verdict.rel_error != float("inf"):
+                max_rel = max(max_rel, verdict.rel_error)
+    _mark_roots(inputs, mismatches)
+    timings["compare"] = time.perf_counter() - t
+    t = time.perf_counter()
+    mechanics = check_mechanics(inputs.book, value_of)
+    timings["reference"] = time.perf_counter() - t
+    findings = check_structure(inputs, evaluation, _cell_name)
+    engine_result = (_engine(path, engine, inputs, value_of, evaluation.operands_scale)
+                     if engine else None)
+    return AuditReport(
+        path=str(path), formula_cells=len(inputs.formulas), cells_checked=checked + explained,
+        mismatches=mismatches, columns=[columns[k] for k in sorted(columns)],
+        max_abs_error=max_abs, max_rel_error=max_rel, findings=findings, mechanics=mechanics,
+        libreoffice_semantics=explained, vector_cells=evaluation.groups.vector_cells,
+        seconds=time.perf_counter() - started, engine=engine_result, timings=timings)
+
+
+def _engine(path, engine: str, inputs: AuditInputs, value_of, scales) -> EngineResult:
+    if engine != "libreoffice":
+        raise WorkbookGenError(f"unknown engine {engine!r} (known: libreoffice)")
+    from ..engines.libreoffice import recalculated_values
+    started = time.perf_counter()
+    theirs = recalculated_values(path)
+    mismatches, explained, cells = [], 0, 0
+    sheet_of = {s.name: s for s in inputs.book.sheets}
+    for key, formula in inputs.formulas.items():
+        sheet = sheet_of[key[0]]
+        ref = inputs.refs[key]
+        if ref not in theirs.get(sheet.name, {}):
+            continue
+        cells += 1
+        value, ours = theirs[sheet.name][ref], value_of(*key)
+        if compare(value, ours, scales.get(key, 0.0)).agree:
+            continue
+        if _libreoffice_explains(inputs, key, value_of, value):
+            explained += 1
+            continue
+        mismatches.append(Mismatch(_cell_name(key), formula, value, ours))
+    return EngineResult("libreoffice", cells, mismatches, explained,
+                        time.perf_counter() - started)

@@ -1,0 +1,69 @@
+"""Cached against recomputed: Excel-aware tolerances, per-column statistics.
+
+``|a - b| <= max(REL * |a|, ABS * scale)`` where ``scale`` is the magnitude of
+the formula's operands: Excel and LibreOffice store 15 significant digits and
+round a difference that is tiny against its operands to 0, so a workbook they
+saved must pass.  Error values must match exactly; so must text and booleans.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ..xlerror import ExcelError
+
+REL = 1e-10
+ABS = 1e-10
+
+
+@dataclass
+class Verdict:
+    agree: bool
+    abs_error: float = 0.0
+    rel_error: float = 0.0
+
+
+def _number(value: object) -> float | None:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return None
+    return float(value)
+
+
+def compare(cached: object, recomputed: object, scale: float) -> Verdict:
+    """Does ``recomputed`` explain ``cached``?"""
+    a, b = _number(cached), _number(recomputed)
+    if a is not None and b is not None:
+        if not (math.isfinite(a) and math.isfinite(b)):
+            return Verdict(a == b)
+        diff = abs(a - b)
+        # relative to the larger of the value and the formula's operands: a residual of
+        # 1e-16 recomputed as 3e-16 from operands of 100 is rounding, not a 200% error
+        magnitude = max(abs(a), abs(b), scale)
+        rel = diff / magnitude if magnitude else 0.0
+        return Verdict(diff <= max(REL * abs(a), ABS * magnitude), diff, rel)
+    if isinstance(cached, ExcelError) or isinstance(recomputed, ExcelError):
+        return Verdict(cached == recomputed)
+    # An empty cached string and an empty text result are the same to every reader.
+    if cached in (None, "") and recomputed in (None, ""):
+        return Verdict(True)
+    if isinstance(cached, bool) or isinstance(recomputed, bool):
+        return Verdict(type(cached) is type(recomputed) and cached == recomputed)
+    return Verdict(cached == recomputed)
+
+
+@dataclass
+class ColumnStats:
+    sheet: str
+    column: str
+    cells: int = 0
+    mismatches: int = 0
+    worst_error: float = 0.0   # relative error (absolute where the value is 0)
+    worst_cell: str = ""
+
+    def add(self, ref: str, verdict: Verdict) -> None:
+        self.cells += 1
+        self.mismatches += not verdict.agree
+        error = verdict.rel_error if math.isfinite(verdict.rel_error) else verdict.abs_error
+        if error > self.worst_error:
+            self.worst_error, self.worst_cell = error, ref

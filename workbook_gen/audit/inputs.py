@@ -1,0 +1,53 @@
+"""What the auditor reads off a workbook: formula texts, constants, names, cached values."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..errors import FormulaSyntaxError, WorkbookReadError
+from ..evaluator import expand_shared
+from ..xlsx import read_workbook
+from ..xlsx.model import Workbook
+
+Key = tuple[str, int, int]
+
+
+@dataclass
+class AuditInputs:
+    book: Workbook
+    formulas: dict[Key, str] = field(default_factory=dict)     # text without '='
+    cached: dict[Key, object] = field(default_factory=dict)    # cached value of each formula
+    constants: dict[Key, object] = field(default_factory=dict)
+    refs: dict[Key, str] = field(default_factory=dict)         # "B2"
+    array_cells: list[Key] = field(default_factory=list)       # array formulas: not recomputed
+    broken: dict[Key, str] = field(default_factory=dict)       # shared formulas that do not expand
+
+
+def read_inputs(path: str | Path) -> AuditInputs:
+    if not Path(path).is_file():
+        raise WorkbookReadError(f"{path}: no such file")
+    book = read_workbook(path)
+    inputs = AuditInputs(book)
+    for sheet in book.sheets:
+        for cell in sheet.cells.values():
+            key = (sheet.name, cell.row, cell.col)
+            inputs.refs[key] = cell.ref
+            if cell.is_array or cell.array_master:
+                inputs.array_cells.append(key)
+                inputs.constants[key] = cell.value
+                continue
+            source = sheet.formula_source(cell) if cell.has_formula else None
+            if source is None:
+                inputs.constants[key] = cell.value
+                continue
+            text, origin = source
+            if origin != cell.ref:
+                master = sheet[origin]
+                try:
+                    text = expand_shared(text, master.row, master.col, cell.row, cell.col)
+                except FormulaSyntaxError as exc:
+                    inputs.broken[key] = str(exc)
+            inputs.formulas[key] = text
+            inputs.cached[key] = cell.value
+    return inputs

@@ -1,0 +1,157 @@
+"""For workbooks made by workbook-gen: every Table column against the independent
+reference model, the closure checks, and the paper's error table.
+
+The mechanism, parameters and inputs are read off the workbook itself (About,
+Parameters, Table column A), so a workbook whose parameters were edited and
+recalculated in Excel is checked against the model with its new parameters.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+import numpy as np
+from xlsxwriter.utility import xl_rowcol_to_cell
+
+from .. import reference
+
+REFERENCE_TOLERANCE = 1e-9  # of the column's magnitude
+PAPER_QUANTITY = "alpha_5"  # the sewing-machine paper checked the lever's angular acceleration
+_HEADER = re.compile(r"^(\w+)(?: \[(.*)\])?$")
+CRANK_PIN = {"x_B", "y_B", "u_B", "n_B"}  # defined whether or not the rod reaches
+
+
+@dataclass
+class QuantityCheck:
+    name: str
+    rows: int
+    max_error: float          # relative to the column's magnitude
+    worst_row_input: float | None
+    wrong_rows: list[str] = field(default_factory=list)  # cells valued where nothing assembles, ...
+
+    @property
+    def ok(self) -> bool:
+        return self.max_error <= REFERENCE_TOLERANCE and not self.wrong_rows
+
+
+@dataclass
+class MechanicsReport:
+    mechanism: str
+    generator: str
+    quantities: list[QuantityCheck]
+    residuals: dict[str, float]        # check name -> max |r| (recomputed)
+    tolerance: float | None
+    paper_table: list[tuple[float, float, float, float]]  # input, ours, reference, error %
+
+    @property
+    def ok(self) -> bool:
+        residuals_ok = self.tolerance is None or all(
+            isinstance(r, float) and r <= self.tolerance for r in self.residuals.values())
+        return residuals_ok and all(q.ok for q in self.quantities)
+
+
+def _column(values, sheet: str, col: int, rows: range):
+    return [values(sheet, r, col) for r in rows]
+
+
+def _sheet(book, name: str):
+    return book.sheet(name) if name in book.sheet_names else None
+
+
+def _about(book) -> dict[str, object]:
+    about = _sheet(book, "About")
+    if about is None:
+        return {}
+    out = {}
+    for cell in about.column(1):
+        value = about.cell(cell.row, 2)
+        if isinstance(cell.value, str) and value is not None:
+            out[cell.value] = value.value
+    return out
+
+
+def check_mechanics(book, value_of) -> MechanicsReport | None:
+    """None unless the workbook was made by workbook-gen for a mechanism we model."""
+    about = _about(book)
+    mechanism, generator = about.get("mechanism"), str(about.get("generator", ""))
+    if not generator.startswith("workbook-gen") or mechanism not in reference.MECHANISMS:
+        return None
+    table, params_sheet = _sheet(book, "Table"), _sheet(book, "Parameters")
+    if table is None or params_sheet is None:
+        return None
+    params = {}
+    for cell in params_sheet.column(1)[1:]:
+        value = value_of("Parameters", cell.row, 2)
+        if isinstance(cell.value, str) and isinstance(value, (int, float)):
+            params[cell.value] = float(value)
+    rows = range(2, table.max_row + 1)
+    inputs = np.array([float(value_of("Table", r, 1)) for r in rows])
+    solved = reference.solve(mechanism, params, inputs)
+    quantities = []
+    for cell in table.row(1)[1:]:
+        match = _HEADER.match(str(cell.value))
+        name = match.group(1) if match else None
+        if name not in solved:
+            continue
+        quantities.append(_check_column(name, _column(value_of, "Table", cell.col, rows),
+                                        solved[name], inputs, cell.col))
+    residuals, tolerance = _residuals(book, value_of)
+    return MechanicsReport(mechanism, generator, quantities, residuals, tolerance,
+                           _paper_table(table, value_of, solved, inputs, rows))
+
+
+def _as_float(values: list) -> np.ndarray:
+    return np.array([v if isinstance(v, (int, float)) and not isinstance(v, bool) else np.nan
+                     for v in values], dtype=float)
+
+
+def _check_column(name, values, ref, inputs, col) -> QuantityCheck:
+    ours = _as_float(values)
+    wrong = []
+    for i in np.flatnonzero(np.isfinite(ours) != np.isfinite(ref)):
+        if name in CRANK_PIN and np.isfinite(ours[i]):
+            continue
+        what = "a value where the model has none" if np.isfinite(ours[i]) else (
+            f"{values[i]} where the model has {ref[i]:.12g}")
+        wrong.append(f"{xl_rowcol_to_cell(i + 1, col - 1)}: {what}")
+    both = np.isfinite(ours) & np.isfinite(ref)
+    if not both.any():
+        return QuantityCheck(name, 0, 0.0, None, wrong)
+    scale = max(float(np.max(np.abs(ref[both]))), 1e-300)
+    errors = np.where(both, np.abs(ours - ref), 0.0) / scale
+    worst = int(np.argmax(errors))
+    return QuantityCheck(name, int(both.sum()), float(errors[worst]), float(inputs[worst]), wrong)
+
+
+def _residuals(book, value_of) -> tuple[dict[str, float], float | None]:
+    checks = _sheet(book, "Checks")
+    if checks is None:
+        return {}, None
+    tolerance = value_of("Checks", 1, 2)
+    out = {}
+    for cell in checks.row(7)[1:]:
+        if cell.value == "cannot assemble":
+            continue
+        value = value_of("Checks", 4, cell.col)
+        out[str(cell.value)] = float(value) if isinstance(value, (int, float)) else value
+    return out, float(tolerance) if isinstance(tolerance, (int, float)) else None
+
+
+def _paper_table(table, value_of, solved, inputs, rows):
+    """The lever's angular acceleration against the model in percent, per 10 deg."""
+    if PAPER_QUANTITY not in solved:
+        return []
+    col = next((c.col for c in table.row(1) if str(c.value).startswith(PAPER_QUANTITY + " ")),
+               None)
+    if col is None:
+        return []
+    ours = _as_float(_column(value_of, "Table", col, rows))
+    out = []
+    for i, angle in enumerate(inputs):
+        if abs(angle / 10.0 - round(angle / 10.0)) > 1e-9 or not np.isfinite(solved[PAPER_QUANTITY][i]):
+            continue
+        ref = float(solved[PAPER_QUANTITY][i])
+        error = 100.0 * abs(ours[i] - ref) / abs(ref) if ref else float(ours[i] != ref) * 100.0
+        out.append((float(angle), float(ours[i]), ref, error))
+    return out
