@@ -92,11 +92,12 @@ def _rectangles(node, sheet: str, names: dict[str, str], depth: int = 0):
                     pass
 
 
-def _mark_roots(inputs: AuditInputs, mismatches: list[Mismatch]) -> None:
-    """A mismatch is a root when none of the cells its formula reads disagrees."""
+def _mark_roots(inputs: AuditInputs, mismatches: list[Mismatch], differ: set[str]) -> None:
+    """A mismatch is a root when none of the cells its formula reads disagrees
+    (``differ``: aggregates checked locally whose full recomputation disagrees)."""
     if not mismatches or len(mismatches) > MAX_ROOT_SEARCH:
         return
-    keys = {m.cell: m for m in mismatches}
+    keys = {m.cell for m in mismatches} | differ
     by_sheet: dict[str, list[tuple[int, int]]] = {}
     cell_keys = {_cell_name(k): k for k in inputs.formulas}
     for name in keys:
@@ -112,6 +113,23 @@ def _mark_roots(inputs: AuditInputs, mismatches: list[Mismatch]) -> None:
             if any(r1 <= r <= r2 and c1 <= c <= c2 for r, c in by_sheet.get(s, ())):
                 m.root = False
                 break
+
+
+def _local_evaluation(inputs: AuditInputs, seen: dict | None = None):
+    """Cells that read ranges (MAX, MIN, SUM, INDEX, MATCH over a column), recomputed
+    from the cached values they read.
+
+    An aggregate sees only its range: the maximum of residuals near 1e-16, or the
+    row where a minimum occurs among near-ties, moves with the last bit of every
+    cell of the range, which says nothing about the aggregate's own formula.  Each
+    range cell is checked against its cached value on its own; the aggregate is
+    checked against what it makes of those cached values (or of ``seen``: the
+    values another engine computed)."""
+    keys = {k for k, text in inputs.formulas.items() if ":" in text}
+    cached = dict(inputs.constants)
+    cached.update((k, v) for k, v in (seen or inputs.cached).items() if k not in keys)
+    return evaluate_cells({k: inputs.formulas[k] for k in keys}, cached,
+                          inputs.book.defined_names)
 
 
 def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True) -> AuditReport:
@@ -131,6 +149,8 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
             + (f" (and {len(evaluation.cycles) - 1} more)" if len(evaluation.cycles) > 1 else ""))
 
     values, constants = evaluation.values, inputs.constants
+    local = _local_evaluation(inputs)
+    timings["evaluate"] = time.perf_counter() - t
 
     def value_of(sheet: str, row: int, col: int):
         key = (sheet, row, col)
@@ -141,8 +161,9 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
     mismatches, explained, checked = [], 0, 0
     max_abs = max_rel = 0.0
     for key, cached in inputs.cached.items():
-        recomputed = values[key]
-        verdict = compare(cached, recomputed, evaluation.operands_scale.get(key, 0.0))
+        source = local if key in local.values else evaluation
+        recomputed = source.values[key]
+        verdict = compare(cached, recomputed, source.operands_scale.get(key, 0.0))
         if not verdict.agree and _libreoffice_explains(inputs, key, value_of, cached):
             explained += 1
             continue
@@ -156,7 +177,9 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
             max_abs = max(max_abs, verdict.abs_error)
             if verdict.rel_error != float("inf"):
                 max_rel = max(max_rel, verdict.rel_error)
-    _mark_roots(inputs, mismatches)
+    differ = {_cell_name(k) for k in local.values
+              if not compare(inputs.cached[k], values[k], evaluation.operands_scale[k]).agree}
+    _mark_roots(inputs, mismatches, differ)
     timings["compare"] = time.perf_counter() - t
     t = time.perf_counter()
     mechanics = check_mechanics(inputs.book, value_of)
@@ -180,14 +203,20 @@ def _engine(path, engine: str, inputs: AuditInputs, value_of, scales) -> EngineR
     theirs = recalculated_values(path)
     mismatches, explained, cells = [], 0, 0
     sheet_of = {s.name: s for s in inputs.book.sheets}
+    seen = {k: theirs.get(k[0], {}).get(inputs.refs[k]) for k in inputs.formulas}
+    local = _local_evaluation(inputs, seen)
     for key, formula in inputs.formulas.items():
         sheet = sheet_of[key[0]]
         ref = inputs.refs[key]
         if ref not in theirs.get(sheet.name, {}):
             continue
         cells += 1
-        value, ours = theirs[sheet.name][ref], value_of(*key)
-        if compare(value, ours, scales.get(key, 0.0)).agree:
+        value = theirs[sheet.name][ref]
+        if key in local.values:  # an aggregate: what it makes of LibreOffice's own range
+            ours, scale = local.values[key], local.operands_scale[key]
+        else:
+            ours, scale = value_of(*key), scales.get(key, 0.0)
+        if compare(value, ours, scale).agree:
             continue
         if _libreoffice_explains(inputs, key, value_of, value):
             explained += 1

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import logging
 import re
+import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
@@ -79,6 +80,7 @@ class Evaluation:
     volatile: dict[Cell, list[str]] = field(default_factory=dict)
     external: list[Cell] = field(default_factory=list)
     groups: GroupStats = field(default_factory=GroupStats)
+    seconds: dict[str, float] = field(default_factory=dict)  # grouping, graph, vector, scalar
 
 
 @dataclass
@@ -104,6 +106,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     name_table = Names(dict(names))
     result = Evaluation(CellMap(formulas, store.get), CellMap(formulas, store.scale))
 
+    clock = time.perf_counter()
     runs, errors = _runs(formulas, vectorize)
     for cell, message in errors.items():
         if _EXTERNAL.search(formulas[cell]):
@@ -115,6 +118,8 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     units = _units(runs, vectorize, store, result)
     _report_functions(units, result)
 
+    result.seconds["grouping"] = time.perf_counter() - clock
+    clock = time.perf_counter()
     deps = []
     while True:
         inputs = [_rects(u, store, name_table) for u in units]
@@ -127,6 +132,8 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
         units = [s for i, u in enumerate(units)
                  for s in (_singles(u) if i in split else [u])]
 
+    result.seconds["graph"] = time.perf_counter() - clock
+    spent = {"vector": 0.0, "scalar": 0.0}
     for component in components:
         if graph.is_cycle(component, deps):
             cells = sorted(c for u in component for c in units[u].cells())
@@ -135,7 +142,11 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
                 store.put(*cell, CYCLE_VALUE)
             continue
         for u in component:
+            clock = time.perf_counter()
             _evaluate(units[u], store, name_table)
+            spent["vector" if units[u].block is not None else "scalar"] += (
+                time.perf_counter() - clock)
+    result.seconds.update(spent)
     for u in units:
         if u.block is not None:
             result.groups.vector_groups += 1
@@ -233,7 +244,10 @@ def _rects(unit: _Unit, store: Store, names: Names) -> list[graph.Rect]:
 def _evaluate(unit: _Unit, store: Store, names: Names) -> None:
     resolver = SheetResolver(store, names, unit.sheet)
     if unit.block is None:
-        value = evaluate(unit.node, resolver)
+        try:
+            value = evaluate(unit.node, resolver)
+        except (OverflowError, ValueError, ZeroDivisionError):  # e.g. MOD(1E300,1E-300)
+            value = ExcelError.NUM
         store.put(unit.sheet, unit.first, unit.col, value, cell_scale(unit.node, resolver))
         return
     reference = _Evaluator(resolver, "excel", None)

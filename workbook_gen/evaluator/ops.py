@@ -36,6 +36,14 @@ class Const:
     value: object
 
 
+def safe_call(name: str, args: list):
+    """``fx.call`` that never raises (the scalar MOD/SUM can overflow): #NUM! then."""
+    try:
+        return clean(fx.call(name, args))
+    except (OverflowError, ValueError, ZeroDivisionError):
+        return ExcelError.NUM
+
+
 def clean(v):
     """As the scalar evaluator: float results lose -0 and become #NUM! if not finite."""
     if isinstance(v, float):
@@ -189,9 +197,9 @@ def call(name: str, args: list, refs: list, n: int):
         if result is not None:
             return result
     if not args:
-        return Const(clean(fx.call(name, [])))
+        return Const(safe_call(name, []))
     columns = [items(a, n, as_ref=(r is True)) for a, r in zip(args, refs)]
-    return _obj([clean(fx.call(name, list(row))) for row in zip(*columns)])
+    return _obj([safe_call(name, list(row)) for row in zip(*columns)])
 
 
 def _fast_call(name: str, xs: list[Num], nargs: int, n: int):

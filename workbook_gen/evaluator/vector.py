@@ -15,15 +15,13 @@ functions (``formula.functions``), so the semantics are the scalar evaluator's.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
 
-from workbook_gen.evaluator import kernels as k
 from workbook_gen.evaluator.ops import (
-    Const, Num, Obj, binary, call, choose, is_num, items, scalar, to_bool_mask, unary,
+    Const, Num, binary, call, choose, is_num, scalar, to_bool_mask, unary,
 )
 from workbook_gen.evaluator.store import value_scale
 from workbook_gen.formula import ast
@@ -217,6 +215,3 @@ def _iferror(value_fn, fallback_fn, env):
     fallback = scalar(fallback_fn(env), env.n)
     return choose(~bad, np.zeros(env.n, np.uint8), value, fallback, env.n)
 
-
-__all__ = ["Block", "Env", "NotVectorizable", "compile_block", "row_invariant", "items",
-           "k", "math"]
