@@ -1,7 +1,7 @@
 """Operators and functions over blocks of rows, with the scalar evaluator's semantics.
 
 A block value is a :class:`Num` (numbers or booleans with error codes: the fast path
-through :mod:`kernels`), an :class:`Obj` (a list of arbitrary values: every element is
+through :mod:`workbook_gen.xlmath.kernels`), an :class:`Obj` (a list of arbitrary values: every element is
 computed by the scalar functions of ``formula.functions``), or a :class:`Const` (one
 value, or a Range, for every row). Whatever the fast path cannot prove equal to the
 scalar path goes element by element, so the two paths agree by construction.
@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from workbook_gen.evaluator import kernels as k
+from workbook_gen.xlmath import kernels as k
 from workbook_gen.evaluator.store import Num, Obj, to_items
 from workbook_gen.formula import functions as fx
 from workbook_gen.formula.functions import Range

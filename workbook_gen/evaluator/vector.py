@@ -8,7 +8,7 @@
   scalar evaluator and broadcast;
 - relative ranges and references into the block's own rows are refused
   (:class:`NotVectorizable`): the caller evaluates those cells one by one.
-Numbers and errors go through :mod:`kernels` (bit-identical to the scalar path);
+Numbers and errors go through :mod:`workbook_gen.xlmath.kernels` (bit-identical to the scalar path);
 blocks holding text, booleans or empties fall back per element to the scalar
 functions (``formula.functions``), so the semantics are the scalar evaluator's.
 """

@@ -6,6 +6,7 @@ only where they give the same bits as the C library on a probe run at import
 (usually sin, cos, sqrt, atan2); elsewhere (pow, tan, asin, ... on builds with SIMD
 versions) the C library function is mapped over the array. Error codes follow
 ``xlmath``: 0 is no error, else ``ExcelError.code``; error entries hold NaN.
+Shared by ``xlmath`` (cached values) and the formula evaluator.
 """
 
 from __future__ import annotations

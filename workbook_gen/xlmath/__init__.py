@@ -1,5 +1,9 @@
 """Excel's arithmetic and functions over numpy arrays, with error masks.
 
+The numeric kernels (``kernels.py``: which C-library or numpy function, the
+domains, the error codes) are shared with the formula evaluator, so a cached
+value and its recomputation come from the same bits.
+
 A column of values is an ``XArray``: ``val`` (float64, or object for text)
 and ``err`` (uint8, 0 = no error, else ``ExcelError.code``).  Errors
 propagate as in Excel: the leftmost operand's error wins, and a fresh error
@@ -15,7 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .xlerror import ExcelError
+from ..xlerror import ExcelError
+from . import kernels
 
 NUM = ExcelError.NUM.code
 DIV0 = ExcelError.DIV0.code
@@ -50,23 +55,19 @@ def array(values: np.ndarray) -> XArray:
     return _finish(values, np.zeros(values.shape, np.uint8))
 
 
-def _first_error(*errs: np.ndarray) -> np.ndarray:
-    out = errs[-1].copy()
-    for e in reversed(errs[:-1]):
-        out = np.where(e != 0, e, out)
-    return out
+_first_error = kernels.first_error
 
 
 def _finish(val: np.ndarray, err: np.ndarray, fresh: np.ndarray | None = None,
             code: int = NUM, boolean: bool = False) -> XArray:
-    """Apply a fresh error ``code`` where ``fresh``; non-finite results are #NUM!."""
-    err = err.copy()
-    if fresh is not None:
-        err[(err == 0) & fresh] = code
-    if val.dtype != object:
-        err[(err == 0) & ~np.isfinite(val)] = NUM
-        # Excel has no negative zero: -0.0 + 0.0 is +0.0 (ATAN2(-60, -0) must be +pi).
-        val = np.where(err != 0, np.nan, val + 0.0)
+    """Apply a fresh error ``code`` where ``fresh``; non-finite results are #NUM!;
+    Excel has no negative zero (ATAN2(-60, -0) must be +pi)."""
+    if val.dtype == object:
+        err = err.copy()
+        if fresh is not None:
+            err[(err == 0) & fresh] = code
+        return XArray(val, err, boolean)
+    val, err = kernels.finish(val, err, fresh, code)
     return XArray(val, err, boolean)
 
 
@@ -88,41 +89,15 @@ def _num(a: XArray) -> tuple[np.ndarray, np.ndarray]:
     return val, err
 
 
-def add(a: XArray, b: XArray) -> XArray:
-    (x, ex), (y, ey) = _num(a), _num(b)
-    with np.errstate(all="ignore"):
-        return _finish(x + y, _first_error(ex, ey))
+def _arith(op: str):
+    def apply(a: XArray, b: XArray) -> XArray:
+        (x, ex), (y, ey) = _num(a), _num(b)
+        return XArray(*kernels.arith(op, x, ex, y, ey))
+    return apply
 
 
-def sub(a: XArray, b: XArray) -> XArray:
-    (x, ex), (y, ey) = _num(a), _num(b)
-    with np.errstate(all="ignore"):
-        return _finish(x - y, _first_error(ex, ey))
-
-
-def mul(a: XArray, b: XArray) -> XArray:
-    (x, ex), (y, ey) = _num(a), _num(b)
-    with np.errstate(all="ignore"):
-        return _finish(x * y, _first_error(ex, ey))
-
-
-def div(a: XArray, b: XArray) -> XArray:
-    (x, ex), (y, ey) = _num(a), _num(b)
-    with np.errstate(all="ignore"):
-        return _finish(x / y, _first_error(ex, ey), y == 0, DIV0)
-
-
-def power(a: XArray, b: XArray) -> XArray:
-    """Excel's ^ and POWER: 0^0 and a negative base with a non-integer exponent
-    are #NUM!, 0 to a negative power is #DIV/0!."""
-    (x, ex), (y, ey) = _num(a), _num(b)
-    err = _first_error(ex, ey)
-    with np.errstate(all="ignore"):
-        val = np.power(x, y)
-        zero_base = x == 0
-        err[(err == 0) & zero_base & (y < 0)] = DIV0
-        bad = (zero_base & (y == 0)) | ((x < 0) & (np.floor(y) != y))
-    return _finish(val, err, bad)
+add, sub, mul, div = _arith("+"), _arith("-"), _arith("*"), _arith("/")
+power = _arith("^")  # 0^0 and a negative base with a fraction: #NUM!; 0^-1: #DIV/0!
 
 
 def neg(a: XArray) -> XArray:
@@ -130,41 +105,29 @@ def neg(a: XArray) -> XArray:
     return _finish(-x, ex)
 
 
-def _unary(fn, domain=None):
+def _unary(name: str):
     def apply(a: XArray) -> XArray:
         x, ex = _num(a)
-        with np.errstate(all="ignore"):
-            bad = None if domain is None else ~domain(x)
-            return _finish(fn(x), ex, bad)
+        return XArray(*kernels.unary(name, x, ex))
+    apply.__name__ = name.lower()
     return apply
 
 
-TRIG_LIMIT = 2.0 ** 27  # Excel's SIN, COS, TAN give #NUM! from here on
-sin = _unary(np.sin, lambda x: np.abs(x) < TRIG_LIMIT)
-cos = _unary(np.cos, lambda x: np.abs(x) < TRIG_LIMIT)
-tan = _unary(np.tan, lambda x: np.abs(x) < TRIG_LIMIT)
-atan = _unary(np.arctan)
-abs_ = _unary(np.abs)
-sign = _unary(np.sign)
-radians = _unary(lambda x: x * (np.pi / 180.0))
-degrees = _unary(lambda x: x * (180.0 / np.pi))
-asin = _unary(np.arcsin, lambda x: (x >= -1) & (x <= 1))
-acos = _unary(np.arccos, lambda x: (x >= -1) & (x <= 1))
-sqrt = _unary(np.sqrt, lambda x: x >= 0)
+(sin, cos, tan, atan, abs_, sign, radians, degrees, asin, acos, sqrt) = (
+    _unary(n) for n in ("SIN", "COS", "TAN", "ATAN", "ABS", "SIGN", "RADIANS", "DEGREES",
+                        "ASIN", "ACOS", "SQRT"))
 
 
 def atan2(a: XArray, b: XArray) -> XArray:
     """Excel's ATAN2(x, y): the angle of (x, y); ATAN2(0, 0) is #DIV/0!."""
     (x, ex), (y, ey) = _num(a), _num(b)
-    return _finish(np.arctan2(y, x), _first_error(ex, ey), (x == 0) & (y == 0), DIV0)
+    return XArray(*kernels.atan2(x, ex, y, ey))
 
 
 def mod(a: XArray, b: XArray) -> XArray:
     """Excel's MOD: n - d*INT(n/d), with the sign of the divisor."""
     (x, ex), (y, ey) = _num(a), _num(b)
-    with np.errstate(all="ignore"):
-        val = x - y * np.floor(x / y)
-    return _finish(val, _first_error(ex, ey), y == 0, DIV0)
+    return XArray(*kernels.mod(x, ex, y, ey))
 
 
 def compare(op: str, a: XArray, b: XArray) -> XArray:
