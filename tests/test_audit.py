@@ -154,3 +154,31 @@ def test_engine_libreoffice_agrees_on_our_workbook(libreoffice, sewing_workbook)
     assert report.engine is not None and report.engine.cells == report.formula_cells
     assert report.engine.mismatches == []
     assert report.ok
+
+
+def _zip(path: Path, parts: dict[str, str]) -> Path:
+    with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as z:
+        for name, text in parts.items():
+            z.writestr(name, text)
+    return path
+
+
+def test_hostile_or_broken_files_exit_2_in_one_line(tmp_path, sewing_workbook):
+    bomb = ('<?xml version="1.0"?><!DOCTYPE lolz [<!ENTITY lol "lol">'
+            + "".join(f'<!ENTITY lol{i} "{"&lol%s;" % ("" if i == 1 else i - 1) * 10}">'
+                      for i in range(1, 10))
+            + ']><workbook>&lol9;</workbook>')
+    files = {
+        "bomb.xlsx": _zip(tmp_path / "bomb.xlsx", {"[Content_Types].xml": "<Types/>",
+                                                   "xl/workbook.xml": bomb}),
+        "empty.xlsx": _zip(tmp_path / "empty.xlsx", {"readme.txt": "no workbook here"}),
+        "truncated.xlsx": tmp_path / "truncated.xlsx",
+        "missing.xlsx": tmp_path / "missing.xlsx",
+    }
+    files["truncated.xlsx"].write_bytes(Path(sewing_workbook).read_bytes()[:5000])
+    for name, path in files.items():
+        result = run_cli("audit", str(path))
+        assert result.returncode == 2, (name, result.stdout, result.stderr)
+        message = result.stderr.strip()
+        assert len(message.splitlines()) == 1 and "Traceback" not in message, (name, message)
+        assert str(path) in message or path.name in message, (name, message)
