@@ -15,6 +15,16 @@ class ExcelError(enum.Enum):
     NAME = "#NAME?"
     NUM = "#NUM!"
     NA = "#N/A"
+    # Newer Excel errors (dynamic arrays, data types, connections); appended so
+    # that the codes above keep their numbers.
+    SPILL = "#SPILL!"
+    CALC = "#CALC!"
+    GETTING_DATA = "#GETTING_DATA"
+    FIELD = "#FIELD!"
+    BLOCKED = "#BLOCKED!"
+    CONNECT = "#CONNECT!"
+    BUSY = "#BUSY!"
+    UNKNOWN = "#UNKNOWN!"
 
     @property
     def code(self) -> int:

@@ -32,7 +32,7 @@ from workbook_gen.evaluator.store import Names, Num, Obj, SheetResolver, Store, 
 from workbook_gen.evaluator.vector import Env, NotVectorizable, compile_block
 from workbook_gen.formula import ast
 from workbook_gen.formula.parser import parse
-from workbook_gen.formula.scalar import _Evaluator, evaluate, unsupported_functions
+from workbook_gen.formula.scalar import Evaluator, evaluate, unsupported_functions
 from workbook_gen.xlerror import ExcelError
 
 log = logging.getLogger(__name__)
@@ -244,13 +244,10 @@ def _rects(unit: _Unit, store: Store, names: Names) -> list[graph.Rect]:
 def _evaluate(unit: _Unit, store: Store, names: Names) -> None:
     resolver = SheetResolver(store, names, unit.sheet)
     if unit.block is None:
-        try:
-            value = evaluate(unit.node, resolver)
-        except (OverflowError, ValueError, ZeroDivisionError):  # e.g. MOD(1E300,1E-300)
-            value = ExcelError.NUM
+        value = evaluate(unit.node, resolver)
         store.put(unit.sheet, unit.first, unit.col, value, cell_scale(unit.node, resolver))
         return
-    reference = _Evaluator(resolver, "excel", None)
+    reference = Evaluator(resolver, "excel", None)
     env = Env(unit.last - unit.first + 1, store.block, reference.arg)
     value = unit.block.run(env)
     scale = unit.block.scale(env)

@@ -17,11 +17,12 @@ import numpy as np
 from workbook_gen.xlmath import kernels as k
 from workbook_gen.evaluator.store import Num, Obj, to_items
 from workbook_gen.formula import functions as fx
-from workbook_gen.formula.functions import Range
-from workbook_gen.formula.scalar import _Evaluator  # Excel's binary operators, the reference
+from workbook_gen.formula import values as xv
+from workbook_gen.formula.scalar import Evaluator  # Excel's binary operators, the reference
+from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
 
-_APPLY = _Evaluator(None, "excel", None).apply
+_APPLY = Evaluator(None, "excel", None).apply
 _ARITH = frozenset("+-*/^")
 _COMPARE = {"=": np.equal, "<>": np.not_equal, "<": np.less, ">": np.greater,
             "<=": np.less_equal, ">=": np.greater_equal}
@@ -54,7 +55,7 @@ def clean(v):
 def scalar(v, n: int):
     """A value used where one value is expected: a Range keeps its single cell."""
     if isinstance(v, Const) and isinstance(v.value, Range):
-        return Const(fx.scalar_of(v.value))
+        return Const(xv.scalar_of(v.value))
     return v
 
 
@@ -137,7 +138,7 @@ def _compare(op: str, x: Num, y: Num, n: int) -> Num:
 def _unary_scalar(op: str, v):
     if op == "+":
         return v
-    x = fx.to_number(v)
+    x = xv.to_number(v)
     if isinstance(x, ExcelError):
         return x
     return clean(-x) if op == "-" else clean(x / 100.0)
@@ -236,7 +237,7 @@ def to_bool_mask(cond, n: int) -> tuple[np.ndarray, np.ndarray]:
     x = as_num(cond, n)
     if x is not None:
         return (x.val != 0) & (x.err == 0), x.err
-    bools = [fx.to_bool(v) for v in items(cond, n)]
+    bools = [xv.to_bool(v) for v in items(cond, n)]
     err = np.array([b.code if isinstance(b, ExcelError) else 0 for b in bools], np.uint8)
     return np.array([b is True for b in bools], bool), err
 

@@ -16,8 +16,8 @@ import numpy as np
 
 from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.formula import ast
-from workbook_gen.formula.functions import Range
 from workbook_gen.formula.parser import parse
+from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
 
 _GROW = 1024
@@ -240,8 +240,8 @@ class SheetResolver:
         node = self.names.node(name)
         if node is None or self.depth >= self.MAX_NAME_DEPTH:
             return ExcelError.NAME
-        from workbook_gen.formula.scalar import _Evaluator  # the reference semantics
+        from workbook_gen.formula.scalar import Evaluator  # the reference semantics
 
         inner = SheetResolver(self.store, self.names, self.sheet, self.depth + 1)
-        value = _Evaluator(inner, "excel", None).arg(node)
+        value = Evaluator(inner, "excel", None).arg(node)
         return [list(r) for r in value.rows] if isinstance(value, Range) else value

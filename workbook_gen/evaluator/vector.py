@@ -26,6 +26,7 @@ from workbook_gen.evaluator.ops import (
 from workbook_gen.evaluator.store import value_scale
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
+from workbook_gen.formula.values import to_bool
 
 
 class NotVectorizable(Exception):
@@ -190,7 +191,7 @@ def block_scale(b) -> np.ndarray:
 def _if(cond_fn, then_fn, other_fn, env):
     cond = scalar(cond_fn(env), env.n)
     if isinstance(cond, Const):
-        c = fx.to_bool(cond.value)
+        c = to_bool(cond.value)
         if isinstance(c, fx.ExcelError):
             return Const(c)
         return (then_fn if c else other_fn)(env)

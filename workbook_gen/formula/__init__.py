@@ -11,12 +11,13 @@ from workbook_gen.formula.ast import (
     RangeRef, String, Unary, shift, to_relative, walk,
 )
 from workbook_gen.formula.functions import (
-    LIBREOFFICE_DIFFERENCES, SUPPORTED, Difference, Range, Value, libreoffice_result,
+    LIBREOFFICE_DIFFERENCES, SUPPORTED, Difference, libreoffice_result,
 )
 from workbook_gen.formula.parser import parse
 from workbook_gen.formula.printer import column_letters, quote_sheet, render, render_formula
 from workbook_gen.formula.scalar import DictResolver, Resolver, evaluate, unsupported_functions
 from workbook_gen.formula.tokenizer import Token, Tokenizer, is_cell_ref, tokenize
+from workbook_gen.formula.values import Range, Value
 
 __all__ = [
     "Binary", "Bool", "CellRef", "ErrorLit", "Func", "Missing", "Name", "Node", "Number",

@@ -1,8 +1,7 @@
-"""Excel's values, coercions and the supported worksheet functions (scalar).
+"""Excel's supported worksheet functions (scalar), over the values of ``formula.values``.
 
-A value is ``float | str | bool | None | ExcelError`` (None is an empty cell); a
-reference argument arrives as a :class:`Range`. Nothing here raises on bad data:
-Excel errors are returned and propagate. IF and IFERROR take thunks so that only
+A reference argument arrives as a :class:`Range`. Nothing here raises on bad data:
+Excel errors are returned and propagate (overflow gives #NUM!). IF and IFERROR take thunks so that only
 the branch taken is evaluated.
 
 ``dialect="libreoffice"`` applies LibreOffice 7.4's measured deviations
@@ -14,134 +13,12 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
 from typing import Callable, NamedTuple
 
+from workbook_gen.formula.values import (
+    Range, Value, checked, compare, rank, scalar_of, to_bool, to_number,
+)
 from workbook_gen.xlerror import ExcelError
-
-Value = float | str | bool | None | ExcelError
-
-
-@dataclass(frozen=True, slots=True)
-class Range:
-    """The values of a reference, row by row (a single cell reference is 1x1)."""
-
-    rows: tuple[tuple[Value, ...], ...]
-
-    @classmethod
-    def of(cls, rows) -> "Range":
-        return cls(tuple(tuple(r) for r in rows))
-
-    @property
-    def shape(self) -> tuple[int, int]:
-        return len(self.rows), (len(self.rows[0]) if self.rows else 0)
-
-    def flat(self):
-        for row in self.rows:
-            yield from row
-
-
-def checked(x: float) -> float | ExcelError:
-    """``x``, or #NUM! if it overflowed to infinity or is NaN."""
-    return x if math.isfinite(x) else ExcelError.NUM
-
-
-def to_number(v: Value) -> float | ExcelError:
-    """Arithmetic coercion: bool -> 1/0, empty -> 0, numeric text -> number."""
-    if isinstance(v, ExcelError):
-        return v
-    if isinstance(v, bool):
-        return 1.0 if v else 0.0
-    if v is None:
-        return 0.0
-    if isinstance(v, (int, float)):
-        return float(v)
-    return text_to_number(v)
-
-
-def text_to_number(text: str) -> float | ExcelError:
-    """``" 2 "`` -> 2.0, ``"50%"`` -> 0.5, ``"1e3"`` -> 1000.0, else #VALUE!."""
-    s = text.strip()
-    scale = 1.0
-    if s.endswith("%"):
-        s, scale = s[:-1].strip(), 0.01
-    if not s or not all(c in "0123456789.eE+-" for c in s):  # rejects inf, nan, 0x..
-        return ExcelError.VALUE
-    try:
-        return float(s) * scale
-    except ValueError:
-        return ExcelError.VALUE
-
-
-def to_bool(v: Value) -> bool | ExcelError:
-    """Logical coercion (IF, NOT): number != 0, "TRUE"/"FALSE" text, empty is FALSE."""
-    if isinstance(v, ExcelError) or isinstance(v, bool):
-        return v
-    if v is None:
-        return False
-    if isinstance(v, (int, float)):
-        return v != 0
-    upper = v.strip().upper()
-    if upper in ("TRUE", "FALSE"):
-        return upper == "TRUE"
-    return ExcelError.VALUE
-
-
-def number_to_text(x: float) -> str:
-    """Excel's General format as used by ``&``: 15 significant digits, no ``.0``."""
-    if x == 0:
-        return "0"
-    if x == int(x) and abs(x) < 1e15:
-        return str(int(x))
-    text = f"{x:.15g}"
-    if "e" in text:
-        mantissa, exponent = text.split("e")
-        sign = exponent[0]
-        digits = exponent[1:].lstrip("0").rjust(2, "0")
-        text = f"{mantissa}E{sign}{digits}"
-    return text
-
-
-def to_text(v: Value) -> str | ExcelError:
-    if isinstance(v, ExcelError):
-        return v
-    if v is None:
-        return ""
-    if isinstance(v, bool):
-        return "TRUE" if v else "FALSE"
-    if isinstance(v, str):
-        return v
-    return number_to_text(float(v))
-
-
-def _rank(v: Value) -> int:
-    if isinstance(v, bool):
-        return 2
-    if isinstance(v, str):
-        return 1
-    return 0
-
-
-def compare(a: Value, b: Value) -> int | ExcelError:
-    """-1, 0 or 1 in Excel's order: numbers < text < booleans, text case-insensitive.
-
-    An empty operand takes the type of the other (0, "" or FALSE).
-    """
-    for v in (a, b):
-        if isinstance(v, ExcelError):
-            return v
-    if a is None:
-        a = b.__class__() if b is not None else 0.0
-    if b is None:
-        b = a.__class__()
-    ra, rb = _rank(a), _rank(b)
-    if ra != rb:
-        return -1 if ra < rb else 1
-    if ra == 1:
-        a, b = a.lower(), b.lower()
-    elif ra == 0:
-        a, b = float(a), float(b)
-    return (a > b) - (a < b)
 
 
 # -- arithmetic shared by operators and functions ------------------------------------
@@ -158,13 +35,6 @@ def power(x: float, y: float) -> float | ExcelError:
         return checked(math.pow(x, y))
     except OverflowError:
         return ExcelError.NUM
-
-
-def scalar_of(v) -> Value:
-    """A Range used where one value is expected: its single cell, else #VALUE!."""
-    if isinstance(v, Range):
-        return v.rows[0][0] if v.shape == (1, 1) else ExcelError.VALUE
-    return v
 
 
 def _numbers(args, n: int):
@@ -215,8 +85,11 @@ def _atan2(x: float, y: float):
 
 
 def _mod(n: float, d: float):
-    """MOD(n, d) = n - d*INT(n/d); the result takes the sign of d."""
-    return ExcelError.DIV0 if d == 0 else n - d * math.floor(n / d)
+    """MOD(n, d) = n - d*INT(n/d); the result takes the sign of d; #NUM! if n/d overflows."""
+    if d == 0:
+        return ExcelError.DIV0
+    q = n / d
+    return n - d * math.floor(q) if math.isfinite(q) else ExcelError.NUM
 
 
 def _sign(x: float) -> float:
@@ -293,6 +166,14 @@ def _aggregate(fn):
     return call
 
 
+def _sum(xs: list[float]) -> float:
+    """Correctly rounded sum; NaN (so #NUM!) where it overflows."""
+    try:
+        return math.fsum(xs)
+    except (OverflowError, ValueError):  # fsum raises instead of returning inf
+        return math.nan
+
+
 def _iserror(args):
     return ExcelError.VALUE if len(args) != 1 else isinstance(scalar_of(args[0]), ExcelError)
 
@@ -356,7 +237,7 @@ def _match(args):
         pattern = _wildcard(lookup) if isinstance(lookup, str) and any(
             c in lookup for c in "*?~") else None
         for i, v in enumerate(values):
-            if _rank(v) != _rank(lookup) or v is None or isinstance(v, ExcelError):
+            if rank(v) != rank(lookup) or v is None or isinstance(v, ExcelError):
                 continue
             if (pattern.fullmatch(v) is not None) if pattern else compare(v, lookup) == 0:
                 found = i
@@ -365,7 +246,7 @@ def _match(args):
         # Sorted data assumed, as Excel does: last position not past the lookup value.
         want = (0, -1) if kind > 0 else (0, 1)
         for i, v in enumerate(values):
-            if v is None or isinstance(v, ExcelError) or _rank(v) != _rank(lookup):
+            if v is None or isinstance(v, ExcelError) or rank(v) != rank(lookup):
                 continue
             if compare(v, lookup) in want:
                 found = i
@@ -415,7 +296,7 @@ EAGER: dict[str, Callable] = {
     "NOT": _not,
     "MIN": _aggregate(min),
     "MAX": _aggregate(max),
-    "SUM": _aggregate(math.fsum),
+    "SUM": _aggregate(_sum),
     "INDEX": _index,
     "MATCH": _match,
     "ISERROR": _iserror,

@@ -15,7 +15,8 @@ from typing import Callable, Protocol
 
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
-from workbook_gen.formula.functions import Range, Value
+from workbook_gen.formula import values as xv
+from workbook_gen.formula.values import Range, Value
 from workbook_gen.formula.tokenizer import CELL_PARTS, column_number, split_sheet
 from workbook_gen.xlerror import ExcelError
 
@@ -83,7 +84,7 @@ def evaluate(node: ast.Node, resolver: Resolver, *, dialect: str = "excel",
     """
     if dialect not in ("excel", "libreoffice"):
         raise ValueError(f"unknown dialect {dialect!r}")
-    result = fx.scalar_of(_Evaluator(resolver, dialect, on_unsupported).arg(node))
+    result = xv.scalar_of(Evaluator(resolver, dialect, on_unsupported).arg(node))
     return 0.0 if result is None else result
 
 
@@ -91,11 +92,14 @@ def _clean(x: float | ExcelError) -> float | ExcelError:
     """#NUM! for inf/NaN; no negative zero (Excel has none)."""
     if isinstance(x, ExcelError):
         return x
-    x = fx.checked(x)
+    x = xv.checked(x)
     return 0.0 if x == 0 else x
 
 
-class _Evaluator:
+class Evaluator:
+    """Excel's semantics for one formula AST: ``arg`` keeps references as Ranges,
+    ``value`` gives a scalar, ``apply`` is a binary operator on two values."""
+
     def __init__(self, resolver: Resolver, dialect: str, on_unsupported):
         self.resolver = resolver
         self.dialect = dialect
@@ -128,17 +132,17 @@ class _Evaluator:
         if isinstance(node, ast.Paren):
             return self.arg(node.inner)
         if isinstance(node, ast.Unary):
-            v = fx.scalar_of(self.arg(node.operand))
+            v = xv.scalar_of(self.arg(node.operand))
             if node.op == "+":
                 return v
-            x = fx.to_number(v)
+            x = xv.to_number(v)
             return x if isinstance(x, ExcelError) else _clean(-x)
         if isinstance(node, ast.Percent):
-            x = fx.to_number(fx.scalar_of(self.arg(node.operand)))
+            x = xv.to_number(xv.scalar_of(self.arg(node.operand)))
             return x if isinstance(x, ExcelError) else _clean(x / 100.0)
         if isinstance(node, ast.Binary):
             return self.binary(node)
-        return fx.scalar_of(self.arg(node))
+        return xv.scalar_of(self.arg(node))
 
     def binary(self, node: ast.Binary) -> Value:
         # Walk the left spine without recursion: A1+A2+...+A2000 is a left-deep tree.
@@ -146,26 +150,26 @@ class _Evaluator:
         while isinstance(node, ast.Binary):
             spine.append(node)
             node = node.left
-        acc = fx.scalar_of(self.arg(node))
+        acc = xv.scalar_of(self.arg(node))
         for step in reversed(spine):
-            acc = self.apply(step.op, acc, fx.scalar_of(self.arg(step.right)))
+            acc = self.apply(step.op, acc, xv.scalar_of(self.arg(step.right)))
         return acc
 
     def apply(self, op: str, left: Value, right: Value) -> Value:
         """Excel's binary operator ``op`` on two evaluated operands."""
         if op in _COMPARISONS:
-            c = fx.compare(left, right)
+            c = xv.compare(left, right)
             return c if isinstance(c, ExcelError) else _COMPARISONS[op](c)
         if op == "&":
-            a, b = fx.to_text(left), fx.to_text(right)
+            a, b = xv.to_text(left), xv.to_text(right)
             for v in (a, b):
                 if isinstance(v, ExcelError):
                     return v
             return a + b
-        a = fx.to_number(left)
+        a = xv.to_number(left)
         if isinstance(a, ExcelError):
             return a
-        b = fx.to_number(right)
+        b = xv.to_number(right)
         if isinstance(b, ExcelError):
             return b
         if op == "+":
