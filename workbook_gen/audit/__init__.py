@@ -23,7 +23,9 @@ from ..evaluator import evaluate_cells
 from ..formula import ast, parse
 from ..formula.scalar import evaluate as evaluate_scalar
 from ..xlerror import ExcelError
-from .compare import ColumnStats, compare
+import numpy as np
+
+from .compare import ColumnStats, compare, compare_numbers
 from .inputs import AuditInputs, read_inputs
 from .mechanics import check_mechanics
 from .report import AuditReport, EngineResult, Mismatch
@@ -99,7 +101,7 @@ def _mark_roots(inputs: AuditInputs, mismatches: list[Mismatch], differ: set[str
         return
     keys = {m.cell for m in mismatches} | differ
     by_sheet: dict[str, list[tuple[int, int]]] = {}
-    cell_keys = {_cell_name(k): k for k in inputs.formulas}
+    cell_keys = inputs.cell_keys()
     for name in keys:
         sheet, row, col = cell_keys[name]
         by_sheet.setdefault(sheet, []).append((row, col))
@@ -126,10 +128,19 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None):
     checked against what it makes of those cached values (or of ``seen``: the
     values another engine computed)."""
     keys = {k for k, text in inputs.formulas.items() if ":" in text}
-    cached = dict(inputs.constants)
-    cached.update((k, v) for k, v in (seen or inputs.cached).items() if k not in keys)
-    return evaluate_cells({k: inputs.formulas[k] for k in keys}, cached,
-                          inputs.book.defined_names)
+    names = inputs.book.defined_names
+    read: set[tuple[str, int]] = set()  # the (sheet, column) pairs those formulas read
+    for key in keys:
+        try:
+            node = parse(inputs.formulas[key])
+        except FormulaSyntaxError:
+            continue
+        for sheet, _, c1, _, c2 in _rectangles(node, key[0], names):
+            read.update((sheet, c) for c in range(c1, c2 + 1))
+    given = seen or inputs.cached
+    cached = {k: v for k, v in inputs.constants.items() if (k[0], k[2]) in read}
+    cached.update((k, given[k]) for k in given if (k[0], k[2]) in read and k not in keys)
+    return evaluate_cells({k: inputs.formulas[k] for k in keys}, cached, names)
 
 
 def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True) -> AuditReport:
@@ -160,22 +171,48 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
     columns: dict[tuple[str, int], ColumnStats] = {}
     mismatches, explained, checked = [], 0, 0
     max_abs = max_rel = 0.0
-    for key, cached in inputs.cached.items():
-        source = local if key in local.values else evaluation
-        recomputed = source.values[key]
-        verdict = compare(cached, recomputed, source.operands_scale.get(key, 0.0))
-        if not verdict.agree and _libreoffice_explains(inputs, key, value_of, cached):
-            explained += 1
-            continue
-        checked += 1
-        stats = columns.setdefault((key[0], key[2]), ColumnStats(key[0], xl_col_to_name(key[2] - 1)))
-        stats.add(inputs.refs[key], verdict)
-        if not verdict.agree:
-            mismatches.append(Mismatch(_cell_name(key), inputs.formulas[key], cached, recomputed,
-                                       verdict.abs_error))
-        else:
-            max_abs = max(max_abs, verdict.abs_error)
-            if verdict.rel_error != float("inf"):
+    by_column: dict[tuple[str, int], list] = {}
+    for key in inputs.cached:
+        by_column.setdefault((key[0], key[2]), []).append(key)
+    store = evaluation.store
+    for (sheet, col), keys in by_column.items():
+        stats = columns[(sheet, col)] = ColumnStats(sheet, xl_col_to_name(col - 1))
+        fast = [k for k in keys if k not in local.values and type(inputs.cached[k]) is float]
+        if fast:
+            column = store.cols[(sheet, col)]
+            rows = np.array([k[1] for k in fast])
+            plain = ~column.irr[rows] & (column.err[rows] == 0)
+            fast = [k for k, p in zip(fast, plain) if p]
+            rows = rows[plain]
+            cached = np.array([inputs.cached[k] for k in fast])
+            agree, diff, rel = compare_numbers(cached, column.val[rows], column.scale[rows])
+            stats.add_many([inputs.refs[k] for k in fast], agree, rel)
+            if agree.any():
+                max_abs = max(max_abs, float(diff[agree].max()))
+                max_rel = max(max_rel, float(rel[agree].max()))
+            checked += len(fast)
+            for i in np.flatnonzero(~agree):
+                k = fast[i]
+                mismatches.append(Mismatch(_cell_name(k), inputs.formulas[k], inputs.cached[k],
+                                           float(column.val[rows[i]]), float(diff[i])))
+        done = set(fast)
+        for key in keys:
+            if key in done:
+                continue
+            cached = inputs.cached[key]
+            source = local if key in local.values else evaluation
+            recomputed = source.values[key]
+            verdict = compare(cached, recomputed, source.operands_scale.get(key, 0.0))
+            if not verdict.agree and _libreoffice_explains(inputs, key, value_of, cached):
+                explained += 1
+                continue
+            checked += 1
+            stats.add(inputs.refs[key], verdict)
+            if not verdict.agree:
+                mismatches.append(Mismatch(_cell_name(key), inputs.formulas[key], cached,
+                                           recomputed, verdict.abs_error))
+            else:
+                max_abs = max(max_abs, verdict.abs_error)
                 max_rel = max(max_rel, verdict.rel_error)
     differ = {_cell_name(k) for k in local.values
               if not compare(inputs.cached[k], values[k], evaluation.operands_scale[k]).agree}

@@ -11,6 +11,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from ..xlerror import ExcelError
 
 REL = 1e-10
@@ -61,9 +63,27 @@ class ColumnStats:
     worst_error: float = 0.0   # relative error (absolute where the value is 0)
     worst_cell: str = ""
 
+    def add_many(self, refs: list[str], agree: np.ndarray, rel: np.ndarray) -> None:
+        self.cells += len(refs)
+        self.mismatches += int((~agree).sum())
+        if len(refs):
+            i = int(np.argmax(rel))
+            if rel[i] > self.worst_error:
+                self.worst_error, self.worst_cell = float(rel[i]), refs[i]
+
     def add(self, ref: str, verdict: Verdict) -> None:
         self.cells += 1
         self.mismatches += not verdict.agree
         error = verdict.rel_error if math.isfinite(verdict.rel_error) else verdict.abs_error
         if error > self.worst_error:
             self.worst_error, self.worst_cell = error, ref
+
+
+def compare_numbers(cached: np.ndarray, recomputed: np.ndarray, scale: np.ndarray):
+    """``compare`` for arrays of finite numbers: (agree mask, abs errors, rel errors)."""
+    diff = np.abs(cached - recomputed)
+    magnitude = np.maximum(np.maximum(np.abs(cached), np.abs(recomputed)), scale)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rel = np.where(magnitude > 0, diff / magnitude, 0.0)
+    agree = diff <= np.maximum(REL * np.abs(cached), ABS * magnitude)
+    return agree, diff, rel

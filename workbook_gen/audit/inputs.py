@@ -22,6 +22,14 @@ class AuditInputs:
     refs: dict[Key, str] = field(default_factory=dict)         # "B2"
     array_cells: list[Key] = field(default_factory=list)       # array formulas: not recomputed
     broken: dict[Key, str] = field(default_factory=dict)       # shared formulas that do not expand
+    _names: dict[str, Key] | None = None
+
+    def cell_keys(self) -> dict[str, Key]:
+        """'Sheet!B2' -> key, for the formula cells (built on first use)."""
+        if self._names is None:
+            from . import _cell_name
+            self._names = {_cell_name(k): k for k in self.formulas}
+        return self._names
 
 
 def read_inputs(path: str | Path) -> AuditInputs:

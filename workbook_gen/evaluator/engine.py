@@ -81,6 +81,7 @@ class Evaluation:
     external: list[Cell] = field(default_factory=list)
     groups: GroupStats = field(default_factory=GroupStats)
     seconds: dict[str, float] = field(default_factory=dict)  # grouping, graph, vector, scalar
+    store: Store | None = None  # the values column by column, for array-wise comparison
 
 
 @dataclass
@@ -101,10 +102,10 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     """Recompute every formula (texts without '=') of a workbook; see the module doc."""
     sheets = {k[0] for k in formulas} | {k[0] for k in constants}
     store = Store(sheets)
-    for (sheet, row, col), value in constants.items():
-        store.put(sheet, row, col, value)
+    store.put_constants(constants)
     name_table = Names(dict(names))
-    result = Evaluation(CellMap(formulas, store.get), CellMap(formulas, store.scale))
+    result = Evaluation(CellMap(formulas, store.get), CellMap(formulas, store.scale),
+                        store=store)
 
     clock = time.perf_counter()
     runs, errors = _runs(formulas, vectorize)

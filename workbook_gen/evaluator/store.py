@@ -66,7 +66,7 @@ class Store:
     def __init__(self, sheets):
         self.canonical = {s.lower(): s for s in sheets}
         self.cols: dict[tuple[str, int], _Column] = {}
-        self.rect_cache: dict[tuple, list[list]] = {}
+        self.rect_cache: dict[tuple, Range] = {}
 
     def sheet(self, name: str) -> str:
         return self.canonical.get(name.lower(), name)
@@ -90,6 +90,20 @@ class Store:
         else:
             c.val[row], c.err[row], c.irr[row] = np.nan, 0, True
             c.objs[row] = value
+
+    def put_constants(self, constants) -> None:
+        """Every constant cell {(sheet, row, col): value}, a column at a time."""
+        columns: dict[tuple[str, int], list] = {}
+        for (sheet, row, col), value in constants.items():
+            columns.setdefault((sheet, col), []).append((row, value))
+        for (sheet, col), cells in columns.items():
+            rows = np.array([r for r, _ in cells])
+            c = self._column(sheet, col, int(rows.max()))
+            plain = np.array([type(v) is float for _, v in cells], bool)
+            c.val[rows[plain]] = [v for _, v in cells if type(v) is float]
+            c.err[rows[plain]], c.irr[rows[plain]] = 0, False
+            for row, value in (cell for cell, p in zip(cells, plain) if not p):
+                self.put(sheet, row, col, value)
 
     def put_block(self, sheet: str, col: int, first: int, block, scale: np.ndarray) -> None:
         """Write a Num or a list of values to rows ``first ..``."""
@@ -149,14 +163,14 @@ class Store:
             return to_items(Num(c.val[r1:r2 + 1], c.err[r1:r2 + 1]))
         return [self.get(sheet, r, col) for r in range(r1, r2 + 1)]
 
-    def rect(self, sheet: str, r1: int, c1: int, r2: int, c2: int) -> list[list]:
+    def rect(self, sheet: str, r1: int, c1: int, r2: int, c2: int) -> Range:
         """Values of a rectangle, row by row. Cached: evaluation in dependency order
         reads a rectangle only once everything in it is final."""
         key = (sheet, r1, c1, r2, c2)
         rows = self.rect_cache.get(key)
         if rows is None:
             columns = [self.column_values(sheet, c, r1, r2) for c in range(c1, c2 + 1)]
-            rows = self.rect_cache[key] = [list(row) for row in zip(*columns)]
+            rows = self.rect_cache[key] = Range.of(zip(*columns))
         return rows
 
     def rect_scale(self, sheet: str, r1: int, c1: int, r2: int, c2: int) -> float:

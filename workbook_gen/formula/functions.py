@@ -107,6 +107,10 @@ def _logicals(args):
     out = []
     for a in args:
         if isinstance(a, Range):
+            numbers = a.numbers()
+            if numbers is not None:
+                out.extend(numbers)
+                continue
             for v in a.flat():
                 if isinstance(v, ExcelError):
                     return v
@@ -142,6 +146,10 @@ def _aggregate_numbers(args):
     out = []
     for a in args:
         if isinstance(a, Range):
+            numbers = a.numbers()
+            if numbers is not None:
+                out.extend(numbers)
+                continue
             for v in a.flat():
                 if isinstance(v, ExcelError):
                     return v
@@ -233,6 +241,11 @@ def _match(args):
         return ExcelError.NA
     values = list(area.flat())
     found = None
+    if kind == 0 and type(lookup) is float and area.numbers() is not None:
+        try:  # a number among plain numbers: list.index compares exactly, as below
+            return float(values.index(lookup) + 1)
+        except ValueError:
+            return ExcelError.NA
     if kind == 0:
         pattern = _wildcard(lookup) if isinstance(lookup, str) and any(
             c in lookup for c in "*?~") else None

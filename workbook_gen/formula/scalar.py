@@ -112,7 +112,8 @@ class Evaluator:
         if isinstance(node, ast.RangeRef):
             r1, r2 = sorted((node.first.row, node.last.row))
             c1, c2 = sorted((node.first.col, node.last.col))
-            return Range.of(self.resolver.range(node.sheet, r1, c1, r2, c2))
+            value = self.resolver.range(node.sheet, r1, c1, r2, c2)
+            return value if isinstance(value, Range) else Range.of(value)
         if isinstance(node, ast.Name):
             value = self.resolver.name(node.name, node.sheet)
             return Range.of(value) if isinstance(value, list) else value

@@ -8,7 +8,7 @@ errors are returned.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from workbook_gen.xlerror import ExcelError
 
@@ -20,10 +20,11 @@ class Range:
     """The values of a reference, row by row (a single cell reference is 1x1)."""
 
     rows: tuple[tuple[Value, ...], ...]
+    _numbers: object = field(default=False, compare=False, repr=False)  # cache of numbers()
 
     @classmethod
     def of(cls, rows) -> "Range":
-        return cls(tuple(tuple(r) for r in rows))
+        return cls(tuple(map(tuple, rows)))
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -32,6 +33,15 @@ class Range:
     def flat(self):
         for row in self.rows:
             yield from row
+
+    def numbers(self) -> list[float] | None:
+        """All values as a flat list when every one is a plain number, else None
+        (the fast path of MIN, MAX, SUM and MATCH over a column of results)."""
+        if self._numbers is False:
+            flat = [v for row in self.rows for v in row]
+            numbers = flat if len([v for v in flat if type(v) is float]) == len(flat) else None
+            object.__setattr__(self, "_numbers", numbers)
+        return self._numbers
 
 
 def checked(x: float) -> float | ExcelError:
