@@ -39,9 +39,9 @@ def _list(args: argparse.Namespace) -> int:
         for p in template.parameters:
             print(f"    {p.name:<10} = {p.default:<12.10g} {p.unit:<6} {p.description}")
         print("  outputs: " + ", ".join(q.header for q in template.quantities if q.output))
-        if template.options:
-            for key, values in template.options.items():
-                print(f"  option {key}: {' | '.join(values)}")
+        for option in template.options:
+            values = " | ".join(option.choices) if option.choices else type(option.default).__name__
+            print(f"  option {option.name} = {option.default!r} ({values}): {option.description}")
         print()
     return 0
 

@@ -47,7 +47,7 @@ class Scene:
     parameters: Mapping[str, float]
     sweep: Sweep
     outputs: tuple[str, ...]
-    options: Mapping[str, str] = field(default_factory=dict)
+    options: Mapping[str, object] = field(default_factory=dict)  # as given in the scene
     text: str = ""              # the scene file as given
     overrides: tuple[str, ...] = ()  # the command-line overrides, as given
 
@@ -139,14 +139,17 @@ def _outputs(source: str, template: Template, given: dict) -> tuple[str, ...]:
     return tuple(names)
 
 
-def _options(source: str, template: Template, given: dict) -> dict[str, str]:
+def _options(source: str, template: Template, given: dict) -> dict[str, object]:
+    specs = {o.name: o for o in template.options}
     options = {}
     for key, value in given.items():
-        if key not in template.options:
-            raise _fail(source, f"options.{key}", f"is not an option of {template.id}", value)
-        if value not in template.options[key]:
-            raise _fail(source, f"options.{key}",
-                        f"must be one of {', '.join(template.options[key])}", value)
+        if key not in specs:
+            known = ", ".join(specs) or "none"
+            raise _fail(source, f"options.{key}", f"is not an option of {template.id} "
+                                                  f"(known: {known})", value)
+        problem = specs[key].problem(value)
+        if problem:
+            raise _fail(source, f"options.{key}", problem, value)
         options[key] = value
     return options
 
@@ -170,7 +173,9 @@ def parse_scene(text: str, source: str, overrides: Mapping[str, Any] | None = No
     if not _STEM.match(name):
         raise _fail(source, "name", "must be a file stem of letters, digits, '_', '-', '.'",
                     name)
-    template = get_template(_string(source, "mechanism", data["mechanism"]))
+    base = get_template(_string(source, "mechanism", data["mechanism"]))
+    options = _options(source, base, _table(source, "options", data.get("options", {})))
+    template = base.with_options(options)
     title = _string(source, "title", data.get("title", template.title))
     given = dict(_table(source, "parameters", data.get("parameters", {})))
     given.update(overrides or {})
@@ -183,7 +188,7 @@ def parse_scene(text: str, source: str, overrides: Mapping[str, Any] | None = No
         source=source, name=name, template=template, title=title, parameters=parameters,
         sweep=_sweep(source, template, _table(source, "sweep", data.get("sweep", {})), step),
         outputs=_outputs(source, template, _table(source, "outputs", data.get("outputs", {}))),
-        options=_options(source, template, _table(source, "options", data.get("options", {}))),
+        options=options,
         text=text,
         overrides=tuple(f"{k}={v}" for k, v in (overrides or {}).items()),
     )

@@ -8,6 +8,7 @@ recalculated in Excel is checked against the model with its new parameters.
 
 from __future__ import annotations
 
+import json
 import re
 from dataclasses import dataclass, field
 
@@ -80,14 +81,18 @@ def check_mechanics(book, value_of) -> MechanicsReport | None:
     table, params_sheet = _sheet(book, "Table"), _sheet(book, "Parameters")
     if table is None or params_sheet is None:
         return None
-    params = {}
+    params, known = {}, reference.known_parameters(mechanism)
     for cell in params_sheet.column(1)[1:]:
         value = value_of("Parameters", cell.row, 2)
-        if isinstance(cell.value, str) and isinstance(value, (int, float)):
+        if cell.value in known and isinstance(value, (int, float)):
             params[cell.value] = float(value)
     rows = range(2, table.max_row + 1)
     inputs = np.array([float(value_of("Table", r, 1)) for r in rows])
-    solved = reference.solve(mechanism, params, inputs)
+    try:
+        options = json.loads(str(about.get("options") or "{}"))
+    except json.JSONDecodeError:
+        options = {}
+    solved = reference.solve(mechanism, params, inputs, options)
     quantities = []
     for cell in table.row(1)[1:]:
         match = _HEADER.match(str(cell.value))

@@ -85,6 +85,47 @@ class Figure:
 
 
 @dataclass(frozen=True)
+class OptionSpec:
+    """A template option: ``choices`` for text options, else a bool or an int option."""
+
+    name: str
+    default: str | bool | int
+    description: str
+    choices: tuple[str, ...] = ()
+    minimum: int | None = None   # int options
+    maximum: int | None = None
+
+    def problem(self, value: object) -> str | None:
+        """Why ``value`` is not acceptable, or None."""
+        if self.choices:
+            return None if value in self.choices else f"must be one of {', '.join(self.choices)}"
+        if isinstance(self.default, bool):
+            return None if isinstance(value, bool) else "must be true or false"
+        if isinstance(value, bool) or not isinstance(value, int):
+            return "must be an integer"
+        if self.minimum is not None and value < self.minimum:
+            return f"must be >= {self.minimum}"
+        if self.maximum is not None and value > self.maximum:
+            return f"must be <= {self.maximum}"
+        return None
+
+
+@dataclass(frozen=True)
+class Link:
+    """A moving link, for centres of mass and the shaking force (SPEC 7.7).
+
+    Its frame: origin at its first joint, u along ``angle`` (rad), v to the left.
+    All fields are trees over the template's quantities and parameters."""
+
+    name: str
+    joint: tuple[Node, Node]          # first joint, position
+    joint_acc: tuple[Node, Node]      # first joint, acceleration
+    angle: Node                       # direction of u, in radians
+    omega: Node                       # angular velocity (0 for a translating link)
+    alpha: Node                       # angular acceleration
+
+
+@dataclass(frozen=True)
 class Template:
     id: str
     title: str
@@ -97,7 +138,12 @@ class Template:
     charts: tuple[Chart, ...] = ()
     spans: tuple[Span, ...] = ()
     figures: tuple[Figure, ...] = ()
-    options: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
+    options: tuple[OptionSpec, ...] = ()
+    links: tuple[Link, ...] = ()
+    length_unit_m: float = 1e-3  # metres per length unit of the template (mm)
+    # Options -> the template for them (branch, method, iterations, balance ...).
+    configure: Callable[["Template", Mapping[str, object]], "Template"] = (
+        lambda template, options: template)
     # Cross-parameter rule: a message naming the offending parameter, or None.
     validate: Callable[[Mapping[str, float]], tuple[str, str] | None] = lambda p: None
     # Why nothing assembles, for the error message.
@@ -127,6 +173,14 @@ class Template:
     @property
     def defaults(self) -> dict[str, float]:
         return {p.name: p.default for p in self.parameters}
+
+    @property
+    def option_defaults(self) -> dict[str, object]:
+        return {o.name: o.default for o in self.options}
+
+    def with_options(self, options: Mapping[str, object]) -> "Template":
+        """The template configured for ``options`` (missing ones take their defaults)."""
+        return self.configure(self, {**self.option_defaults, **options})
 
 
 def _check_refs(template: str, what: str, expr: Node, known: set[str], params: set[str]) -> None:

@@ -41,15 +41,26 @@ def _params(mechanism: str, params: Mapping[str, float]) -> dict[str, float]:
     return merged
 
 
-def solve(mechanism: str, params: Mapping[str, float], inputs: np.ndarray) -> dict[str, np.ndarray]:
-    """Outputs of ``mechanism`` at crank angles ``inputs`` (deg); missing params take the defaults."""
+def known_parameters(mechanism: str) -> frozenset[str]:
+    """The parameter names the reference of ``mechanism`` takes."""
+    return frozenset(_MODULES[mechanism].DEFAULTS)
+
+
+def solve(mechanism: str, params: Mapping[str, float], inputs: np.ndarray,
+          options: Mapping[str, object] | None = None) -> dict[str, np.ndarray]:
+    """Outputs of ``mechanism`` at ``inputs`` (crank angles in deg, or the template's input);
+    missing params take the defaults. ``options`` are the scene's template options
+    (e.g. ``branch``); a module that takes none ignores them."""
     if mechanism not in _MODULES:
         raise WorkbookGenError(f"unknown mechanism {mechanism!r}; the reference supports {', '.join(MECHANISMS)}")
     p = _params(mechanism, params)
     theta_1 = np.atleast_1d(np.asarray(inputs, dtype=float))
     if theta_1.ndim != 1:
         raise WorkbookGenError(f"{mechanism}: inputs must be a 1-D array of angles, got shape {theta_1.shape}")
-    return _MODULES[mechanism].solve(p, theta_1)
+    module = _MODULES[mechanism]
+    if getattr(module, "TAKES_OPTIONS", False):
+        return module.solve(p, theta_1, dict(options or {}))
+    return module.solve(p, theta_1)
 
 
-__all__ = ["MECHANISMS", "solve"]
+__all__ = ["MECHANISMS", "known_parameters", "solve"]

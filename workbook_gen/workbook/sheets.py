@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import json
+
 from ..compute import Evaluated
 from .layout import ABOUT, PARAMETERS, add_sheet
 
@@ -31,6 +33,7 @@ def write_about(workbook, formats, result: Evaluated, version: str, filename: st
     sheet.write_string(0, 0, scene.title, formats["title"])
     rows = [
         ("mechanism", scene.template.id),
+        ("options", json.dumps(dict(scene.options), sort_keys=True)),
         ("generator", f"workbook-gen {version}"),
         ("scene file", scene.source),
         ("overrides", " ".join(f"--set {o}" for o in scene.overrides) or "none"),

@@ -11,6 +11,7 @@ from ..compute import Evaluated
 from ..expr.excel import to_excel
 from ..expr.numeric import compile_numpy
 from ..xlerror import ExcelError
+from .table import cached_values
 from .layout import CHECK_FIRST_ROW, CHECKS, SUMMARY, TableLayout, add_sheet
 from xlsxwriter.utility import xl_col_to_name
 
@@ -67,8 +68,7 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
         row += 1
     for figure in result.model.figures:
         value = compile_numpy(figure.expr)({}, result.scene.parameters, 1)
-        cached = (ExcelError.from_code(int(value.err[0])).value if value.err[0]
-                  else float(value.val[0]))
+        cached = cached_values(value)[0]
         sheet.write_string(row, 0, figure.label)
         sheet.write_string(row, 1, figure.unit)
         sheet.write_formula(row, 2, to_excel(figure.expr), None, cached)

@@ -11,9 +11,11 @@ from .layout import FIRST_ROW, TABLE, TableLayout, add_sheet
 from ..xlerror import ExcelError
 
 
-def cached(column: xm.XArray) -> list:
-    """Cached values for XlsxWriter: numbers, texts or Excel error texts."""
+def cached_values(column: xm.XArray) -> list:
+    """Cached values for XlsxWriter: numbers, booleans, texts or Excel error texts."""
     values = column.val.tolist()
+    if column.boolean:
+        values = [bool(v) if v == v else v for v in values]
     if column.err.any():
         for i in np.flatnonzero(column.err):
             values[i] = ExcelError.from_code(int(column.err[i])).value
@@ -35,7 +37,7 @@ def write_table(workbook, formats, result: Evaluated, layout: TableLayout) -> No
 
     templates = [row_template(q.expr, layout.local) for q in model.columns]
     status = row_template(model.template.status, layout.local)
-    values = [cached(result.columns[q.name]) for q in model.columns]
+    values = [cached_values(result.columns[q.name]) for q in model.columns]
     inputs = result.inputs.tolist()
     texts = result.status.tolist()
     write_formula, write_number = sheet.write_formula, sheet.write_number
