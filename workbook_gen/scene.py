@@ -15,11 +15,11 @@ from typing import Any, Mapping
 
 from .errors import SceneError
 from .mechanisms import get_template
-from .mechanisms.base import Template
+from .mechanisms.base import Mass, Template
 from .names import check_name
 
 MAX_ROWS = 1_048_576 - 1  # Excel's rows, less the header
-_TOP_KEYS = {"name", "mechanism", "title", "parameters", "sweep", "outputs", "options"}
+_TOP_KEYS = {"name", "mechanism", "title", "parameters", "sweep", "outputs", "options", "masses"}
 _STEM = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.-]*$")
 
 
@@ -48,6 +48,7 @@ class Scene:
     sweep: Sweep
     outputs: tuple[str, ...]
     options: Mapping[str, object] = field(default_factory=dict)  # as given in the scene
+    masses: Mapping[str, Mass] = field(default_factory=dict)
     text: str = ""              # the scene file as given
     overrides: tuple[str, ...] = ()  # the command-line overrides, as given
 
@@ -154,6 +155,30 @@ def _options(source: str, template: Template, given: dict) -> dict[str, object]:
     return options
 
 
+def _masses(source: str, template: Template, given: dict) -> dict[str, Mass]:
+    links = [link.name for link in template.links]
+    masses = {}
+    for name, entry in given.items():
+        key = f"masses.{name}"
+        if name not in links:
+            known = ", ".join(links) or f"none: {template.id} declares no links"
+            raise _fail(source, key, f"is not a moving link of {template.id} (known: {known})",
+                        entry)
+        entry = _table(source, key, entry)
+        unknown = set(entry) - {"m", "u", "v"}
+        if unknown:
+            extra = sorted(unknown)[0]
+            raise _fail(source, f"{key}.{extra}", "is not a mass key (m, u, v)", entry[extra])
+        if "m" not in entry:
+            raise SceneError(f"{source}: {key}.m is missing")
+        m = _number(source, f"{key}.m", entry["m"])
+        if m < 0:
+            raise _fail(source, f"{key}.m", "must be >= 0", entry["m"])
+        masses[name] = Mass(m, _number(source, f"{key}.u", entry.get("u", 0.0)),
+                            _number(source, f"{key}.v", entry.get("v", 0.0)))
+    return masses
+
+
 def parse_scene(text: str, source: str, overrides: Mapping[str, Any] | None = None,
                 step: float | None = None) -> Scene:
     """A validated Scene from TOML text; ``overrides`` replace parameters."""
@@ -176,6 +201,10 @@ def parse_scene(text: str, source: str, overrides: Mapping[str, Any] | None = No
     base = get_template(_string(source, "mechanism", data["mechanism"]))
     options = _options(source, base, _table(source, "options", data.get("options", {})))
     template = base.with_options(options)
+    masses = _masses(source, template, _table(source, "masses", data.get("masses", {})))
+    if masses:
+        from .mechanisms.dynamics import add_dynamics
+        template = add_dynamics(template, masses, options)
     title = _string(source, "title", data.get("title", template.title))
     given = dict(_table(source, "parameters", data.get("parameters", {})))
     given.update(overrides or {})
@@ -189,6 +218,7 @@ def parse_scene(text: str, source: str, overrides: Mapping[str, Any] | None = No
         sweep=_sweep(source, template, _table(source, "sweep", data.get("sweep", {})), step),
         outputs=_outputs(source, template, _table(source, "outputs", data.get("outputs", {}))),
         options=options,
+        masses=masses,
         text=text,
         overrides=tuple(f"{k}={v}" for k, v in (overrides or {}).items()),
     )

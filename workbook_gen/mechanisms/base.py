@@ -126,6 +126,16 @@ class Link:
 
 
 @dataclass(frozen=True)
+class Mass:
+    """A link's mass (kg) and centre of mass: ``u`` along the link from its first joint,
+    ``v`` to its left, in the template's length unit (SPEC 7.7)."""
+
+    m: float
+    u: float
+    v: float
+
+
+@dataclass(frozen=True)
 class Template:
     id: str
     title: str
