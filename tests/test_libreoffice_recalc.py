@@ -29,6 +29,21 @@ def _magnitudes(sheet: str, cells: dict) -> dict[str, float]:
     return out
 
 
+def _tied_extreme(path, ref: str, ours: float, theirs: float) -> bool:
+    """A Summary 'at' cell (the input where a max or min occurs) may differ when the
+    extreme is tied to rounding between rows (a symmetric curve): accept it when the
+    Table holds the same value, to 1e-12 of the column's magnitude, at both inputs."""
+    import openpyxl
+    book = openpyxl.load_workbook(path, data_only=True, read_only=True)
+    row = int(ref[1:])
+    name = book["Summary"].cell(row, 1).value
+    table = list(book["Table"].iter_rows(values_only=True))
+    col = next(i for i, h in enumerate(table[0]) if str(h).startswith(f"{name} ["))
+    values = {r[0]: r[col] for r in table[1:]}
+    magnitude = max(abs(v) for v in values.values() if isinstance(v, float))
+    return abs(values[ours] - values[theirs]) <= 1e-12 * magnitude
+
+
 def compare_with_libreoffice(path) -> tuple[int, float]:
     ours = read_formula_values(path)
     theirs = recalculated_values(path)
@@ -38,6 +53,9 @@ def compare_with_libreoffice(path) -> tuple[int, float]:
         for ref, value in values.items():
             other = theirs[sheet][ref]
             cells += 1
+            if (sheet == "Summary" and ref[0] in "DF" and value != other
+                    and _tied_extreme(path, ref, value, other)):
+                continue
             if isinstance(value, ExcelError) or isinstance(value, str) or value is None:
                 assert other == value, f"{sheet}!{ref}: ours {value!r}, LibreOffice {other!r}"
                 continue

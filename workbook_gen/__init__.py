@@ -15,7 +15,7 @@ from .workbook import write_workbook
 
 def audit(path, **options):
     """Recompute and check every formula cell of the workbook at ``path``."""
-    from .audit import audit as _audit
+    from .auditor import audit as _audit
     return _audit(path, **options)
 
 

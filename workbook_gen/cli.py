@@ -56,8 +56,8 @@ def _generate(args: argparse.Namespace) -> int:
 
 
 def _audit(args: argparse.Namespace) -> int:
-    from .audit import audit
-    from .audit.report import format_report
+    from .auditor import audit
+    from .auditor.report import format_report
     report = audit(args.file, engine=args.engine)
     if args.json:
         print(json.dumps(report.to_json(), indent=2, allow_nan=False))

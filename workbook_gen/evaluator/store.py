@@ -100,7 +100,8 @@ class Store:
             rows = np.array([r for r, _ in cells])
             c = self._column(sheet, col, int(rows.max()))
             plain = np.array([type(v) is float for _, v in cells], bool)
-            c.val[rows[plain]] = [v for _, v in cells if type(v) is float]
+            # + 0.0: a cell never holds -0 in Excel (a file may say "-0")
+            c.val[rows[plain]] = np.array([v for _, v in cells if type(v) is float]) + 0.0
             c.err[rows[plain]], c.irr[rows[plain]] = 0, False
             for row, value in (cell for cell, p in zip(cells, plain) if not p):
                 self.put(sheet, row, col, value)

@@ -108,7 +108,10 @@ class Evaluator:
     def arg(self, node: ast.Node) -> Value | Range:
         """Value of ``node``; references stay Ranges (functions need to know)."""
         if isinstance(node, ast.CellRef):
-            return Range.of([[self.resolver.cell(node.sheet, node.row, node.col)]])
+            value = self.resolver.cell(node.sheet, node.row, node.col)
+            if type(value) is float:
+                value += 0.0  # a cell never holds -0 in Excel (a file may say "-0")
+            return Range.of([[value]])
         if isinstance(node, ast.RangeRef):
             r1, r2 = sorted((node.first.row, node.last.row))
             c1, c2 = sorted((node.first.col, node.last.col))
