@@ -22,13 +22,14 @@ from __future__ import annotations
 
 import math
 
-from ..expr import (Node, Var, atan2, cos, degrees, eq, if_, iserror, radians, root, sin,
-                    sqrt)
-from .base import (Chart, Check, Figure, InputSpec, ParamSpec, Quantity, Span, Template,
-                   quantity_vars, symbols)
+from ..expr import (Node, Var, atan2, cos, degrees, eq, if_, iserror, pi, radians, root,
+                    sin, sqrt)
+from .base import (Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span,
+                   Template, quantity_vars, symbols)
 
 l_AB, l_BC, l_BE, beta_E, x_F, y_F, l_FG, omega_1 = symbols(
     "l_AB l_BC l_BE beta_E x_F y_F l_FG omega_1")
+theta_2, omega_2, alpha_2 = quantity_vars("theta_2 omega_2 alpha_2")
 (theta_1, x_B, y_B, h_BC, dh_BC, ddh_BC, y_C, v_C, a_C, x_E, y_E, vx_E, vy_E, ax_E, ay_E,
  s_FE, v_FE, a_FE, theta_5, omega_5, alpha_5, x_G, y_G, vx_G, vy_G, ax_G, ay_G) = quantity_vars(
     "theta_1 x_B y_B h_BC dh_BC ddh_BC y_C v_C a_C x_E y_E vx_E vy_E ax_E ay_E "
@@ -64,6 +65,13 @@ QUANTITIES = (
     Q("y_C", "mm", y_B - h_BC, "needle bar C, position"),
     Q("v_C", "mm/s", omega_1 * x_B - dh_BC, "needle bar C, velocity"),
     Q("a_C", "mm/s^2", -w2 * y_B - ddh_BC, "needle bar C, acceleration"),
+    # The rod's direction B->C = (-x_B, -h_BC) points downwards: its angle stays in
+    # (-180, 0) deg, continuous.  Rates from d/dt of that direction (|B->C| = l_BC).
+    Q("theta_2", "deg", degrees(atan2(0 - x_B, 0 - h_BC)), "rod angle (direction B->C)",
+      output=False),
+    Q("omega_2", "rad/s", omega_1 * y_B / h_BC, "rod angular velocity", output=False),
+    Q("alpha_2", "rad/s^2", omega_1 * (omega_1 * x_B * h_BC - y_B * dh_BC) / h_BC ** 2,
+      "rod angular acceleration", output=False),
     Q("x_E", "mm", x_B + k * (h_BC * sb - x_B * cb), "lever pin E on the rod, x", output=False),
     Q("y_E", "mm", y_B - k * (x_B * sb + h_BC * cb), "lever pin E on the rod, y", output=False),
     Q("vx_E", "mm/s", -omega_1 * y_B + k * (omega_1 * y_B * cb + dh_BC * sb), "E, x velocity",
@@ -158,6 +166,17 @@ def _rod_point_checks() -> tuple[Check, ...]:
     )
 
 
+def _links() -> tuple[Link, ...]:
+    """Crank from A; rod from B along B->C; needle bar from C, its u axis upwards (+y);
+    take-up lever from F along F->E."""
+    return (
+        Link("crank", (0.0, 0.0), (0.0, 0.0), radians(theta_1), omega_1, 0.0),
+        Link("rod", (x_B, y_B), (-w2 * x_B, -w2 * y_B), radians(theta_2), omega_2, alpha_2),
+        Link("needle_bar", (0.0, y_C), (0.0, a_C), pi() / 2, 0.0, 0.0),
+        Link("lever", (x_F, y_F), (0.0, 0.0), radians(theta_5), omega_5, alpha_5),
+    )
+
+
 def _validate(p) -> tuple[str, str] | None:
     if p["x_F"] == 0 and p["y_F"] == 0:
         return ("x_F", "the lever pivot F must not coincide with the crank pivot A = (0, 0)")
@@ -194,6 +213,8 @@ TEMPLATE = Template(
            Span("block travel on the lever", "s_FE")),
     figures=(Figure("needle stroke, exact", "mm", 2 * l_AB,
                     "2 l_AB: the slide line passes through A"),),
+    links=_links(),
+    length_unit_m=1e-3,
     validate=_validate,
     assembly_failure=_why_not,
 )

@@ -16,7 +16,7 @@ alpha_2 = (q'' h - q' h') / h^2.
 from __future__ import annotations
 
 from ..expr import Node, asin, atan2, cos, degrees, eq, if_, iserror, radians, root, sin, sqrt
-from .base import Chart, Check, Figure, InputSpec, ParamSpec, Quantity, Span, Template
+from .base import Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span, Template
 from .base import quantity_vars, symbols
 
 l_AB, l_BC, e, phi_slide, omega_1 = symbols("l_AB l_BC e phi_slide omega_1")
@@ -92,6 +92,19 @@ def _why_not(p) -> str:
             f"e = {p['e']:g} from the crank pin at any crank angle of the sweep")
 
 
+def _links() -> tuple[Link, ...]:
+    """Crank from A, rod from B along B->C, slider from C along the slide line."""
+    t1, phi = radians(theta_1), radians(phi_slide)
+    bx, by = l_AB * cos(t1), l_AB * sin(t1)
+    cu = (cos(phi), sin(phi))
+    c = (s_C * cu[0] - e * cu[1], s_C * cu[1] + e * cu[0])   # s_C u + e n
+    return (
+        Link("crank", (0.0, 0.0), (0.0, 0.0), t1, omega_1, 0.0),
+        Link("rod", (bx, by), (-w2 * bx, -w2 * by), radians(theta_2), omega_2, alpha_2),
+        Link("slider", c, (a_C * cu[0], a_C * cu[1]), phi, 0.0, 0.0),
+    )
+
+
 TIME_RATIO: Node = (180 + degrees(asin(e / (l_BC - l_AB)) - asin(e / (l_BC + l_AB)))) / (
     180 - degrees(asin(e / (l_BC - l_AB)) - asin(e / (l_BC + l_AB))))
 
@@ -120,5 +133,7 @@ TEMPLATE = Template(
         Figure("time ratio", "", TIME_RATIO,
                "working stroke time over return stroke time; needs l_BC > l_AB + |e|"),
     ),
+    links=_links(),
+    length_unit_m=1e-3,
     assembly_failure=_why_not,
 )

@@ -16,9 +16,12 @@ import numpy as np
 
 from workbook_gen.errors import WorkbookGenError
 
-from . import sewing_machine, slider_crank
+from . import actuator_linkage, five_bar, four_bar, sewing_machine, slider_crank, walking_beam
 
-_MODULES = {"slider_crank": slider_crank, "sewing_machine": sewing_machine}
+_MODULES = {"slider_crank": slider_crank, "sewing_machine": sewing_machine,
+            "actuator_linkage": actuator_linkage,
+            "five_bar": five_bar,
+            "four_bar": four_bar, "walking_beam": walking_beam}
 MECHANISMS: tuple[str, ...] = tuple(_MODULES)
 
 

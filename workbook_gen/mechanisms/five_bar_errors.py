@@ -1,0 +1,146 @@
+"""Five-bar: sensitivity of C to the link lengths, and C's exact error from joint clearance.
+
+Both hold the inputs theta_1, theta_4.  With p = C - B and q = C - D the closure
+equations are f1 = |p|^2 - l_2^2 = 0, f2 = |q|^2 - l_3^2 = 0, so
+A = d(f1, f2)/d(x_C, y_C) = 2 [p; q] and B = d(f1, f2)/d(l_1..l_5) =
+-2 [p.u_1, l_2, 0, 0, 0; 0, 0, l_3, q.u_4, q_x] (u_1, u_4 the crank directions; E moves
+with l_5 along x).  S = -A^-1 B with the 2x2 inverse written out:
+S = [q_y, -p_y; -q_x, p_x] [p.u_1, l_2, 0, 0, 0; 0, 0, l_3, q.u_4, q_x] / det_BCD,
+det_BCD = p x q (zero when B, C, D are in line: C is then not located).
+
+Clearance r_clear at one joint, direction alpha: the displacement
+delta = r_clear (cos alpha, sin alpha) moves
+  joint A (pivot of crank 1) or B (pin of crank 1 in coupler 2): coupler 2's end B by delta;
+  joint D (pin of crank 4 in coupler 3) or E (pivot of crank 4): coupler 3's end D by delta;
+  joint C: coupler 3's eye sits at delta from coupler 2's pin C (the output point), which
+           is coupler 3's end D moved by -delta.
+So with the inputs held the columns of A and B agree, those of D and E agree, and C at alpha
+is D at alpha + 180 deg; the reference solves each joint from its own displaced geometry.
+
+C' is re-solved exactly (not linearised) as a small displacement e = C' - C, without
+cancellation: with B', D' the moved ends, g = D' - B', m the unit normal to g (left),
+the powers of C with respect to the moved circles k_1 = |C - B'|^2 - l_2^2,
+k_2 = |C - D'|^2 - l_3^2 (= r^2 - 2 p.delta or r^2 - 2 q.delta: no subtraction of
+near-equal terms), e = ea g/|g| + en m with
+  ea = (k_2 - k_1) / (2 |g|)  (the radical line of the two circles; written inline),
+  en = -gamma / (beta + SIGN(beta) sqrt(beta^2 - gamma)),  the small root of
+  en^2 + 2 beta en + gamma = 0, beta = m.(C - B'), gamma = ea^2 + 2 ea (g/|g|).(C - B') + k_1.
+The root kept puts C' on the same side of the line B'D' as C (the assembly mode kept).
+The error of C is |C' - C| = sqrt(ea^2 + en^2) (columns dC_<joint>_<alpha> [m]); the
+intermediate columns en_B_<alpha> / en_D_<alpha> hold en for coupler end B / D moved.
+"""
+
+from __future__ import annotations
+
+from ..expr import Node, Var, cos, radians, root, sign, sin, sqrt
+from .base import Chart, Quantity, symbols
+
+l_1, l_2, l_3, l_4, l_5, r_clear = symbols("l_1 l_2 l_3 l_4 l_5 r_clear")
+x_C, y_C, x_B, y_B, x_D, y_D, det_BCD, theta_1, theta_4 = (
+    Var(n) for n in "x_C y_C x_B y_B x_D y_D det_BCD theta_1 theta_4".split())
+
+Q = Quantity
+px, py = x_C - x_B, y_C - y_B        # C - B
+qx, qy = x_C - x_D, y_C - y_D        # C - D
+p_u1 = (px * x_B + py * y_B) / l_1            # (C - B).u_1
+q_u4 = (qx * (x_D - l_5) + qy * y_D) / l_4    # (C - D).u_4
+
+POSITIONS = (
+    Q("x_B", "m", l_1 * cos(radians(theta_1)), "crank pin B, x", output=False),
+    Q("y_B", "m", l_1 * sin(radians(theta_1)), "crank pin B, y", output=False),
+    Q("x_D", "m", l_5 + l_4 * cos(radians(theta_4)), "crank pin D, x", output=False),
+    Q("y_D", "m", l_4 * sin(radians(theta_4)), "crank pin D, y", output=False),
+)
+
+_ROWS = {"x": (qy, -py), "y": (-qx, px)}   # rows of the adjugate of [p; q]
+_B1 = {1: p_u1, 2: l_2}                   # -B/2, first row (f1)
+_B2 = {3: l_3, 4: q_u4, 5: qx}            # -B/2, second row (f2)
+
+
+def _sensitivity(axis: str, i: int) -> Node:
+    first, second = _ROWS[axis]
+    term = first * _B1[i] if i in _B1 else second * _B2[i]
+    return term / det_BCD
+
+
+SENSITIVITY = POSITIONS + (
+    Q("det_BCD", "m^2", px * qy - py * qx, "(C - B) x (C - D): det(A)/4 of the closure "
+      "Jacobian in (x_C, y_C)", output=False),
+) + tuple(
+    Q(f"S_{axis}_l{i}", "m/m", _sensitivity(axis, i),
+      f"sensitivity d{axis}_C/dl_{i} with theta_1, theta_4 held (S = -A^-1 B)")
+    for axis in ("x", "y") for i in range(1, 6))
+
+ANGLES = (0, 90, 180, 270)
+_UNIT = {0: (1, 0), 90: (0, 1), 180: (-1, 0), 270: (0, -1)}
+
+
+def _plus(node: Node, s: int) -> Node:
+    """node + s r_clear for s in (-1, 0, 1), without a '+0' term."""
+    return node if s == 0 else (node + r_clear if s > 0 else node - r_clear)
+
+
+def _power(s: int, along_x: bool, v: tuple[Node, Node]) -> Node:
+    """r^2 - 2 v.delta for delta = s r_clear along x or y: the power of C with respect
+    to a circle through C whose centre moved by delta (v = C - old centre)."""
+    v_i = v[0 if along_x else 1]
+    return r_clear * (r_clear - 2 * v_i if s > 0 else r_clear + 2 * v_i)
+
+
+def _clearance_pair(end: str, alpha: int) -> tuple[Node, Node]:
+    """(ea, en) trees of C's displacement when coupler end ``end`` ("B" or "D") moves by
+    delta at ``alpha``.  ea is written inline (it exists even where the moved circles do
+    not meet); en is #NUM! there."""
+    cx, cy = _UNIT[alpha]
+    s, along_x = cx + cy, cx != 0
+    if end == "B":   # B' = B + delta: g = D - B', C - B' = p - delta
+        gx, gy = _plus(x_D - x_B, -cx), _plus(y_D - y_B, -cy)
+        wx, wy = _plus(px, -cx), _plus(py, -cy)
+        k_1 = _power(s, along_x, (px, py))
+        along = -k_1
+    else:            # D' = D + delta: g = D' - B, C - B' = p
+        gx, gy = _plus(x_D - x_B, cx), _plus(y_D - y_B, cy)
+        wx, wy = px, py
+        k_1 = None
+        along = _power(s, along_x, (qx, qy))
+    g = sqrt(gx ** 2 + gy ** 2)
+    ea = along / (2 * g)
+    beta = (gx * wy - gy * wx) / g
+    gamma = ea ** 2 + 2 * ea * (gx * wx + gy * wy) / g
+    if k_1 is not None:
+        gamma = gamma + k_1
+    return ea, -gamma / (beta + sign(beta) * root(beta ** 2 - gamma))
+
+
+def _clearance_columns() -> tuple[Quantity, ...]:
+    out, along = [], {}
+    for end in ("B", "D"):
+        moved = ("coupler 2's end B (joint A or B)" if end == "B"
+                 else "coupler 3's end D (joint C, D or E)")
+        for alpha in ANGLES:
+            along[f"{end}_{alpha}"], en = _clearance_pair(end, alpha)
+            out.append(Q(f"en_{end}_{alpha}", "m", en,
+                         f"C's error normal to D'-B' (to the left) when {moved} moves by "
+                         f"r_clear at {alpha} deg; #NUM! where C' does not exist",
+                         output=False))
+    source = {"A": ("B", 0), "B": ("B", 0), "C": ("D", 180), "D": ("D", 0), "E": ("D", 0)}
+    for joint, (end, turn) in source.items():
+        for alpha in ANGLES:
+            case = f"{end}_{(alpha + turn) % 360}"
+            out.append(Q(f"dC_{joint}_{alpha}", "m",
+                         sqrt(along[case] ** 2 + Var(f"en_{case}") ** 2),
+                         f"|C' - C|: exact error of C from a clearance r_clear at joint "
+                         f"{joint}, direction {alpha} deg"))
+    return tuple(out)
+
+
+CLEARANCE = _clearance_columns()
+
+SENSITIVITY_CHARTS = tuple(
+    Chart(f"Sensitivity of {axis}_C to the link lengths", "phi",
+          tuple(f"S_{axis}_l{i}" for i in range(1, 6)), f"d{axis}_C/dl [m/m]")
+    for axis in ("x", "y"))
+CLEARANCE_CHARTS = tuple(
+    Chart(f"Error of C from a clearance at joint {joint}", "phi",
+          tuple(f"dC_{joint}_{alpha}" for alpha in ANGLES), "|C' - C| [m]")
+    for joint in "ABCDE")

@@ -1,0 +1,259 @@
+"""The four-bar's trees, written once for every template built on a four-bar.
+
+Ground O1 = (0, 0), O2 = (l_O1O2, 0); crank O1A at theta_2 (deg), omega_2
+constant; coupler AB; rocker O2B; coupler point C at l_AC from A, at delta_C
+(deg) from the direction A->B.
+
+Position (cancellation-free circle intersection).  With d = |O2 - A|, the unit
+vector e along A->O2 and n its left normal, B = A + f e + s h n, where
+f = ((l_AB - l_O2B)(l_AB + l_O2B) + d^2) / (2 d) is the foot of B on A->O2 and
+h = root((p - d)(p + d)(d - q)(d + q)) / (2 d), p = l_AB + l_O2B,
+q = l_AB - l_O2B, is the half chord (#NUM! where the circles do not meet).
+s = +1 on the open branch (Norton: B left of the directed line A->O2), -1 on
+the crossed one.
+
+Angles are continuous: phi_AO2, the direction of A->O2, stays within 90 deg of
+the ground direction where the crank is shorter than the ground and follows
+the crank (within 90 deg of theta_2 + 180) where it is longer; theta_3 and
+theta_4 are phi_AO2 + s*ATAN2(f, h) and phi_AO2 + s*ATAN2(f - d, h), i.e.
+within [0, 180] of it on the side of the branch.  (The sign multiplies the
+ATAN2, never h, so no negative zero reaches ATAN2.)
+
+Rates, with a = A - O1, b = B - A, c = B - O2 (2-D cross u x w = u_x w_y - u_y w_x)
+and b x c = s h d (exactly 0 at a toggle, where the rates are #DIV/0!):
+omega_3 = -omega_2 (a x c) / (b x c),  omega_4 = -omega_2 (a x b) / (b x c),
+alpha_3 = (omega_2^2 a.c + omega_3^2 b.c - omega_4^2 l_O2B^2) / (b x c),
+alpha_4 = (omega_2^2 a.b + omega_3^2 l_AB^2 - omega_4^2 b.c) / (b x c).
+Transmission angle (Norton): the acute angle between coupler and rocker,
+mu = ATAN2(|b.c|, |b x c|).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..expr import (Node, abs_, atan2, cos, degrees, eq, if_, iserror, le, lt, max_,
+                    min_, mod, pi, radians, root, sin, sqrt, wrap)
+from .base import Chart, Check, Figure, Link, ParamSpec, Quantity, quantity_vars, symbols
+
+BRANCHES = ("open", "crossed")
+
+l_O1O2, l_O1A, l_AB, l_O2B, l_AC, delta_C, omega_2 = symbols(
+    "l_O1O2 l_O1A l_AB l_O2B l_AC delta_C omega_2")
+(theta_2, x_A, y_A, d_AO2, phi_AO2, f_B, h_B, theta_3, theta_4, x_B, y_B, omega_3, omega_4,
+ alpha_3, alpha_4, x_C, y_C, vx_C, vy_C, ax_C, ay_C, mu) = quantity_vars(
+    "theta_2 x_A y_A d_AO2 phi_AO2 f_B h_B theta_3 theta_4 x_B y_B omega_3 omega_4 "
+    "alpha_3 alpha_4 x_C y_C vx_C vy_C ax_C ay_C mu")
+
+OUTPUTS = ("theta_3", "theta_4", "omega_3", "omega_4", "alpha_3", "alpha_4",
+           "x_C", "y_C", "vx_C", "vy_C", "ax_C", "ay_C", "mu")
+
+
+def parameters(lengths: tuple[float, float, float, float, float], delta: float,
+               omega: float, unit: str = "mm") -> tuple[ParamSpec, ...]:
+    """The four-bar's parameters with defaults (ground, crank, coupler, rocker, l_AC)."""
+    ground, crank, coupler, rocker, point = lengths
+    return (
+        ParamSpec("l_O1O2", ground, unit, "ground O1O2 (O2 on +x from O1)", positive=True),
+        ParamSpec("l_O1A", crank, unit, "crank O1A (input)", positive=True),
+        ParamSpec("l_AB", coupler, unit, "coupler AB", positive=True),
+        ParamSpec("l_O2B", rocker, unit, "rocker O2B (output)", positive=True),
+        ParamSpec("l_AC", point, unit, "coupler point C, distance from A"),
+        ParamSpec("delta_C", delta, "deg", "coupler point C, angle from the direction A->B"),
+        ParamSpec("omega_2", omega, "rad/s", "crank speed, counter-clockwise"),
+    )
+
+
+def _pm(a: Node, b: Node, s: int) -> Node:
+    """a + s*b, printed as a + b or a - b."""
+    return a + b if s > 0 else a - b
+
+
+def _cross(u: tuple[Node, Node], w: tuple[Node, Node]) -> Node:
+    return u[0] * w[1] - u[1] * w[0]
+
+
+def _dot(u: tuple[Node, Node], w: tuple[Node, Node]) -> Node:
+    return u[0] * w[0] + u[1] * w[1]
+
+
+def quantities(branch: str) -> tuple[Quantity, ...]:
+    """The Table columns of a four-bar with coupler point C, for ``branch``."""
+    s = 1 if branch == "open" else -1
+    t = radians(theta_2)
+    # A from the crank angle modulo 360: bit-identical rows at 0 and 360 deg, so the
+    # Summary finds an extreme at the same row in every engine
+    t_mod = radians(mod(theta_2, 360))
+    gx = l_O1O2 - x_A                       # O2 - A = (gx, -y_A)
+    p, q = l_AB + l_O2B, l_AB - l_O2B
+    a, b, c = (x_A, y_A), (x_B - x_A, y_B - y_A), (x_B - l_O1O2, y_B)
+    bc = _dot(b, c)
+    w2 = omega_2 ** 2
+
+    minus_w = -omega_2 if s > 0 else omega_2  # -s omega_2
+
+    def over_bxc(num: Node) -> Node:          # num / (b x c), b x c = s h d
+        return (num if s > 0 else -num) / (h_B * d_AO2)
+
+    cd, sd = cos(radians(delta_C)), sin(radians(delta_C))
+    k = l_AC / l_AB
+    px, py = x_C - x_A, y_C - y_A           # C - A
+    Q = Quantity
+    return (
+        Q("x_A", "mm", l_O1A * cos(t_mod), "crank pin A, x", output=False),
+        Q("y_A", "mm", l_O1A * sin(t_mod), "crank pin A, y", output=False),
+        Q("d_AO2", "mm", sqrt(gx ** 2 + y_A ** 2), "distance A to O2", output=False),
+        Q("phi_AO2", "rad",
+          if_(lt(l_O1A, l_O1O2), atan2(gx, 0 - y_A),
+              t + pi() + atan2(l_O1A ** 2 - l_O1O2 * x_A, l_O1O2 * y_A)),
+          "direction of A->O2, continuous", output=False),
+        Q("f_B", "mm", (q * p + d_AO2 ** 2) / (2 * d_AO2), "foot of B on the line A->O2",
+          output=False),
+        Q("h_B", "mm", root((p - d_AO2) * (p + d_AO2) * (d_AO2 - q) * (d_AO2 + q))
+          / (2 * d_AO2), "distance of B from the line A->O2 (half chord)", output=False),
+        Q("theta_3", "deg", degrees(_pm(phi_AO2, atan2(f_B, h_B), s)),
+          "coupler angle (direction A->B)"),
+        Q("theta_4", "deg", degrees(_pm(phi_AO2, atan2(f_B - d_AO2, h_B), s)),
+          "rocker angle (direction O2->B)"),
+        Q("x_B", "mm", x_A + _pm(f_B * gx, h_B * y_A, s) / d_AO2, "coupler-rocker pin B, x",
+          output=False),
+        Q("y_B", "mm", (y_A + (h_B * gx - f_B * y_A) / d_AO2 if s > 0
+                        else y_A - (h_B * gx + f_B * y_A) / d_AO2),
+          "coupler-rocker pin B, y", output=False),
+        Q("omega_3", "rad/s", minus_w * _cross(a, c) / (h_B * d_AO2),
+          "coupler angular velocity"),
+        Q("omega_4", "rad/s", minus_w * _cross(a, b) / (h_B * d_AO2),
+          "rocker angular velocity"),
+        Q("alpha_3", "rad/s^2",
+          over_bxc(w2 * _dot(a, c) + omega_3 ** 2 * bc - omega_4 ** 2 * l_O2B ** 2),
+          "coupler angular acceleration"),
+        Q("alpha_4", "rad/s^2",
+          over_bxc(w2 * _dot(a, b) + omega_3 ** 2 * l_AB ** 2 - omega_4 ** 2 * bc),
+          "rocker angular acceleration"),
+        Q("x_C", "mm", x_A + k * (b[0] * cd - b[1] * sd), "coupler point C, x"),
+        Q("y_C", "mm", y_A + k * (b[0] * sd + b[1] * cd), "coupler point C, y"),
+        Q("vx_C", "mm/s", -omega_2 * y_A - omega_3 * py, "coupler point C, x velocity"),
+        Q("vy_C", "mm/s", omega_2 * x_A + omega_3 * px, "coupler point C, y velocity"),
+        Q("ax_C", "mm/s^2", -w2 * x_A - alpha_3 * py - omega_3 ** 2 * px,
+          "coupler point C, x acceleration"),
+        Q("ay_C", "mm/s^2", -w2 * y_A + alpha_3 * px - omega_3 ** 2 * py,
+          "coupler point C, y acceleration"),
+        Q("mu", "deg", degrees(atan2(abs_(bc), h_B * d_AO2)),
+          "transmission angle (acute angle between coupler and rocker)"),
+    )
+
+
+STATUS = if_(iserror(h_B), "cannot assemble", if_(eq(h_B, 0), "toggle", "ok"))
+
+
+def _norm(x: Node, y: Node) -> Node:
+    return sqrt(x ** 2 + y ** 2)
+
+
+def checks() -> tuple[Check, ...]:
+    """Loop closure and the rigid coupler point, rebuilt from theta_2 and the angle columns."""
+    t, t3, t4 = radians(theta_2), radians(theta_3), radians(theta_4)
+    c2, s2, c3, s3, c4, s4 = cos(t), sin(t), cos(t3), sin(t3), cos(t4), sin(t4)
+    tc = t3 + radians(delta_C)
+    cc, sc = cos(tc), sin(tc)
+    w2 = omega_2 ** 2
+    loop = (l_O1A * c2 + l_AB * c3 - l_O1O2 - l_O2B * c4, l_O1A * s2 + l_AB * s3 - l_O2B * s4)
+    loop_v = (-l_O1A * omega_2 * s2 - l_AB * omega_3 * s3 + l_O2B * omega_4 * s4,
+              l_O1A * omega_2 * c2 + l_AB * omega_3 * c3 - l_O2B * omega_4 * c4)
+    loop_a = (-w2 * l_O1A * c2 - l_AB * (alpha_3 * s3 + omega_3 ** 2 * c3)
+              + l_O2B * (alpha_4 * s4 + omega_4 ** 2 * c4),
+              -w2 * l_O1A * s2 + l_AB * (alpha_3 * c3 - omega_3 ** 2 * s3)
+              - l_O2B * (alpha_4 * c4 - omega_4 ** 2 * s4))
+    reach = l_O1A + l_AC
+    point = (x_C - l_O1A * c2 - l_AC * cc, y_C - l_O1A * s2 - l_AC * sc)
+    point_v = (vx_C + omega_2 * l_O1A * s2 + omega_3 * l_AC * sc,
+               vy_C - omega_2 * l_O1A * c2 - omega_3 * l_AC * cc)
+    point_a = (ax_C + w2 * l_O1A * c2 + alpha_3 * l_AC * sc + omega_3 ** 2 * l_AC * cc,
+               ay_C + w2 * l_O1A * s2 - alpha_3 * l_AC * cc + omega_3 ** 2 * l_AC * sc)
+    return (
+        Check("loop_position", "position", _norm(*loop) / l_O1O2,
+              "|O1A + AB - O1O2 - O2B|, over l_O1O2"),
+        Check("loop_velocity", "velocity", _norm(*loop_v) / (omega_2 * l_O1A),
+              "its rate, over omega_2 l_O1A"),
+        Check("loop_acceleration", "acceleration", _norm(*loop_a) / (w2 * l_O1A),
+              "its second rate, over omega_2^2 l_O1A"),
+        Check("coupler_point_position", "position", _norm(*point) / reach,
+              "|C - A - l_AC e(theta_3 + delta_C)|, over l_O1A + l_AC"),
+        Check("coupler_point_velocity", "velocity", _norm(*point_v) / (omega_2 * reach),
+              "its rate, over omega_2 (l_O1A + l_AC)"),
+        Check("coupler_point_acceleration", "acceleration", _norm(*point_a) / (w2 * reach),
+              "its second rate, over omega_2^2 (l_O1A + l_AC)"),
+    )
+
+
+def _triangle_angle(r: Node) -> Node:
+    """Angle (rad) at O1 between O1O2 and O1B in the triangle O1 O2 B with |O1B| = r:
+    ATAN2(2 g r cos, 2 g r sin), the sine from Heron's factored form."""
+    g, l4 = l_O1O2, l_O2B
+    four_area = root((g + r + l4) * (r + l4 - g) * (g - r + l4) * (g + r - l4))
+    return atan2((g - l4) * (g + l4) + r * r, four_area)
+
+
+def grashof_class() -> Node:
+    """Text: Grashof class by s + l against p + q and which link is shortest."""
+    links = (l_O1O2, l_O1A, l_AB, l_O2B)
+    total = l_O1O2 + l_O1A + l_AB + l_O2B
+    s, longest = min_(*links), max_(*links)
+    excess = 2 * (s + longest) - total       # (s + l) - (p + q)
+    return if_(le(abs_(excess), 1e-12 * total), "change point",
+               if_(lt(excess, 0),
+                   if_(eq(l_AB, s), "Grashof double-rocker",
+                       if_(eq(l_O1O2, s), "Grashof double-crank", "Grashof crank-rocker")),
+                   "non-Grashof triple-rocker"))
+
+
+def figures(branch: str) -> tuple[Figure, ...]:
+    """Grashof class, the crank's toggle angles (rocker extremes) and the time ratio."""
+    s = 1 if branch == "open" else -1
+    extended = _triangle_angle(l_AB + l_O1A)   # crank and coupler in line
+    folded = _triangle_angle(l_AB - l_O1A)     # crank folded over the coupler
+    spread = abs_(folded - extended)
+    side = "above" if s > 0 else "below"
+    return (
+        Figure("Grashof class", "", grashof_class(),
+               "s + l against p + q (shortest s, longest l) and which link is shortest"),
+        Figure("toggle, crank and coupler extended", "deg", degrees(extended) if s > 0 else -degrees(extended),
+               f"crank angle where the rocker is at one extreme (B {side} the ground line); "
+               "crank-rocker"),
+        Figure("toggle, crank and coupler folded", "deg",
+               180 + degrees(folded) if s > 0 else 180 - degrees(folded),
+               f"crank angle where the rocker is at its other extreme (B {side} the ground "
+               "line); crank-rocker with l_AB > l_O1A"),
+        Figure("time ratio", "", (pi() + spread) / (pi() - spread),
+               "slow stroke over quick stroke, (180 + beta)/(180 - beta) with beta the angle "
+               "between the two toggle lines; crank-rocker"),
+    )
+
+
+def links() -> tuple[Link, ...]:
+    """Crank, coupler and rocker, for the shaking force."""
+    zero, w2 = wrap(0), omega_2 ** 2
+    return (
+        Link("crank", (zero, zero), (zero, zero), radians(theta_2), omega_2, zero),
+        Link("coupler", (x_A, y_A), (-w2 * x_A, -w2 * y_A), radians(theta_3), omega_3, alpha_3),
+        Link("rocker", (l_O1O2, zero), (zero, zero), radians(theta_4), omega_4, alpha_4),
+    )
+
+
+def charts(point: str = "Coupler point C") -> tuple[Chart, ...]:
+    return (
+        Chart("Coupler and rocker angles", "theta_2", ("theta_3", "theta_4"), "angle [deg]"),
+        Chart("Angular velocities", "theta_2", ("omega_3", "omega_4"), "omega [rad/s]"),
+        Chart("Angular accelerations", "theta_2", ("alpha_3", "alpha_4"), "alpha [rad/s^2]"),
+        Chart(f"Path of {point}", "x_C", ("y_C",), "y_C [mm]", path=True),
+        Chart(f"{point}: velocity", "theta_2", ("vx_C", "vy_C"), "v [mm/s]"),
+        Chart(f"{point}: acceleration", "theta_2", ("ax_C", "ay_C"), "a [mm/s^2]"),
+        Chart("Transmission angle", "theta_2", ("mu",), "mu [deg]"),
+    )
+
+
+def why_not(p) -> str:
+    return (f"the coupler l_AB = {p['l_AB']:g} and rocker l_O2B = {p['l_O2B']:g} cannot close "
+            f"the loop at any crank angle of the sweep (crank l_O1A = {p['l_O1A']:g}, ground "
+            f"l_O1O2 = {p['l_O1O2']:g})")
+
