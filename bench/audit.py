@@ -37,7 +37,7 @@ class Peer:
     """One peer's figures at one size: phase -> seconds, the cells it evaluated."""
     phases: dict[str, float] = field(default_factory=dict)
     cells: int = 0
-    status: str = "ok"      # ok | extrapolated | timeout | failed | skipped
+    status: str = "ok"      # ok | extrapolated | lower bound | timeout | failed
     note: str = ""
 
     @property
@@ -117,7 +117,9 @@ def run_peer(name: str, cmd: list[str], cells: int, phases: tuple[str, ...], tim
     try:
         result = _child(cmd, timeout)
     except TimeoutError as exc:
-        return extrapolated(f"timed out ({exc})") if previous else \
+        # the per-cell time grows with size: the timeout itself is the honest bound
+        return Peer({"total": timeout}, expected, "lower bound",
+                    f"timed out ({exc}); figures are lower bounds") if expected else \
             Peer(status="timeout", note=str(exc))
     except (RuntimeError, OSError, ValueError, KeyError) as exc:
         return Peer(status="failed", note=f"{name}: {exc}")
@@ -128,7 +130,7 @@ def run_peer(name: str, cmd: list[str], cells: int, phases: tuple[str, ...], tim
 
 
 def measure(step: float, tmp: Path, args, prev: dict) -> dict:
-    from workbook_gen.audit import audit
+    from workbook_gen import audit
     from workbook_gen.compute import evaluate
     from workbook_gen.engines.libreoffice import recalculate
     from workbook_gen.errors import WorkbookGenError
@@ -198,17 +200,28 @@ def machine() -> str:
             f"Python {platform.python_version()}, {lo}")
 
 
+_MARK = {"extrapolated": "~", "lower bound": ">"}
+
+
 def _secs(peer: Peer, phase: str | None = None) -> str:
-    if peer.status in ("failed", "timeout", "skipped"):
+    if not peer.phases:
         return peer.status
+    if phase is not None and phase not in peer.phases:
+        return "-"
     value = peer.total if phase is None else peer.phases[phase]
-    return ("~" if peer.status == "extrapolated" else "") + f"{value:.3f}"
+    return _MARK.get(peer.status, "") + f"{value:.3f}"
+
+
+def _per_cell(peer: Peer) -> str:
+    if peer.per_cell is None:
+        return peer.status
+    return _MARK.get(peer.status, "") + f"{1e6 * peer.per_cell:.0f}"
 
 
 def _ratio(value: float | None, ours: float, peer: Peer | None = None) -> str:
     if value is None:
         return peer.status if peer else "n/a"
-    mark = "~" if peer and peer.status == "extrapolated" else ""
+    mark = _MARK.get(peer.status, "") if peer else ""
     return f"{mark}{value / ours:.1f}x"
 
 
@@ -224,21 +237,16 @@ def print_table(rows: list[dict]) -> None:
     add("our audit, total [s]", [f"{r['ours'].total:.3f}" for r in rows])
     add("  of which evaluate [s]", [f"{r['ours_eval']:.3f}" for r in rows])
     add("LibreOffice recalc [s] (1)", [_secs(r["lo"]) for r in rows])
-    add("formulas load+compile [s]", [_secs(r["formulas"], "load") if r["formulas"].phases
-                                       else _secs(r["formulas"]) for r in rows])
-    add("formulas calculate [s]", [_secs(r["formulas"], "calculate") if r["formulas"].phases
-                                    else _secs(r["formulas"]) for r in rows])
+    add("formulas load+compile [s]", [_secs(r["formulas"], "load") for r in rows])
+    add("formulas calculate [s]", [_secs(r["formulas"], "calculate") for r in rows])
+    add("formulas total [s]", [_secs(r["formulas"]) for r in rows])
     add("pycel load+evaluate [s] (2)", [_secs(r["pycel"]) for r in rows])
     add("pycel cells evaluated", [str(r["pycel"].cells) if r["pycel"].cells else "-"
                                   for r in rows])
     add("numpy closed form [s]", [f"{r['numpy']:.4f}" for r in rows])
     add("per cell [us]: our audit", [f"{1e6 * r['ours'].per_cell:.1f}" for r in rows])
-    add("  formulas", [("~" if r["formulas"].status == "extrapolated" else "")
-                       + f"{1e6 * r['formulas'].per_cell:.0f}" if r["formulas"].per_cell
-                       else r["formulas"].status for r in rows])
-    add("  pycel", [("~" if r["pycel"].status == "extrapolated" else "")
-                    + f"{1e6 * r['pycel'].per_cell:.0f}" if r["pycel"].per_cell
-                    else r["pycel"].status for r in rows])
+    add("  formulas", [_per_cell(r["formulas"]) for r in rows])
+    add("  pycel", [_per_cell(r["pycel"]) for r in rows])
     add("ratios", [""] * len(rows))
     add("LibreOffice / our audit (>=2)", [_ratio(r["lo"].total, r["ours"].total, r["lo"])
                                           for r in rows])
@@ -252,7 +260,8 @@ def print_table(rows: list[dict]) -> None:
         print(f"{label:<{label_w}}" + "".join(f"{c:>{width}}" for c in cells))
     print("(1) one run, LibreOffice start-up included (isolated profile, forced recalculation)")
     print("(2) Table and Checks formula cells, one run; per cell = (load+evaluate) / those cells")
-    print("~ extrapolated linearly in cells from the largest size that ran (see notes)")
+    print("~ extrapolated linearly in cells from the largest size that ran (see notes; per-cell")
+    print("  times grow with size, so these are likely underestimates); > lower bound (timed out)")
     for r in rows:
         for name in ("lo", "formulas", "pycel"):
             if r[name].note:

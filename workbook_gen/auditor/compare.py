@@ -63,13 +63,14 @@ class ColumnStats:
     worst_error: float = 0.0   # relative error (absolute where the value is 0)
     worst_cell: str = ""
 
-    def add_many(self, refs: list[str], agree: np.ndarray, rel: np.ndarray) -> None:
-        self.cells += len(refs)
+    def add_many(self, refs, agree: np.ndarray, rel: np.ndarray) -> None:
+        """Many cells at once; ``refs(i)`` names the i-th (asked for the worst only)."""
+        self.cells += len(agree)
         self.mismatches += int((~agree).sum())
-        if len(refs):
+        if len(agree):
             i = int(np.argmax(rel))
             if rel[i] > self.worst_error:
-                self.worst_error, self.worst_cell = float(rel[i]), refs[i]
+                self.worst_error, self.worst_cell = float(rel[i]), refs(i)
 
     def add(self, ref: str, verdict: Verdict) -> None:
         self.cells += 1

@@ -5,6 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from xlsxwriter.utility import xl_rowcol_to_cell
+
 from ..errors import FormulaSyntaxError, WorkbookReadError
 from ..evaluator import expand_shared
 from ..xlsx import read_workbook
@@ -19,10 +21,14 @@ class AuditInputs:
     formulas: dict[Key, str] = field(default_factory=dict)     # text without '='
     cached: dict[Key, object] = field(default_factory=dict)    # cached value of each formula
     constants: dict[Key, object] = field(default_factory=dict)
-    refs: dict[Key, str] = field(default_factory=dict)         # "B2"
     array_cells: list[Key] = field(default_factory=list)       # array formulas: not recomputed
     broken: dict[Key, str] = field(default_factory=dict)       # shared formulas that do not expand
     _names: dict[str, Key] | None = None
+
+    @staticmethod
+    def ref(key: Key) -> str:
+        """The A1 reference of a cell key: (sheet, 2, 3) -> 'C2'."""
+        return xl_rowcol_to_cell(key[1] - 1, key[2] - 1)
 
     def cell_keys(self) -> dict[str, Key]:
         """'Sheet!B2' -> key, for the formula cells (built on first use)."""
@@ -40,7 +46,6 @@ def read_inputs(path: str | Path) -> AuditInputs:
     for sheet in book.sheets:
         for cell in sheet.cells.values():
             key = (sheet.name, cell.row, cell.col)
-            inputs.refs[key] = cell.ref
             if cell.is_array or cell.array_master:
                 inputs.array_cells.append(key)
                 inputs.constants[key] = cell.value

@@ -52,8 +52,8 @@ class MechanicsReport:
         return residuals_ok and all(q.ok for q in self.quantities)
 
 
-def _column(values, sheet: str, col: int, rows: range):
-    return [values(sheet, r, col) for r in rows]
+def _column(column_of, sheet: str, col: int, rows: range):
+    return column_of(sheet, col, rows.start, rows.stop - 1)
 
 
 def _sheet(book, name: str):
@@ -72,7 +72,9 @@ def _about(book) -> dict[str, object]:
     return out
 
 
-def check_mechanics(book, value_of) -> MechanicsReport | None:
+def check_mechanics(book, value_of, column_of) -> MechanicsReport | None:
+    """``value_of(sheet, row, col)`` gives one recomputed value, ``column_of(sheet, col,
+    first, last)`` a column of them."""
     """None unless the workbook was made by workbook-gen for a mechanism we model."""
     about = _about(book)
     mechanism, generator = about.get("mechanism"), str(about.get("generator", ""))
@@ -87,7 +89,7 @@ def check_mechanics(book, value_of) -> MechanicsReport | None:
         if cell.value in known and isinstance(value, (int, float)):
             params[cell.value] = float(value)
     rows = range(2, table.max_row + 1)
-    inputs = np.array([float(value_of("Table", r, 1)) for r in rows])
+    inputs = np.array(_column(column_of, "Table", 1, rows), dtype=float)
     try:
         options = json.loads(str(about.get("options") or "{}"))
     except json.JSONDecodeError:
@@ -99,11 +101,11 @@ def check_mechanics(book, value_of) -> MechanicsReport | None:
         name = match.group(1) if match else None
         if name not in solved:
             continue
-        quantities.append(_check_column(name, _column(value_of, "Table", cell.col, rows),
+        quantities.append(_check_column(name, _column(column_of, "Table", cell.col, rows),
                                         solved[name], inputs, cell.col))
     residuals, tolerance = _residuals(book, value_of)
     return MechanicsReport(mechanism, generator, quantities, residuals, tolerance,
-                           _paper_table(table, value_of, solved, inputs, rows))
+                           _paper_table(table, column_of, solved, inputs, rows))
 
 
 def _as_float(values: list) -> np.ndarray:
@@ -143,7 +145,7 @@ def _residuals(book, value_of) -> tuple[dict[str, float], float | None]:
     return out, float(tolerance) if isinstance(tolerance, (int, float)) else None
 
 
-def _paper_table(table, value_of, solved, inputs, rows):
+def _paper_table(table, column_of, solved, inputs, rows):
     """The lever's angular acceleration against the model in percent, per 10 deg."""
     if PAPER_QUANTITY not in solved:
         return []
@@ -151,7 +153,7 @@ def _paper_table(table, value_of, solved, inputs, rows):
                None)
     if col is None:
         return []
-    ours = _as_float(_column(value_of, "Table", col, rows))
+    ours = _as_float(_column(column_of, "Table", col, rows))
     out = []
     for i, angle in enumerate(inputs):
         if abs(angle / 10.0 - round(angle / 10.0)) > 1e-9 or not np.isfinite(solved[PAPER_QUANTITY][i]):

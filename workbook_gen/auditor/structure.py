@@ -3,14 +3,11 @@ no external links; volatile functions are reported."""
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 
-from ..errors import FormulaSyntaxError
-from ..formula import ast, parse
+from ..formula import ast
 from ..names import name_problem
 
-_DIGITS = re.compile(r"\d+")
 
 
 @dataclass(frozen=True)
@@ -44,37 +41,29 @@ def check_structure(inputs, evaluation, cell_name) -> list[Finding]:
         if book.sheet(key[0]).cell(key[1], key[2]).is_array:
             findings.append(Finding("array formula", cell_name(key),
                                     "array formulas are not recomputed", blocking=False))
-    findings.extend(_unresolved(inputs, cell_name))
+    findings.extend(_unresolved(inputs, evaluation, cell_name))
     return findings
 
 
-def _unresolved(inputs, cell_name) -> list[Finding]:
+def _unresolved(inputs, evaluation, cell_name) -> list[Finding]:
     """Names and sheets a formula refers to that the workbook does not have.
 
-    One formula per shape (the text with its row and column numbers blanked) is
-    parsed: names and sheet names do not change along a filled column."""
+    One tree per run of formulas equal in R1C1 form (the evaluator parsed each run
+    once): names and sheet names do not change along a filled column."""
     book = inputs.book
     sheets = {s.upper() for s in book.sheet_names}
     names = {n.upper() for n in book.defined_names}
     local = {(s.name, n.upper()) for s in book.sheets for n in s.defined_names}
-    seen: set[tuple[str, str]] = set()
     findings = []
-    for key, text in inputs.formulas.items():
-        shape = (key[0], _DIGITS.sub("#", text))
-        if shape in seen:
-            continue
-        seen.add(shape)
-        try:
-            tree = parse(text)
-        except FormulaSyntaxError:
-            continue  # reported as a syntax error by the evaluator
-        for node in ast.walk(tree):
+    for run in evaluation.runs:
+        key = (run.sheet, run.first, run.col)
+        for node in ast.walk(run.node):
             sheet = getattr(node, "sheet", None)
             if sheet and sheet.upper() not in sheets and not sheet.startswith("["):
                 findings.append(Finding("unresolved reference", cell_name(key),
                                         f"no sheet named {sheet!r}"))
             if isinstance(node, ast.Name) and node.name.upper() not in names \
-                    and (key[0], node.name.upper()) not in local:
+                    and (run.sheet, node.name.upper()) not in local:
                 findings.append(Finding("unresolved reference", cell_name(key),
                                         f"no defined name {node.name!r}"))
     return findings

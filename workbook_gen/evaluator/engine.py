@@ -82,6 +82,7 @@ class Evaluation:
     groups: GroupStats = field(default_factory=GroupStats)
     seconds: dict[str, float] = field(default_factory=dict)  # grouping, graph, vector, scalar
     store: Store | None = None  # the values column by column, for array-wise comparison
+    runs: list = field(default_factory=list)  # (sheet, col, first, last, tree) of every formula
 
 
 @dataclass
@@ -109,6 +110,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
 
     clock = time.perf_counter()
     runs, errors = _runs(formulas, vectorize)
+    result.runs = runs
     for cell, message in errors.items():
         if _EXTERNAL.search(formulas[cell]):
             result.external.append(cell)
