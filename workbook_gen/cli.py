@@ -1,4 +1,4 @@
-"""The command line: ``workbook-gen list | generate | audit``.
+"""The command line: ``workbook-gen list | generate | audit | tradeoff``.
 
 User errors print one line to stderr and exit 2; no tracebacks.
 """
@@ -66,6 +66,31 @@ def _audit(args: argparse.Namespace) -> int:
     return 0 if report.ok else 1
 
 
+def _tradeoff(args: argparse.Namespace) -> int:
+    from .scene import load_scene
+    from .tradeoff import ProgressBar, format_table, measure, units, write_tradeoff_workbook
+    scene = load_scene(args.scene)
+    if args.out:
+        from .errors import OutputExistsError
+        from .tradeoff.book import output_path
+        target = output_path(scene, args.out)
+        if target.exists() and not args.force:  # refuse before minutes of measuring
+            raise OutputExistsError(f"{target} exists; use --force to overwrite it")
+    bar = ProgressBar(units(scene))
+    try:
+        result = measure(scene, progress=bar)
+    finally:
+        bar.close()
+    if args.json:
+        print(json.dumps(result.to_json(), indent=2, allow_nan=False))
+    else:
+        print(format_table(result))
+    if args.out:
+        path = write_tradeoff_workbook(result, args.out, force=args.force)
+        print(path, file=sys.stderr if args.json else sys.stdout)
+    return 0
+
+
 def parser() -> argparse.ArgumentParser:
     top = argparse.ArgumentParser(
         prog="workbook-gen",
@@ -93,6 +118,15 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--engine", choices=["libreoffice"],
                    help="also recalculate the file in LibreOffice headless and compare")
     p.set_defaults(run=_audit)
+
+    p = sub.add_parser("tradeoff", help="speed against accuracy on a scene: step, method, "
+                                        "derivatives, precision")
+    p.add_argument("scene", metavar="SCENE", help="a scene file (TOML)")
+    p.add_argument("--json", action="store_true", help='print {"rows": [...]} as JSON')
+    p.add_argument("--out", metavar="DIR",
+                   help="also write DIR/<name>_tradeoff.xlsx (table and charts)")
+    p.add_argument("--force", action="store_true", help="overwrite an existing workbook")
+    p.set_defaults(run=_tradeoff)
     return top
 
 

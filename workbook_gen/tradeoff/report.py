@@ -1,0 +1,75 @@
+"""The tradeoff on the terminal: a readable table, and a progress bar on stderr."""
+
+from __future__ import annotations
+
+import sys
+import time
+from typing import TextIO
+
+from .measure import Tradeoff
+
+_HEAD = ("dimension", "setting", "max error", "seconds", "cells", "bytes", "note")
+
+
+def _error(x: float | None) -> str:
+    return "-" if x is None else f"{x:.2e}"
+
+
+def _seconds(x: float | None) -> str:
+    return "-" if x is None else f"{x:.3f}" if x < 10 else f"{x:.1f}"
+
+
+def _count(x: int | None) -> str:
+    return "-" if x is None else f"{x:,}"
+
+
+def format_table(result: Tradeoff) -> str:
+    """The rows as aligned text, a blank line between dimensions."""
+    scene = result.scene
+    lines = [f"{scene.name} ({scene.template.id}): speed against accuracy",
+             "max error: worst over the outputs, relative to the output's magnitude, against "
+             "the formulas at 50 digits (mpmath)",
+             "seconds: generate + audit the workbook (precision: evaluate the table)", ""]
+    body = [(r.dimension, r.setting, _error(r.max_error), _seconds(r.seconds), _count(r.cells),
+             _count(r.bytes), r.note) for r in result.rows]
+    widths = [max(len(row[i]) for row in body + [_HEAD]) for i in range(len(_HEAD) - 1)]
+    right = {2, 3, 4, 5}
+
+    def fmt(row) -> str:
+        cells = [row[i].rjust(w) if i in right else row[i].ljust(w) for i, w in enumerate(widths)]
+        return "  ".join(cells + [row[-1]]).rstrip()
+
+    lines += [fmt(_HEAD), "  ".join("-" * w for w in widths)]
+    previous = None
+    for row in body:
+        if previous is not None and row[0] != previous:
+            lines.append("")
+        lines.append(fmt(row))
+        previous = row[0]
+    lines.append(f"\nmeasured in {result.seconds:.1f} s")
+    return "\n".join(lines)
+
+
+class ProgressBar:
+    """``bar(label)`` advances one unit; draws on ``stream`` only when it is a terminal."""
+
+    def __init__(self, total: int, stream: TextIO | None = None, width: int = 30):
+        self.total, self.done, self.width = max(total, 1), 0, width
+        self.stream = stream if stream is not None else sys.stderr
+        self.enabled = bool(getattr(self.stream, "isatty", lambda: False)())
+        self.started = time.perf_counter()
+
+    def __call__(self, label: str) -> None:
+        self.done = min(self.done + 1, self.total)
+        if not self.enabled:
+            return
+        filled = self.width * self.done // self.total
+        elapsed = time.perf_counter() - self.started
+        self.stream.write(f"\r[{'#' * filled}{'.' * (self.width - filled)}] "
+                          f"{self.done}/{self.total} {elapsed:5.1f} s  {label[:40]:<40}")
+        self.stream.flush()
+
+    def close(self) -> None:
+        if self.enabled:
+            self.stream.write("\r" + " " * (self.width + 62) + "\r")
+            self.stream.flush()
