@@ -44,6 +44,8 @@ class MechanicsReport:
     residuals: dict[str, float]        # check name -> max |r| (recomputed)
     tolerance: float | None
     paper_table: list[tuple[float, float, float, float]]  # input, ours, reference, error %
+    # rows whose status flags a singular or unconverged row (toggle, dead centre, ...)
+    flagged: dict[str, int] = field(default_factory=dict)
 
     @property
     def ok(self) -> bool:
@@ -103,9 +105,15 @@ def check_mechanics(book, value_of, column_of) -> MechanicsReport | None:
             continue
         quantities.append(_check_column(name, _column(column_of, "Table", cell.col, rows),
                                         solved[name], inputs, cell.col))
+    flagged: dict[str, int] = {}
+    for cell in table.row(1)[1:]:
+        if cell.value == "status":
+            for text in _column(column_of, "Table", cell.col, rows):
+                if isinstance(text, str) and text not in ("ok", "cannot assemble"):
+                    flagged[text] = flagged.get(text, 0) + 1
     residuals, tolerance = _residuals(book, value_of)
     return MechanicsReport(mechanism, generator, quantities, residuals, tolerance,
-                           _paper_table(table, column_of, solved, inputs, rows))
+                           _paper_table(table, column_of, solved, inputs, rows), flagged)
 
 
 def _as_float(values: list) -> np.ndarray:
@@ -138,7 +146,7 @@ def _residuals(book, value_of) -> tuple[dict[str, float], float | None]:
     tolerance = value_of("Checks", 1, 2)
     out = {}
     for cell in checks.row(7)[1:]:
-        if cell.value == "cannot assemble":
+        if cell.value in ("cannot assemble", "flagged"):
             continue
         value = value_of("Checks", 4, cell.col)
         out[str(cell.value)] = float(value) if isinstance(value, (int, float)) else value

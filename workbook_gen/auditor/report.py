@@ -85,6 +85,7 @@ class AuditReport:
             out["reference_problems"] = {q.name: q.wrong_rows for q in m.quantities if q.wrong_rows}
             out["residuals"] = {k: _plain(v) for k, v in m.residuals.items()}
             out["residual_tolerance"] = m.tolerance
+            out["flagged_rows"] = dict(m.flagged)
             out["paper_table"] = [dict(zip(("input", "workbook", "reference", "error_percent"), r))
                                   for r in m.paper_table]
         if self.engine is not None:
@@ -162,6 +163,9 @@ def _mechanics_lines(m: MechanicsReport) -> list[str]:
         lines.append(f"    {q.name:<10}{q.rows:>7} rows  max error {q.max_error:.2e}{where}"
                      f"{'' if q.ok else '  FAIL'}")
         lines += [f"      {w}" for w in q.wrong_rows[:MAX_LISTED]]
+    flagged = ", ".join(f"{text} {n}" for text, n in sorted(m.flagged.items()))
+    lines.append(f"  rows flagged singular: {sum(m.flagged.values())}"
+                 + (f" ({flagged}; rates there are singular or unconverged)" if flagged else ""))
     if m.residuals:
         lines.append(f"  closure residuals (Checks sheet, tolerance {m.tolerance:g}):")
         for name, value in m.residuals.items():

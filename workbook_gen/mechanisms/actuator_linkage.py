@@ -47,7 +47,7 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import Mapping
 
-from ..expr import Node, Num, abs_, atan2, cos, eq, if_, iserror, lt, min_, pi, root, sin, sqrt
+from ..expr import Node, Num, abs_, atan2, cos, eq, if_, iserror, le, lt, min_, pi, root, sin, sqrt
 from .actuator_halving import halving_quantities, lever_point
 from .base import (Chart, Check, Figure, InputSpec, Link, OptionSpec, ParamSpec, Quantity, Span,
                    Template, quantity_vars, symbols)
@@ -114,13 +114,21 @@ QUANTITIES = (
 )
 
 
+#: s_BC within this fraction of AC + AB of an assembly limit |AC - AB| or AC + AB is a
+#: dead centre: cross_A vanishes there, and a hair away its Heron factor carries the
+#: rounding of the irrational AC and AB amplified by (AC + AB) / (distance to the limit).
+DEAD_CENTRE_FRACTION = 1e-7
+NEAR_LIMIT = le(min_(s - abs_(r_len - a_len), r_len + a_len - s),
+                DEAD_CENTRE_FRACTION * (r_len + a_len))
+
+
 def _row_status(converged: Node | None = None, on_branch: Node | None = None) -> Node:
     """Status per row; rows in the dead zone stay "ok" (below_gamma_min says so): the
     Checks skip rows that are not "ok", and those rows are sound."""
     ok: Node | str = "ok"
     if converged is not None:
         ok = if_(converged, if_(on_branch, "ok", "other branch"), "not converged")
-    return if_(iserror(cross_A), "cannot assemble", if_(eq(cross_A, 0), "dead centre", ok))
+    return if_(iserror(cross_A), "cannot assemble", if_(NEAR_LIMIT, "dead centre", ok))
 
 
 def _checks() -> tuple[Check, ...]:

@@ -7,8 +7,10 @@ constant; coupler AB; rocker O2B; coupler point C at l_AC from A, at delta_C
 Position (cancellation-free circle intersection).  With d = |O2 - A|, the unit
 vector e along A->O2 and n its left normal, B = A + f e + s h n, where
 f = ((l_AB - l_O2B)(l_AB + l_O2B) + d^2) / (2 d) is the foot of B on A->O2 and
-h = root((p - d)(p + d)(d - q)(d + q)) / (2 d), p = l_AB + l_O2B,
-q = l_AB - l_O2B, is the half chord (#NUM! where the circles do not meet).
+h = root((p^2 - d^2)(d^2 - q^2)) / (2 d), p = l_AB + l_O2B,
+q = l_AB - l_O2B, is the half chord (#NUM! where the circles do not meet); the two
+factors are formed from the crank's half angles and exactly summed length gaps, so
+they keep full relative accuracy at the Grashof boundary (docs/stability.md).
 s = +1 on the open branch (Norton: B left of the directed line A->O2), -1 on
 the crossed one.
 
@@ -21,7 +23,9 @@ ATAN2, never h, so no negative zero reaches ATAN2.)
 
 Rates, with a = A - O1, b = B - A, c = B - O2 (2-D cross u x w = u_x w_y - u_y w_x)
 and b x c = s h d (exactly 0 at a toggle, where the rates are #DIV/0!):
-omega_3 = -omega_2 (a x c) / (b x c),  omega_4 = -omega_2 (a x b) / (b x c),
+omega_3 = -omega_2 (a x c) / (b x c),  omega_4 = -omega_2 (a x b) / (b x c), written as
+omega_2 (s (f - d) g y_A / h - (g x_A - a^2)) / d^2 and the same with f for omega_4 (the
+ratio y_A / h stays finite at a change point; a = |O1A|, g = |O1O2|),
 alpha_3 = (omega_2^2 a.c + omega_3^2 b.c - omega_4^2 l_O2B^2) / (b x c),
 alpha_4 = (omega_2^2 a.b + omega_3^2 l_AB^2 - omega_4^2 b.c) / (b x c).
 Transmission angle (Norton): the acute angle between coupler and rocker,
@@ -33,7 +37,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..expr import (Node, abs_, atan2, cos, degrees, eq, if_, iserror, le, lt, max_,
-                    min_, mod, pi, radians, root, sin, sqrt, wrap)
+                    min_, pi, radians, root, sin, sqrt, wrap)
+from .angles import cos_deg, cos_half_squared, sin_deg, sin_half_squared
 from .base import Chart, Check, Figure, Link, ParamSpec, Quantity, quantity_vars, symbols
 
 BRANCHES = ("open", "crossed")
@@ -69,8 +74,25 @@ def _pm(a: Node, b: Node, s: int) -> Node:
     return a + b if s > 0 else a - b
 
 
-def _cross(u: tuple[Node, Node], w: tuple[Node, Node]) -> Node:
-    return u[0] * w[1] - u[1] * w[0]
+def _two_diff(a: Node, b: Node) -> tuple[Node, Node]:
+    """a - b as an unevaluated sum (s, e): s = fl(a - b), e its rounding error (Knuth)."""
+    s = a - b
+    z = s - a
+    return s, (a - (s - z)) - (b + z)
+
+
+def _gap(a: Node, b: Node, c: Node, d: Node) -> Node:
+    """(a + b) - (c + d) to full relative accuracy when it is tiny (a four-bar at the
+    Grashof boundary): (MAX(a,b) - MAX(c,d)) + (MIN(a,b) - MIN(c,d)), the two differences
+    nearly opposite (their sum exact, Sterbenz) plus their rounding errors."""
+    x, ex = _two_diff(max_(a, b), max_(c, d))
+    y, ey = _two_diff(min_(a, b), min_(c, d))
+    return (x + y) + (ex + ey)
+
+
+def _signed(a: Node, s: int) -> Node:
+    """s*a, printed as a or -a."""
+    return a if s > 0 else -a
 
 
 def _dot(u: tuple[Node, Node], w: tuple[Node, Node]) -> Node:
@@ -81,16 +103,26 @@ def quantities(branch: str) -> tuple[Quantity, ...]:
     """The Table columns of a four-bar with coupler point C, for ``branch``."""
     s = 1 if branch == "open" else -1
     t = radians(theta_2)
-    # A from the crank angle modulo 360: bit-identical rows at 0 and 360 deg, so the
-    # Summary finds an extreme at the same row in every engine
-    t_mod = radians(mod(theta_2, 360))
     gx = l_O1O2 - x_A                       # O2 - A = (gx, -y_A)
     p, q = l_AB + l_O2B, l_AB - l_O2B
     a, b, c = (x_A, y_A), (x_B - x_A, y_B - y_A), (x_B - l_O1O2, y_B)
     bc = _dot(b, c)
     w2 = omega_2 ** 2
 
-    minus_w = -omega_2 if s > 0 else omega_2  # -s omega_2
+    # p^2 - d^2 and d^2 - q^2 from the crank's half angles, free of cancellation at the
+    # change point and the toggles (d^2 = g^2 + a^2 - 2 g a cos theta_2):
+    # p^2 - d^2 = (p - g - a)(p + g + a) + 4 g a cos^2(theta_2/2),
+    # d^2 - q^2 = (g - a - q)(g - a + q) + 4 g a sin^2(theta_2/2),
+    # the sums of lengths differenced in sorted pairs (_gap).
+    ga4 = 4 * l_O1O2 * l_O1A
+    far = (_gap(l_AB, l_O2B, l_O1O2, l_O1A) * (p + l_O1O2 + l_O1A)
+           + ga4 * cos_half_squared(theta_2))
+    near = (_gap(l_O1O2, l_O2B, l_AB, l_O1A) * _gap(l_O1O2, l_AB, l_O2B, l_O1A)
+            + ga4 * sin_half_squared(theta_2))
+    # a x e and a.e times d (e the unit vector A->O2): -g y_A and g x_A - a^2; the rates
+    # as ratios y_A / h_B, both proportional to theta_2 near a change point
+    lever = l_O1O2 * y_A / h_B
+    a_e = l_O1O2 * x_A - l_O1A ** 2
 
     def over_bxc(num: Node) -> Node:          # num / (b x c), b x c = s h d
         return (num if s > 0 else -num) / (h_B * d_AO2)
@@ -100,8 +132,10 @@ def quantities(branch: str) -> tuple[Quantity, ...]:
     px, py = x_C - x_A, y_C - y_A           # C - A
     Q = Quantity
     return (
-        Q("x_A", "mm", l_O1A * cos(t_mod), "crank pin A, x", output=False),
-        Q("y_A", "mm", l_O1A * sin(t_mod), "crank pin A, y", output=False),
+        # A from the crank angle reduced exactly to [-180, 180] (angles.py): bit-identical
+        # rows at 0 and 360 deg, and y_A exact (0) at 0 and 180 and accurate near them
+        Q("x_A", "mm", l_O1A * cos_deg(theta_2), "crank pin A, x", output=False),
+        Q("y_A", "mm", l_O1A * sin_deg(theta_2), "crank pin A, y", output=False),
         Q("d_AO2", "mm", sqrt(gx ** 2 + y_A ** 2), "distance A to O2", output=False),
         Q("phi_AO2", "rad",
           if_(lt(l_O1A, l_O1O2), atan2(gx, 0 - y_A),
@@ -109,8 +143,8 @@ def quantities(branch: str) -> tuple[Quantity, ...]:
           "direction of A->O2, continuous", output=False),
         Q("f_B", "mm", (q * p + d_AO2 ** 2) / (2 * d_AO2), "foot of B on the line A->O2",
           output=False),
-        Q("h_B", "mm", root((p - d_AO2) * (p + d_AO2) * (d_AO2 - q) * (d_AO2 + q))
-          / (2 * d_AO2), "distance of B from the line A->O2 (half chord)", output=False),
+        Q("h_B", "mm", root(far * near) / (2 * d_AO2),
+          "distance of B from the line A->O2 (half chord)", output=False),
         Q("theta_3", "deg", degrees(_pm(phi_AO2, atan2(f_B, h_B), s)),
           "coupler angle (direction A->B)"),
         Q("theta_4", "deg", degrees(_pm(phi_AO2, atan2(f_B - d_AO2, h_B), s)),
@@ -120,9 +154,9 @@ def quantities(branch: str) -> tuple[Quantity, ...]:
         Q("y_B", "mm", (y_A + (h_B * gx - f_B * y_A) / d_AO2 if s > 0
                         else y_A - (h_B * gx + f_B * y_A) / d_AO2),
           "coupler-rocker pin B, y", output=False),
-        Q("omega_3", "rad/s", minus_w * _cross(a, c) / (h_B * d_AO2),
+        Q("omega_3", "rad/s", omega_2 * (_signed((f_B - d_AO2) * lever, s) - a_e) / d_AO2 ** 2,
           "coupler angular velocity"),
-        Q("omega_4", "rad/s", minus_w * _cross(a, b) / (h_B * d_AO2),
+        Q("omega_4", "rad/s", omega_2 * (_signed(f_B * lever, s) - a_e) / d_AO2 ** 2,
           "rocker angular velocity"),
         Q("alpha_3", "rad/s^2",
           over_bxc(w2 * _dot(a, c) + omega_3 ** 2 * bc - omega_4 ** 2 * l_O2B ** 2),
@@ -143,7 +177,12 @@ def quantities(branch: str) -> tuple[Quantity, ...]:
     )
 
 
-STATUS = if_(iserror(h_B), "cannot assemble", if_(eq(h_B, 0), "toggle", "ok"))
+#: Rows with B within this fraction of l_AB + l_O2B of the line A->O2 are flagged
+#: "toggle": the rates there are singular (b x c = 0) or, a hair away from a change
+#: point, their accelerations carry rounding amplified by (l_AB + l_O2B) / h_B.
+TOGGLE_FRACTION = 1e-6
+STATUS = if_(iserror(h_B), "cannot assemble",
+             if_(le(h_B, TOGGLE_FRACTION * (l_AB + l_O2B)), "toggle", "ok"))
 
 
 def _norm(x: Node, y: Node) -> Node:

@@ -24,6 +24,7 @@ import math
 
 from ..expr import (Node, Var, atan2, cos, degrees, eq, if_, iserror, pi, radians, root,
                     sin, sqrt)
+from .angles import cos_deg, cos_half_squared, sin_deg, sin_half_squared
 from .base import (Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span,
                    Template, quantity_vars, symbols)
 
@@ -55,10 +56,13 @@ PARAMETERS = (
 
 Q = Quantity
 QUANTITIES = (
-    Q("x_B", "mm", l_AB * cos(radians(theta_1)), "crank pin B, x", output=False),
-    Q("y_B", "mm", l_AB * sin(radians(theta_1)), "crank pin B, y", output=False),
-    Q("h_BC", "mm", root(l_BC ** 2 - x_B ** 2), "rod's vertical projection y_B - y_C",
-      output=False),
+    Q("x_B", "mm", l_AB * cos_deg(theta_1), "crank pin B, x", output=False),
+    Q("y_B", "mm", l_AB * sin_deg(theta_1), "crank pin B, y", output=False),
+    # h^2 = (l_BC - x_B)(l_BC + x_B), l_BC -+ x_B = (l_BC - l_AB) + l_AB (1 -+ cos theta_1):
+    # no cancellation when the rod is barely longer than the crank
+    Q("h_BC", "mm", root(((l_BC - l_AB) + 2 * l_AB * sin_half_squared(theta_1))
+                         * ((l_BC - l_AB) + 2 * l_AB * cos_half_squared(theta_1))),
+      "rod's vertical projection y_B - y_C", output=False),
     Q("dh_BC", "mm/s", omega_1 * x_B * y_B / h_BC, "rate of h_BC", output=False),
     Q("ddh_BC", "mm/s^2", -(w2 * (y_B ** 2 - x_B ** 2) + dh_BC ** 2) / h_BC,
       "second rate of h_BC", output=False),

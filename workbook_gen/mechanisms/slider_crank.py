@@ -5,7 +5,9 @@ u = (cos phi_slide, sin phi_slide) and lies at offset e along
 n = (-sin phi_slide, cos phi_slide).  In slide coordinates the crank pin is
 (u_B, n_B) = l_AB (cos psi, sin psi), psi = theta_1 - phi_slide, and the
 slider is at s_C = u_B + h with h = sqrt(l_BC^2 - (e - n_B)^2) > 0 (the
-slider ahead of the crank pin).  The rod's angle relative to the slide is
+slider ahead of the crank pin), written without cancellation at the dead centres as
+h^2 = (l_BC - q)(l_BC + q), l_BC -+ q = (l_BC - l_AB -+ e) + l_AB (1 +- sin psi) and
+1 +- sin psi = 2 sin^2((psi +- 90)/2) (angles.py), q = e - n_B.  The rod's angle relative to the slide is
 ATAN2(h, e - n_B), within +-90 deg, so theta_2 is continuous.
 
 Rates (q = e - n_B, q' = -omega_1 u_B, q'' = omega_1^2 n_B):
@@ -16,6 +18,7 @@ alpha_2 = (q'' h - q' h') / h^2.
 from __future__ import annotations
 
 from ..expr import Node, asin, atan2, cos, degrees, eq, if_, iserror, radians, root, sin, sqrt
+from .angles import cos_deg, reduced, sin_deg, sin_half_squared
 from .base import Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span, Template
 from .base import quantity_vars, symbols
 
@@ -36,11 +39,14 @@ PARAMETERS = (
 
 Q = Quantity
 QUANTITIES = (
-    Q("u_B", "mm", l_AB * cos(radians(theta_1 - phi_slide)), "crank pin along the slide",
+    Q("u_B", "mm", l_AB * cos_deg(theta_1 - phi_slide), "crank pin along the slide",
       output=False),
-    Q("n_B", "mm", l_AB * sin(radians(theta_1 - phi_slide)), "crank pin across the slide",
+    Q("n_B", "mm", l_AB * sin_deg(theta_1 - phi_slide), "crank pin across the slide",
       output=False),
-    Q("h_BC", "mm", root(l_BC ** 2 - q ** 2), "rod's projection on the slide", output=False),
+    Q("h_BC", "mm", root(
+        ((l_BC - l_AB - e) + 2 * l_AB * sin_half_squared(reduced(theta_1 - phi_slide) + 90))
+        * ((l_BC - l_AB + e) + 2 * l_AB * sin_half_squared(reduced(theta_1 - phi_slide) - 90))),
+      "rod's projection on the slide", output=False),
     Q("dh_BC", "mm/s", omega_1 * u_B * q / h_BC, "rate of h_BC", output=False),
     Q("ddh_BC", "mm/s^2", -(w2 * u_B ** 2 + q * w2 * n_B + dh_BC ** 2) / h_BC,
       "second rate of h_BC", output=False),

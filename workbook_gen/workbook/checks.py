@@ -35,6 +35,15 @@ def cannot_assemble_flag() -> Node:
     return if_(eq(Var(STATUS), "cannot assemble"), 1, 0)
 
 
+def flagged_flag() -> Node:
+    """1 where the row assembles but is flagged (toggle, dead centre, not converged ...)."""
+    return if_(eq(Var(STATUS), "ok"), 0, if_(eq(Var(STATUS), "cannot assemble"), 0, 1))
+
+
+def is_flagged(status: str) -> bool:
+    return status not in ("ok", "cannot assemble")
+
+
 def residuals(result: Evaluated) -> dict[str, xm.XArray]:
     """Each check's guarded residual per row, as the cells hold it."""
     columns = dict(result.columns)
@@ -92,11 +101,13 @@ def write_checks(workbook, formats, result: Evaluated, layout: TableLayout) -> N
     for c, col, check in columns:
         sheet.write_string(6, c, check.name, formats["header"])
     sheet.write_string(6, flag_col, "cannot assemble", formats["header"])
+    sheet.write_string(6, flag_col + 1, "flagged", formats["header"])
 
     source = row_template(Var(spec.name), layout.remote)
     templates = [row_template(guarded(c.expr), layout.remote) for c in checks]
     cells = [values[c.name].val.tolist() for c in checks]
     flag = row_template(cannot_assemble_flag(), layout.remote)
+    flagged = row_template(flagged_flag(), layout.remote)
     inputs, texts = result.inputs.tolist(), result.status.tolist()
     write_formula = sheet.write_formula
     for i in range(result.rows):
@@ -106,3 +117,5 @@ def write_checks(workbook, formats, result: Evaluated, layout: TableLayout) -> N
             write_formula(r0, c, template.render(t_row), None, column[i])
         write_formula(r0, flag_col, flag.render(t_row), None,
                       1 if texts[i] == "cannot assemble" else 0)
+        write_formula(r0, flag_col + 1, flagged.render(t_row), None,
+                      1 if is_flagged(texts[i]) else 0)

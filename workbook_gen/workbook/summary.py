@@ -83,3 +83,13 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
     sheet.write_formula(row, 2, f"=SUM({CHECKS}!{flags}{CHECK_FIRST_ROW}:{flags}{last})", None,
                         int(np.sum(result.status == "cannot assemble")))
     sheet.write_string(row, 3, "these rows hold #NUM! in the Table")
+    row += 1
+    flagged = xl_col_to_name(len(result.model.checks) + 2)
+    texts = sorted({t for t in result.status if t not in ("ok", "cannot assemble")})
+    counts = ", ".join(f"{t}: {int(np.sum(result.status == t))}" for t in texts)
+    sheet.write_string(row, 0, "rows flagged singular or not converged")
+    sheet.write_formula(row, 2, f"=SUM({CHECKS}!{flagged}{CHECK_FIRST_ROW}:{flagged}{last})",
+                        None, int(sum(int(np.sum(result.status == t)) for t in texts)))
+    sheet.write_string(row, 3, "status other than ok (toggle, dead centre, not converged, "
+                               "...): rates there are singular or not to be trusted"
+                               + (f"; {counts}" if counts else ""))
