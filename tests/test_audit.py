@@ -32,12 +32,21 @@ def rewrite_part(src: Path, dst: Path, part: str, edit) -> None:
             zout.writestr(item, data)
 
 
+def y_C_cell(path, row: int) -> tuple[str, str]:
+    """The cell holding y_C at ``row`` and its formula text (without '=')."""
+    table = openpyxl.load_workbook(path)["Table"]
+    col = next(c.column_letter for c in table[1] if c.value == "y_C [mm]")
+    return f"{col}{row}", table[f"{col}{row}"].value[1:]
+
+
 def test_our_workbook_passes_with_every_cell_checked(sewing_workbook):
     report = audit(sewing_workbook)
     assert report.ok, report.mismatches
     assert report.cells_checked == report.formula_cells > 1500
     assert report.vector_cells > 1000
-    assert report.mechanics is not None and len(report.reference) == 26
+    assert report.mechanics is not None
+    headers = [c.value.split(" [")[0] for c in openpyxl.load_workbook(sewing_workbook)["Table"][1]]
+    assert set(report.reference) == set(headers) - {"theta_1", "status"}  # every column
     assert max(report.reference.values()) <= 1e-9
     # the paper's table: alpha_5 per 10 deg against the model
     assert [row[0] for row in report.mechanics.paper_table] == list(range(0, 361, 10))
@@ -46,27 +55,29 @@ def test_our_workbook_passes_with_every_cell_checked(sewing_workbook):
 
 def test_tampered_formula_is_named_by_its_cell(sewing_workbook, tmp_path):
     bad = tmp_path / "tampered.xlsx"
+    cell, formula = y_C_cell(sewing_workbook, 11)
     rewrite_part(sewing_workbook, bad, "xl/worksheets/sheet1.xml",
-                 lambda xml: xml.replace("<f>C11-D11</f>", "<f>C11-D11*1.001</f>"))
+                 lambda xml: xml.replace(f"<f>{formula}</f>", f"<f>{formula}*1.001</f>"))
     report = audit(bad)
     assert not report.ok
     roots = [m for m in report.mismatches if m.root]
-    assert [m.cell for m in roots] == ["Table!G11"]
-    assert roots[0].formula == "C11-D11*1.001"
-    assert len(report.mismatches) > 1  # what G11 feeds disagrees too, marked as following
+    assert [m.cell for m in roots] == [f"Table!{cell}"]
+    assert roots[0].formula == f"{formula}*1.001"
+    assert len(report.mismatches) > 1  # what y_C feeds disagrees too, marked as following
     # the wrong formula also disagrees with the reference model at that row
     assert any(q.name == "y_C" and not q.ok for q in report.mechanics.quantities)
 
 
 def test_tampered_cached_value_is_named_by_its_cell(sewing_workbook, tmp_path):
     bad = tmp_path / "tampered.xlsx"
+    cell, _ = y_C_cell(sewing_workbook, 20)
 
     def edit(xml: str) -> str:
-        return re.sub(r'(<c r="H20"[^>]*><f>[^<]*</f><v>)([^<]*)(</v>)',
+        return re.sub(rf'(<c r="{cell}"[^>]*><f>[^<]*</f><v>)([^<]*)(</v>)',
                       lambda m: m.group(1) + repr(float(m.group(2)) + 1e-6) + m.group(3), xml)
     rewrite_part(sewing_workbook, bad, "xl/worksheets/sheet1.xml", edit)
     report = audit(bad)
-    assert [m.cell for m in report.mismatches] == ["Table!H20"]
+    assert [m.cell for m in report.mismatches] == [f"Table!{cell}"]
 
 
 @pytest.mark.parametrize("overrides", [{}, {"l_BC": 20.0}, {"x_F": 60.0, "y_F": 0.0}])
@@ -112,11 +123,12 @@ def test_cli_exit_codes_and_json(sewing_workbook, tmp_path):
                 "max_rel_error", "reference", "seconds"):
         assert key in data
     bad = tmp_path / "bad.xlsx"
+    cell, formula = y_C_cell(sewing_workbook, 11)
     rewrite_part(sewing_workbook, bad, "xl/worksheets/sheet1.xml",
-                 lambda xml: xml.replace("<f>C11-D11</f>", "<f>C11+D11</f>"))
+                 lambda xml: xml.replace(f"<f>{formula}</f>", f"<f>{formula.replace('-', '+')}</f>"))
     result = run_cli("audit", str(bad))
     assert result.returncode == 1
-    assert "Table!G11" in result.stdout and "=C11+D11" in result.stdout
+    assert f"Table!{cell}" in result.stdout and "=" + formula.replace("-", "+") in result.stdout
     garbage = tmp_path / "garbage.xlsx"
     garbage.write_text("not a workbook")
     result = run_cli("audit", str(garbage))

@@ -15,7 +15,7 @@ from workbook_cells import as_float, table_columns
 
 TOLERANCE = 1e-9  # of the column's magnitude
 SCENE = "templates/walking_beam.toml"
-ALWAYS_DEFINED = {"x_A", "y_A", "d_AO2", "phi_AO2", "f_B"}
+ALWAYS_DEFINED = {"theta_2r", "x_A", "y_A", "d_AO2", "phi_AO2", "f_B"}
 
 
 @pytest.fixture(scope="module")

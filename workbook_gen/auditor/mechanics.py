@@ -20,7 +20,7 @@ from .. import reference
 REFERENCE_TOLERANCE = 1e-9  # of the column's magnitude
 PAPER_QUANTITY = "alpha_5"  # the sewing-machine paper checked the lever's angular acceleration
 _HEADER = re.compile(r"^(\w+)(?: \[(.*)\])?$")
-CRANK_PIN = {"x_B", "y_B", "u_B", "n_B"}  # defined whether or not the rod reaches
+CRANK_PIN = {"theta_1r", "psi", "theta_2r", "x_B", "y_B", "u_B", "n_B"}  # defined whether or not the rod reaches
 
 
 @dataclass

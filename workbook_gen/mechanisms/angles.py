@@ -7,11 +7,16 @@ for theta in [180, 720] by Sterbenz's lemma), then to [-90, 90] for the sine
 (180 - u is exact for u in [90, 180]), so the argument of SIN is the exact
 distance to the nearest multiple of 180 deg, and SIN of it has full relative
 accuracy.  The cosine is the sine of 90 - |u| (exact where |u| >= 45).
+
+Templates write the reduced angle as a column of its own (``reduced_input``), so
+the cells that use it read ``=l_AB*SIN(RADIANS(90-ABS(B2)))`` rather than
+repeating the reduction; the functions below take that reduced angle u.
 """
 
 from __future__ import annotations
 
-from ..expr import Node, abs_, if_, le, gt, mod, radians, sign, sin
+from ..expr import Node, Var, abs_, if_, le, gt, mod, radians, sign, sin
+from .base import Quantity
 
 
 def reduced(theta: Node) -> Node:
@@ -21,22 +26,27 @@ def reduced(theta: Node) -> Node:
                    mod(theta + 180, 360) - 180))
 
 
-def sin_deg(theta: Node) -> Node:
-    """SIN of theta (deg), accurate relative to its value near multiples of 180."""
-    u = reduced(theta)
+def reduced_input(name: str, theta: Node, what: str) -> tuple[Quantity, Var]:
+    """The intermediate column ``name`` = ``theta`` reduced to [-180, 180], and its Var."""
+    return (Quantity(name, "deg", reduced(theta), f"{what}, reduced exactly to [-180, 180] "
+                     "(sines exact at multiples of 90 deg)", output=False), Var(name))
+
+
+def sin_deg(u: Node) -> Node:
+    """SIN of u (deg, in [-180, 180]), accurate relative to its value near 0 and +-180."""
     return sin(radians(if_(gt(abs_(u), 90), sign(u) * 180 - u, u)))
 
 
-def cos_deg(theta: Node) -> Node:
-    """COS of theta (deg), accurate relative to its value near odd multiples of 90."""
-    return sin(radians(90 - abs_(reduced(theta))))
+def cos_deg(u: Node) -> Node:
+    """COS of u (deg, in [-180, 180]), accurate relative to its value near +-90."""
+    return sin(radians(90 - abs_(u)))
 
 
-def sin_half_squared(theta: Node) -> Node:
-    """sin^2(theta/2), accurate near theta = 0 (mod 360)."""
-    return sin(radians(reduced(theta)) / 2) ** 2
+def sin_half_squared(u: Node) -> Node:
+    """sin^2(u/2) for u in [-270, 270] (deg), accurate near u = 0."""
+    return sin(radians(u) / 2) ** 2
 
 
-def cos_half_squared(theta: Node) -> Node:
-    """cos^2(theta/2), accurate near theta = 180 (mod 360)."""
-    return sin(radians(abs_(reduced(theta)) - 180) / 2) ** 2
+def cos_half_squared(u: Node) -> Node:
+    """cos^2(u/2) for u (deg) in [-180, 180], accurate near u = +-180."""
+    return sin(radians(abs_(u) - 180) / 2) ** 2

@@ -38,7 +38,7 @@ from dataclasses import dataclass
 
 from ..expr import (Node, abs_, atan2, cos, degrees, eq, if_, iserror, le, lt, max_,
                     min_, pi, radians, root, sin, sqrt, wrap)
-from .angles import cos_deg, cos_half_squared, sin_deg, sin_half_squared
+from .angles import cos_deg, cos_half_squared, reduced_input, sin_deg, sin_half_squared
 from .base import Chart, Check, Figure, Link, ParamSpec, Quantity, quantity_vars, symbols
 
 BRANCHES = ("open", "crossed")
@@ -49,6 +49,8 @@ l_O1O2, l_O1A, l_AB, l_O2B, l_AC, delta_C, omega_2 = symbols(
  alpha_3, alpha_4, x_C, y_C, vx_C, vy_C, ax_C, ay_C, mu) = quantity_vars(
     "theta_2 x_A y_A d_AO2 phi_AO2 f_B h_B theta_3 theta_4 x_B y_B omega_3 omega_4 "
     "alpha_3 alpha_4 x_C y_C vx_C vy_C ax_C ay_C mu")
+
+THETA_2R, theta_2r = reduced_input("theta_2r", theta_2, "crank angle")
 
 OUTPUTS = ("theta_3", "theta_4", "omega_3", "omega_4", "alpha_3", "alpha_4",
            "x_C", "y_C", "vx_C", "vy_C", "ax_C", "ay_C", "mu")
@@ -116,9 +118,9 @@ def quantities(branch: str) -> tuple[Quantity, ...]:
     # the sums of lengths differenced in sorted pairs (_gap).
     ga4 = 4 * l_O1O2 * l_O1A
     far = (_gap(l_AB, l_O2B, l_O1O2, l_O1A) * (p + l_O1O2 + l_O1A)
-           + ga4 * cos_half_squared(theta_2))
+           + ga4 * cos_half_squared(theta_2r))
     near = (_gap(l_O1O2, l_O2B, l_AB, l_O1A) * _gap(l_O1O2, l_AB, l_O2B, l_O1A)
-            + ga4 * sin_half_squared(theta_2))
+            + ga4 * sin_half_squared(theta_2r))
     # a x e and a.e times d (e the unit vector A->O2): -g y_A and g x_A - a^2; the rates
     # as ratios y_A / h_B, both proportional to theta_2 near a change point
     lever = l_O1O2 * y_A / h_B
@@ -134,8 +136,9 @@ def quantities(branch: str) -> tuple[Quantity, ...]:
     return (
         # A from the crank angle reduced exactly to [-180, 180] (angles.py): bit-identical
         # rows at 0 and 360 deg, and y_A exact (0) at 0 and 180 and accurate near them
-        Q("x_A", "mm", l_O1A * cos_deg(theta_2), "crank pin A, x", output=False),
-        Q("y_A", "mm", l_O1A * sin_deg(theta_2), "crank pin A, y", output=False),
+        THETA_2R,
+        Q("x_A", "mm", l_O1A * cos_deg(theta_2r), "crank pin A, x", output=False),
+        Q("y_A", "mm", l_O1A * sin_deg(theta_2r), "crank pin A, y", output=False),
         Q("d_AO2", "mm", sqrt(gx ** 2 + y_A ** 2), "distance A to O2", output=False),
         Q("phi_AO2", "rad",
           if_(lt(l_O1A, l_O1O2), atan2(gx, 0 - y_A),

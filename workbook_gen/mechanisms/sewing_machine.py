@@ -24,7 +24,7 @@ import math
 
 from ..expr import (Node, Var, atan2, cos, degrees, eq, if_, iserror, pi, radians, root,
                     sin, sqrt)
-from .angles import cos_deg, cos_half_squared, sin_deg, sin_half_squared
+from .angles import cos_deg, cos_half_squared, reduced_input, sin_deg, sin_half_squared
 from .base import (Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span,
                    Template, quantity_vars, symbols)
 
@@ -55,13 +55,15 @@ PARAMETERS = (
 )
 
 Q = Quantity
+THETA_1R, theta_1r = reduced_input("theta_1r", theta_1, "crank angle")
 QUANTITIES = (
-    Q("x_B", "mm", l_AB * cos_deg(theta_1), "crank pin B, x", output=False),
-    Q("y_B", "mm", l_AB * sin_deg(theta_1), "crank pin B, y", output=False),
+    THETA_1R,
+    Q("x_B", "mm", l_AB * cos_deg(theta_1r), "crank pin B, x", output=False),
+    Q("y_B", "mm", l_AB * sin_deg(theta_1r), "crank pin B, y", output=False),
     # h^2 = (l_BC - x_B)(l_BC + x_B), l_BC -+ x_B = (l_BC - l_AB) + l_AB (1 -+ cos theta_1):
     # no cancellation when the rod is barely longer than the crank
-    Q("h_BC", "mm", root(((l_BC - l_AB) + 2 * l_AB * sin_half_squared(theta_1))
-                         * ((l_BC - l_AB) + 2 * l_AB * cos_half_squared(theta_1))),
+    Q("h_BC", "mm", root(((l_BC - l_AB) + 2 * l_AB * sin_half_squared(theta_1r))
+                         * ((l_BC - l_AB) + 2 * l_AB * cos_half_squared(theta_1r))),
       "rod's vertical projection y_B - y_C", output=False),
     Q("dh_BC", "mm/s", omega_1 * x_B * y_B / h_BC, "rate of h_BC", output=False),
     Q("ddh_BC", "mm/s^2", -(w2 * (y_B ** 2 - x_B ** 2) + dh_BC ** 2) / h_BC,

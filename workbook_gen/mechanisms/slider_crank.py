@@ -18,7 +18,7 @@ alpha_2 = (q'' h - q' h') / h^2.
 from __future__ import annotations
 
 from ..expr import Node, asin, atan2, cos, degrees, eq, if_, iserror, radians, root, sin, sqrt
-from .angles import cos_deg, reduced, sin_deg, sin_half_squared
+from .angles import cos_deg, reduced_input, sin_deg, sin_half_squared
 from .base import Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span, Template
 from .base import quantity_vars, symbols
 
@@ -38,14 +38,16 @@ PARAMETERS = (
 )
 
 Q = Quantity
+PSI, psi = reduced_input("psi", theta_1 - phi_slide, "crank angle from the slide line")
 QUANTITIES = (
-    Q("u_B", "mm", l_AB * cos_deg(theta_1 - phi_slide), "crank pin along the slide",
+    PSI,
+    Q("u_B", "mm", l_AB * cos_deg(psi), "crank pin along the slide",
       output=False),
-    Q("n_B", "mm", l_AB * sin_deg(theta_1 - phi_slide), "crank pin across the slide",
+    Q("n_B", "mm", l_AB * sin_deg(psi), "crank pin across the slide",
       output=False),
     Q("h_BC", "mm", root(
-        ((l_BC - l_AB - e) + 2 * l_AB * sin_half_squared(reduced(theta_1 - phi_slide) + 90))
-        * ((l_BC - l_AB + e) + 2 * l_AB * sin_half_squared(reduced(theta_1 - phi_slide) - 90))),
+        ((l_BC - l_AB - e) + 2 * l_AB * sin_half_squared(psi + 90))
+        * ((l_BC - l_AB + e) + 2 * l_AB * sin_half_squared(psi - 90))),
       "rod's projection on the slide", output=False),
     Q("dh_BC", "mm/s", omega_1 * u_B * q / h_BC, "rate of h_BC", output=False),
     Q("ddh_BC", "mm/s^2", -(w2 * u_B ** 2 + q * w2 * n_B + dh_BC ** 2) / h_BC,

@@ -44,6 +44,17 @@ def _params(mechanism: str, params: Mapping[str, float]) -> dict[str, float]:
     return merged
 
 
+# Templates tabulate their crank angle reduced to [-180, 180] (exact sines): the column's
+# name and the parameter subtracted first (the slide direction of the slider-crank).
+_REDUCED_INPUT = {"sewing_machine": ("theta_1r", None), "slider_crank": ("psi", "phi_slide"),
+                  "four_bar": ("theta_2r", None), "walking_beam": ("theta_2r", None)}
+
+
+def _reduced_deg(t: np.ndarray) -> np.ndarray:
+    """t - 360 k in (-180, 180], with 180 kept (and -180 for -180)."""
+    return np.where(np.abs(t) <= 180.0, t, t - 360.0 * np.ceil((t - 180.0) / 360.0))
+
+
 def known_parameters(mechanism: str) -> frozenset[str]:
     """The parameter names the reference of ``mechanism`` takes."""
     return frozenset(_MODULES[mechanism].DEFAULTS)
@@ -62,8 +73,13 @@ def solve(mechanism: str, params: Mapping[str, float], inputs: np.ndarray,
         raise WorkbookGenError(f"{mechanism}: inputs must be a 1-D array of angles, got shape {theta_1.shape}")
     module = _MODULES[mechanism]
     if getattr(module, "TAKES_OPTIONS", False):
-        return module.solve(p, theta_1, dict(options or {}))
-    return module.solve(p, theta_1)
+        out = module.solve(p, theta_1, dict(options or {}))
+    else:
+        out = module.solve(p, theta_1)
+    if mechanism in _REDUCED_INPUT:
+        name, offset = _REDUCED_INPUT[mechanism]
+        out[name] = _reduced_deg(theta_1 - (p[offset] if offset else 0.0))
+    return out
 
 
 __all__ = ["MECHANISMS", "known_parameters", "solve"]
