@@ -8,7 +8,6 @@ import zipfile
 import numpy as np
 import openpyxl
 import pandas as pd
-import pytest
 
 from workbook_gen.compute import compute, evaluate
 from workbook_gen.expr.excel import row_template

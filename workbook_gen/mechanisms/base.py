@@ -6,7 +6,7 @@ trees and prints them; ``model.py`` prunes them to what a scene asks for.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Callable, Mapping
 
 from ..expr import Node, Param, Var, variables

@@ -34,8 +34,6 @@ mu = ATAN2(|b.c|, |b x c|).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from ..expr import (Node, abs_, atan2, cos, degrees, eq, if_, iserror, le, lt, max_,
                     min_, pi, radians, root, sin, sqrt, wrap)
 from .angles import cos_deg, cos_half_squared, reduced_input, sin_deg, sin_half_squared

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 
-from ..expr import (Node, Var, atan2, cos, degrees, eq, if_, iserror, pi, radians, root,
+from ..expr import (Node, atan2, cos, degrees, eq, if_, iserror, pi, radians, root,
                     sin, sqrt)
 from .angles import cos_deg, cos_half_squared, reduced_input, sin_deg, sin_half_squared
 from .base import (Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span,

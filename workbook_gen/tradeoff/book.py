@@ -4,13 +4,11 @@ scatter chart per dimension of error against time, both axes logarithmic."""
 from __future__ import annotations
 
 import datetime as dt
-import os
-import tempfile
 from pathlib import Path
 
 import xlsxwriter
 
-from ..errors import OutputExistsError, WorkbookGenError
+from ..files import write_atomically
 from ..version import VERSION
 from .measure import DIMENSIONS, Tradeoff
 
@@ -145,19 +143,4 @@ def write_tradeoff_workbook(result: Tradeoff, out_dir: str | Path, *,
     """Write ``out_dir/<name>_tradeoff.xlsx`` atomically; refuses to overwrite unless
     ``force``."""
     target = output_path(result.scene, out_dir)
-    if target.exists() and not force:
-        raise OutputExistsError(f"{target} exists; use --force to overwrite it")
-    try:
-        target.parent.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise WorkbookGenError(f"{target.parent}: cannot create the folder: {exc.strerror}") from None
-    fd, temp = tempfile.mkstemp(prefix=f".{target.stem}.", suffix=".xlsx.tmp", dir=target.parent)
-    os.close(fd)
-    try:
-        _build(Path(temp), result)
-        os.chmod(temp, 0o644)
-        os.replace(temp, target)
-    except BaseException:
-        Path(temp).unlink(missing_ok=True)
-        raise
-    return target
+    return write_atomically(target, lambda temp: _build(temp, result), force=force)

@@ -3,14 +3,12 @@
 from __future__ import annotations
 
 import datetime as dt
-import os
-import tempfile
 from pathlib import Path
 
 import xlsxwriter
 
 from ..compute import Evaluated, evaluate
-from ..errors import OutputExistsError, WorkbookGenError
+from ..files import refuse_existing, write_atomically
 from ..scene import Scene
 from ..version import VERSION
 from .charts import write_charts
@@ -51,20 +49,6 @@ def output_path(scene: Scene, out_dir: str | Path) -> Path:
 def write_workbook(scene: Scene, out_dir: str | Path = "outputs", *, force: bool = False) -> Path:
     """Write ``out_dir/<name>.xlsx``; refuses to overwrite unless ``force``."""
     target = output_path(scene, out_dir)
-    if target.exists() and not force:
-        raise OutputExistsError(f"{target} exists; use --force to overwrite it")
+    refuse_existing(target, force)
     result = evaluate(scene)  # refuses a sweep where nothing assembles, before any write
-    try:
-        target.parent.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise WorkbookGenError(f"{target.parent}: cannot create the folder: {exc.strerror}") from None
-    fd, temp = tempfile.mkstemp(prefix=f".{scene.name}.", suffix=".xlsx.tmp", dir=target.parent)
-    os.close(fd)
-    try:
-        _build(Path(temp), result, str(target))
-        os.chmod(temp, 0o644)
-        os.replace(temp, target)
-    except BaseException:
-        Path(temp).unlink(missing_ok=True)
-        raise
-    return target
+    return write_atomically(target, lambda temp: _build(temp, result, str(target)), force=force)

@@ -1,0 +1,36 @@
+"""Writing output files safely: never over an existing file without ``force``, and
+atomically (a temporary file beside the target, then a rename), so a failed run
+leaves nothing half-written."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+from typing import Callable
+
+from .errors import OutputExistsError, WorkbookGenError
+
+
+def refuse_existing(target: Path, force: bool) -> None:
+    if target.exists() and not force:
+        raise OutputExistsError(f"{target} exists; use --force to overwrite it")
+
+
+def write_atomically(target: Path, build: Callable[[Path], None], *, force: bool) -> Path:
+    """``build(temporary_path)`` writes the file; it then replaces ``target``."""
+    refuse_existing(target, force)
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise WorkbookGenError(f"{target.parent}: cannot create the folder: {exc.strerror}") from None
+    fd, temp = tempfile.mkstemp(prefix=f".{target.stem}.", suffix=".xlsx.tmp", dir=target.parent)
+    os.close(fd)
+    try:
+        build(Path(temp))
+        os.chmod(temp, 0o644)
+        os.replace(temp, target)
+    except BaseException:
+        Path(temp).unlink(missing_ok=True)
+        raise
+    return target
