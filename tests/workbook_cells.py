@@ -30,3 +30,18 @@ def as_float(values: list) -> np.ndarray:
         else:
             out.append(float(v))
     return np.array(out)
+
+
+def column_error(name: str, ours: np.ndarray, ref: np.ndarray,
+                 assembled: np.ndarray | None = None, always_defined=()) -> float:
+    """Worst |ours - ref| over the column's magnitude, after checking that both hold
+    values in the same rows and that ours holds an error wherever nothing assembles
+    (unless the column is defined regardless, like the crank pin)."""
+    assert np.array_equal(np.isfinite(ours), np.isfinite(ref)), name
+    if assembled is not None and name not in always_defined:
+        assert np.all(np.isnan(ours[~assembled])), name
+    both = np.isfinite(ours)
+    if not both.any():
+        return 0.0
+    scale = max(float(np.max(np.abs(ref[both]))), 1e-300)
+    return float(np.max(np.abs(ours[both] - ref[both])) / scale)
