@@ -235,18 +235,19 @@ def _four_bar(tmp_path: Path, balance: bool, extra: str = "", name: str = "fb"):
     return _write(tmp_path, text, name)
 
 
-def _summary(path) -> dict[str, object]:
+def _parameters(path) -> dict[str, object]:
+    """Name -> cached value of the Parameters sheet (the counterweights are derived rows)."""
     import openpyxl
-    sheet = openpyxl.load_workbook(path, data_only=True)["Summary"]
-    return {r[0]: r[2] for r in sheet.iter_rows(values_only=True) if r[0]}
+    sheet = openpyxl.load_workbook(path, data_only=True)["Parameters"]
+    return {r[0]: r[1] for r in sheet.iter_rows(min_row=2, values_only=True) if r[0]}
 
 
 def _counterweight_points(scene, path) -> list[tuple]:
-    figures = _summary(path)
+    values = _parameters(path)
     out = []
     for link in ("crank", "rocker"):
-        m = figures[f"m_cw_{link}: counterweight mass on the {link}"]
-        phi = math.radians(figures[f"phi_cw_{link}: counterweight angle on the {link}"])
+        m = values[f"m_cw_{link}"]
+        phi = math.radians(values[f"phi_cw_{link}"])
         r = scene.parameters[f"r_cw_{link}"]
         out.append((f"cw_{link}", link, m, r * math.cos(phi), r * math.sin(phi)))
     return out
@@ -309,11 +310,14 @@ def test_balanced_four_bar_audits_clean_and_balances_in_libreoffice(libreoffice,
     assert max(abs(v) for v in values) < 1e-9 * unbalanced
 
 
-def test_counterweights_are_on_the_parameters_and_summary_sheets(tmp_path):
+def test_counterweights_are_on_the_parameters_sheet_as_live_formulas(tmp_path):
     import openpyxl
     _, path = _four_bar(tmp_path, True)
     book = openpyxl.load_workbook(path)
-    assert {"r_cw_crank", "r_cw_rocker", "m_coupler"} <= set(book.defined_names)
-    figures = _summary(path)
-    assert figures["m_cw_crank: counterweight mass on the crank"] > 0
-    assert figures["m_cw_rocker: counterweight mass on the rocker"] > 0
+    names = set(book.defined_names)
+    assert {"r_cw_crank", "r_cw_rocker", "m_coupler", "m_cw_crank", "phi_cw_rocker"} <= names
+    formulas = {r[0]: r[1] for r in book["Parameters"].iter_rows(min_row=2, values_only=True)}
+    assert str(formulas["m_cw_crank"]).startswith("=")
+    values = _parameters(path)
+    assert values["m_cw_crank"] > 0
+    assert values["m_cw_rocker"] > 0

@@ -23,6 +23,7 @@ class Evaluated:
     inputs: np.ndarray
     columns: dict[str, xm.XArray]   # every Table column by name, input included
     status: np.ndarray              # object array of status texts
+    params: dict[str, float]        # the parameters and the template's derived values
 
     @property
     def rows(self) -> int:
@@ -36,19 +37,29 @@ class Evaluated:
 def evaluate(scene: Scene) -> Evaluated:
     """Every column of the scene's Table; refuses a sweep where nothing assembles."""
     model = select(scene.template, scene.outputs)
+    params = derived_values(scene)
     inputs = np.array(scene.sweep.values())
     n = len(inputs)
     columns = {scene.template.input.name: xm.array(inputs)}
     for quantity in model.columns:
-        columns[quantity.name] = compile_numpy(quantity.expr)(columns, scene.parameters, n)
-    status = compile_numpy(scene.template.status)(columns, scene.parameters, n)
+        columns[quantity.name] = compile_numpy(quantity.expr)(columns, params, n)
+    status = compile_numpy(scene.template.status)(columns, params, n)
     texts = np.where(status.err != 0, "cannot assemble", status.val).astype(object)
     if not np.any(texts != "cannot assemble"):
         raise CannotAssembleError(
             f"{scene.source}: the mechanism cannot be assembled anywhere in the sweep "
             f"{scene.sweep.start:g}..{scene.sweep.stop:g}: "
             f"{scene.template.assembly_failure(scene.parameters)}")
-    return Evaluated(scene, model, inputs, columns, texts)
+    return Evaluated(scene, model, inputs, columns, texts, params)
+
+
+def derived_values(scene: Scene) -> dict[str, float]:
+    """The scene's parameters with the template's derived values (NaN where an error)."""
+    params = dict(scene.parameters)
+    for item in scene.template.derived:
+        value = compile_numpy(item.expr)({}, params, 1)
+        params[item.name] = float(value.val[0])
+    return params
 
 
 def headers(model: Model) -> list[str]:

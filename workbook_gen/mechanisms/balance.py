@@ -29,7 +29,7 @@ from typing import Mapping
 
 from ..errors import SceneError
 from ..expr import Node, Param, atan2, degrees, eq, if_, sqrt, wrap
-from .base import Figure, Mass, ParamSpec, Template
+from .base import Derived, Mass, ParamSpec, Template
 
 _LINKS = ("crank", "coupler", "rocker")
 _LENGTHS = ("l_O1A", "l_AB", "l_O2B")
@@ -56,7 +56,9 @@ def required_moments(masses: Mapping[str, Mass]) -> dict[str, tuple[Node, Node]]
 
 
 def counterweights(template: Template, masses: Mapping[str, Mass]):
-    """(parameters, point masses, Summary figures) of the balancing counterweights."""
+    """(parameters, point masses, derived values) of the balancing counterweights: the
+    radius is a parameter; mass, angle and position are derived values, live formulas
+    on the Parameters sheet that the counterweight's columns refer to by name."""
     from .dynamics import PointMass  # dynamics imports this module lazily: no cycle
 
     links = {link.name: link for link in template.links}
@@ -64,26 +66,30 @@ def counterweights(template: Template, masses: Mapping[str, Mass]):
     if not set(_LINKS) <= set(links) or not set(_LENGTHS) <= set(params):
         raise SceneError(f"{template.id}: balance = true needs a four-bar's crank, coupler "
                          f"and rocker")
-    specs, points, figures = [], [], []
+    specs, points, derived = [], [], []
     pivots = {"crank": ("l_O1A", "O1->A"), "rocker": ("l_O2B", "O2->B")}
     for link, (wx, wy) in required_moments(masses).items():
         length, direction = pivots[link]
         name = f"cw_{link}"
-        r_cw = Param(f"r_{name}")
-        norm = sqrt(wx ** 2 + wy ** 2)
-        specs.append(ParamSpec(f"r_{name}", params[length].default, params[length].unit,
+        unit = params[length].unit
+        r_cw, mx, my, m_cw = (Param(f"{p}_{name}") for p in ("r", "mx", "my", "m"))
+        specs.append(ParamSpec(f"r_{name}", params[length].default, unit,
                                f"balancing counterweight on the {link}: its radius from the "
-                               f"pivot (mass and angle follow, Summary sheet)", positive=True))
-        m_cw = norm / r_cw
-        u_cw = if_(eq(norm, 0), r_cw, r_cw * wx / norm)
-        v_cw = if_(eq(norm, 0), 0, r_cw * wy / norm)
-        points.append(PointMass(name, links[link], m_cw, u_cw, v_cw,
-                                f"counterweight on the {link}"))
-        figures += [
-            Figure(f"m_{name}: counterweight mass on the {link}", "kg", m_cw,
-                   f"full force balance (Berkof-Lowen), at radius r_{name}"),
-            Figure(f"phi_{name}: counterweight angle on the {link}", "deg",
-                   if_(eq(norm, 0), 0, degrees(atan2(wx, wy))),
-                   f"from the direction {direction}, counter-clockwise"),
+                               f"pivot (its mass and angle follow below)", positive=True))
+        derived += [
+            Derived(f"mx_{name}", f"kg*{unit}", wx, f"mass moment the counterweight supplies "
+                    f"along the {link} (Berkof-Lowen full force balance)"),
+            Derived(f"my_{name}", f"kg*{unit}", wy,
+                    f"mass moment the counterweight supplies to the left of the {link}"),
+            Derived(f"m_{name}", "kg", sqrt(mx ** 2 + my ** 2) / r_cw,
+                    f"counterweight mass on the {link}"),
+            Derived(f"phi_{name}", "deg", if_(eq(m_cw, 0), 0, degrees(atan2(mx, my))),
+                    f"counterweight angle on the {link}, from the direction {direction}"),
+            Derived(f"u_{name}", unit, if_(eq(m_cw, 0), r_cw, mx / m_cw),
+                    f"counterweight position along the {link}"),
+            Derived(f"v_{name}", unit, if_(eq(m_cw, 0), 0, my / m_cw),
+                    f"counterweight position to the left of the {link}"),
         ]
-    return tuple(specs), points, tuple(figures)
+        points.append(PointMass(name, links[link], Param(f"m_{name}"), Param(f"u_{name}"),
+                                Param(f"v_{name}"), f"counterweight on the {link}"))
+    return tuple(specs), points, tuple(derived)

@@ -85,6 +85,17 @@ class Figure:
 
 
 @dataclass(frozen=True)
+class Derived:
+    """A value computed from the parameters, shown on the Parameters sheet as a live
+    formula with a defined name (a counterweight's mass); trees may use it as Param."""
+
+    name: str
+    unit: str
+    expr: Node
+    description: str
+
+
+@dataclass(frozen=True)
 class OptionSpec:
     """A template option: ``choices`` for text options, else a bool or an int option."""
 
@@ -149,6 +160,7 @@ class Template:
     spans: tuple[Span, ...] = ()
     figures: tuple[Figure, ...] = ()
     options: tuple[OptionSpec, ...] = ()
+    derived: tuple[Derived, ...] = ()  # in order: each may use the parameters and earlier ones
     links: tuple[Link, ...] = ()
     length_unit_m: float = 1e-3  # metres per length unit of the template (mm)
     # Options -> the template for them (branch, method, iterations, balance ...).
@@ -160,7 +172,7 @@ class Template:
     assembly_failure: Callable[[Mapping[str, float]], str] = lambda p: "no row assembles"
 
     def __post_init__(self) -> None:
-        params = {p.name for p in self.parameters}
+        params = {p.name for p in self.parameters} | {d.name for d in self.derived}
         earlier = {self.input.name}
         for q in self.quantities:  # each refers only to earlier columns: a valid order
             _check_refs(self.id, q.name, q.expr, earlier, params)

@@ -29,7 +29,7 @@ from typing import Mapping
 
 from ..errors import SceneError
 from ..expr import Neg, Node, Num, Param, Var, abs_, cos, eq, if_, sin, sqrt, wrap
-from .base import Chart, Check, Figure, Link, Mass, ParamSpec, Quantity, Span, Template
+from .base import Chart, Check, Derived, Figure, Link, Mass, ParamSpec, Quantity, Span, Template
 
 
 @dataclass(frozen=True)
@@ -174,10 +174,10 @@ def add_dynamics(template: Template, masses: Mapping[str, Mass],
     points = [PointMass(link.name, link, Param(f"m_{link.name}"), Param(f"u_{link.name}"),
                         Param(f"v_{link.name}"), link.name)
               for link in template.links if link.name in masses]
-    figures: tuple[Figure, ...] = ()
+    derived: tuple[Derived, ...] = ()
     if options.get("balance"):
         from .balance import counterweights
-        extra_params, extra_points, figures = counterweights(template, masses)
+        extra_params, extra_points, derived = counterweights(template, masses)
         params += extra_params
         points += extra_points
     quantities = _point_quantities(points, unit) + _total_quantities(points, unit, metres)
@@ -185,6 +185,7 @@ def add_dynamics(template: Template, masses: Mapping[str, Mass],
     return dataclasses.replace(
         template,
         parameters=template.parameters + params,
+        derived=template.derived + derived,
         quantities=template.quantities + tuple(quantities),
         checks=template.checks + (_check(points, metres),),
         charts=template.charts + (
@@ -199,7 +200,7 @@ def add_dynamics(template: Template, masses: Mapping[str, Mass],
                                 Span("shaking moment, range", "M_S")),
         figures=template.figures + (
             Figure("total moving mass", "kg", _sum([p.m for p in points]),
-                   "sum of the link masses (and counterweights)"),) + figures,
+                   "sum of the link masses (and counterweights)"),),
         validate=_validate(template, [link.name for link in template.links
                                       if link.name in masses]),
     )

@@ -48,7 +48,7 @@ def residuals(result: Evaluated) -> dict[str, xm.XArray]:
     """Each check's guarded residual per row, as the cells hold it."""
     columns = dict(result.columns)
     columns[STATUS] = xm.XArray(result.status, np.zeros(result.rows, np.uint8))
-    return {c.name: compile_numpy(guarded(c.expr))(columns, result.scene.parameters,
+    return {c.name: compile_numpy(guarded(c.expr))(columns, result.params,
                                                    result.rows)
             for c in result.model.checks}
 

@@ -4,7 +4,12 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
+
+from .. import xlmath as xm
 from ..compute import Evaluated
+from ..expr.excel import to_excel
+from .table import cached_values
 from .layout import ABOUT, PARAMETERS, add_sheet
 
 
@@ -17,12 +22,20 @@ def write_parameters(workbook, formats, result: Evaluated) -> None:
     sheet.set_column(2, 2, 8)
     sheet.set_column(3, 3, 60)
     sheet.freeze_panes(1, 0)
+    row = 0
     for row, spec in enumerate(result.scene.template.parameters, start=1):
         sheet.write_string(row, 0, spec.name)
         sheet.write_number(row, 1, result.scene.parameters[spec.name], formats["param"])
         sheet.write_string(row, 2, spec.unit)
         sheet.write_string(row, 3, spec.description)
         workbook.define_name(spec.name, f"={PARAMETERS}!$B${row + 1}")
+    for row, item in enumerate(result.scene.template.derived, start=row + 1):
+        sheet.write_string(row, 0, item.name)
+        sheet.write_formula(row, 1, to_excel(item.expr), None,
+                            cached_values(xm.array(np.array([result.params[item.name]])))[0])
+        sheet.write_string(row, 2, item.unit)
+        sheet.write_string(row, 3, f"{item.description} (computed from the parameters above)")
+        workbook.define_name(item.name, f"={PARAMETERS}!$B${row + 1}")
 
 
 def write_about(workbook, formats, result: Evaluated, version: str, filename: str) -> None:

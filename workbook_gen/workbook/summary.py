@@ -67,7 +67,7 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
         sheet.write_string(row, 3, f"max - min of {span.quantity} over the sweep")
         row += 1
     for figure in result.model.figures:
-        value = compile_numpy(figure.expr)({}, result.scene.parameters, 1)
+        value = compile_numpy(figure.expr)({}, result.params, 1)
         cached = cached_values(value)[0]
         sheet.write_string(row, 0, figure.label)
         sheet.write_string(row, 1, figure.unit)
