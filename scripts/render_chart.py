@@ -1,14 +1,17 @@
-"""Render the Charts sheet of a generated workbook to PNG with LibreOffice headless.
+"""Render one sheet of a workbook (by default the Charts sheet) to PNG with LibreOffice.
 
     python scripts/render_chart.py outputs/sewing_machine.xlsx docs/sewing_machine_charts.png
+    python scripts/render_chart.py out/sewing_machine_tradeoff.xlsx docs/x.png --sheet Charts
 
-The script copies the workbook with every sheet but Charts hidden (the
-generated file is left as it is), has LibreOffice export the copy to PDF and
-turns the first page into a PNG with pdftoppm (Debian's poppler-utils).
+The script copies the workbook with every other sheet hidden (the given file is left as
+it is), has LibreOffice export the copy to PDF and turns the first page into a PNG with
+pdftoppm (Debian's poppler-utils).
 """
 
 from __future__ import annotations
 
+import argparse
+import re
 import shutil
 import subprocess
 import sys
@@ -18,38 +21,50 @@ from pathlib import Path
 
 from workbook_gen.engines.libreoffice import find_soffice
 
-HIDE = ("Table", "Parameters", "Checks", "Summary", "About")
 
-
-def charts_only_copy(src: Path, dst: Path) -> None:
+def single_sheet_copy(src: Path, dst: Path, sheet: str) -> None:
     with zipfile.ZipFile(src) as zin, zipfile.ZipFile(dst, "w", zipfile.ZIP_DEFLATED) as zout:
         for item in zin.infolist():
             data = zin.read(item.filename)
             if item.filename == "xl/workbook.xml":
-                text = data.decode().replace("<workbookView ", '<workbookView activeTab="4" ', 1)
-                for name in HIDE:
-                    text = text.replace(f'<sheet name="{name}" ', f'<sheet name="{name}" state="hidden" ')
+                text = data.decode()
+                names = re.findall(r'<sheet name="([^"]+)"', text)
+                if sheet not in names:
+                    sys.exit(f"{src}: no sheet named {sheet!r} (sheets: {', '.join(names)})")
+                text = re.sub(r' activeTab="\d+"', "", text)
+                text = text.replace("<workbookView ",
+                                    f'<workbookView activeTab="{names.index(sheet)}" ', 1)
+                for name in names:
+                    if name != sheet:
+                        text = text.replace(f'<sheet name="{name}" ',
+                                            f'<sheet name="{name}" state="hidden" ')
                 data = text.encode()
             elif item.filename.startswith("xl/worksheets/sheet"):
                 data = data.replace(b' tabSelected="1"', b"")
             zout.writestr(item, data)
 
 
-def main(src: str, png: str, dpi: str = "90") -> None:
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("workbook")
+    parser.add_argument("png")
+    parser.add_argument("dpi", nargs="?", default="90")
+    parser.add_argument("--sheet", default="Charts")
+    args = parser.parse_args()
     soffice = find_soffice()
     if soffice is None or shutil.which("pdftoppm") is None:
         sys.exit("needs LibreOffice and pdftoppm: apt-get install libreoffice-calc poppler-utils")
     with tempfile.TemporaryDirectory() as tmp:
-        copy = Path(tmp) / "charts.xlsx"
-        charts_only_copy(Path(src), copy)
+        copy = Path(tmp) / "sheet.xlsx"
+        single_sheet_copy(Path(args.workbook), copy, args.sheet)
         subprocess.run([soffice, f"-env:UserInstallation=file://{tmp}/profile", "--headless",
                         "--convert-to", "pdf", "--outdir", tmp, str(copy)],
                        check=True, capture_output=True, timeout=300)
-        subprocess.run(["pdftoppm", "-r", dpi, "-png", "-f", "1", "-l", "1", "-singlefile",
-                        str(Path(tmp) / "charts.pdf"), str(Path(tmp) / "page")], check=True)
-        shutil.copyfile(Path(tmp) / "page.png", png)
-    print(png)
+        subprocess.run(["pdftoppm", "-r", args.dpi, "-png", "-f", "1", "-l", "1", "-singlefile",
+                        str(Path(tmp) / "sheet.pdf"), str(Path(tmp) / "page")], check=True)
+        shutil.copyfile(Path(tmp) / "page.png", args.png)
+    print(args.png)
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:4])
+    main()
