@@ -86,7 +86,8 @@ def _rectangles(node, sheet: str, names: dict[str, str], depth: int = 0):
             yield (n.sheet or sheet, min(n.first.row, n.last.row), min(n.first.col, n.last.col),
                    max(n.first.row, n.last.row), max(n.first.col, n.last.col))
         elif isinstance(n, ast.Name) and depth < 8:
-            text = {k.upper(): v for k, v in names.items()}.get(n.name.upper())
+            text = names.get(n.name) or next(
+                (v for k, v in names.items() if k.upper() == n.name.upper()), None)
             if text is not None:
                 try:
                     yield from _rectangles(parse(str(text).lstrip("=")), sheet, names, depth + 1)

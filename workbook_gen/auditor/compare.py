@@ -19,6 +19,12 @@ REL = 1e-10
 ABS = 1e-10
 
 
+def _allowance(cached, magnitude):
+    """The difference tolerated: REL of the cached value or ABS of the magnitude
+    (value or operands); scalars and arrays alike."""
+    return np.maximum(REL * np.abs(cached), ABS * magnitude)
+
+
 @dataclass
 class Verdict:
     agree: bool
@@ -43,7 +49,7 @@ def compare(cached: object, recomputed: object, scale: float) -> Verdict:
         # 1e-16 recomputed as 3e-16 from operands of 100 is rounding, not a 200% error
         magnitude = max(abs(a), abs(b), scale)
         rel = diff / magnitude if magnitude else 0.0
-        return Verdict(diff <= max(REL * abs(a), ABS * magnitude), diff, rel)
+        return Verdict(bool(diff <= _allowance(a, magnitude)), diff, rel)
     if isinstance(cached, ExcelError) or isinstance(recomputed, ExcelError):
         return Verdict(cached == recomputed)
     # An empty cached string and an empty text result are the same to every reader.
@@ -86,5 +92,5 @@ def compare_numbers(cached: np.ndarray, recomputed: np.ndarray, scale: np.ndarra
     magnitude = np.maximum(np.maximum(np.abs(cached), np.abs(recomputed)), scale)
     with np.errstate(invalid="ignore", divide="ignore"):
         rel = np.where(magnitude > 0, diff / magnitude, 0.0)
-    agree = diff <= np.maximum(REL * np.abs(cached), ABS * magnitude)
+    agree = diff <= _allowance(cached, magnitude)
     return agree, diff, rel

@@ -37,12 +37,10 @@ class Const:
     value: object
 
 
-def safe_call(name: str, args: list):
-    """``fx.call`` that never raises (the scalar MOD/SUM can overflow): #NUM! then."""
-    try:
-        return clean(fx.call(name, args))
-    except (OverflowError, ValueError, ZeroDivisionError):
-        return ExcelError.NUM
+def cell_call(name: str, args: list):
+    """``fx.call`` with its result cleaned as the scalar evaluator cleans it (overflow in
+    MOD and SUM is #NUM! inside the functions themselves, for both paths)."""
+    return clean(fx.call(name, args))
 
 
 def clean(v):
@@ -198,9 +196,9 @@ def call(name: str, args: list, refs: list, n: int):
         if result is not None:
             return result
     if not args:
-        return Const(safe_call(name, []))
+        return Const(cell_call(name, []))
     columns = [items(a, n, as_ref=(r is True)) for a, r in zip(args, refs)]
-    return _obj([safe_call(name, list(row)) for row in zip(*columns)])
+    return _obj([cell_call(name, list(row)) for row in zip(*columns)])
 
 
 def _fast_call(name: str, xs: list[Num], nargs: int, n: int):
