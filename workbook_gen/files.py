@@ -34,3 +34,8 @@ def write_atomically(target: Path, build: Callable[[Path], None], *, force: bool
         Path(temp).unlink(missing_ok=True)
         raise
     return target
+
+
+def write_bytes_atomically(target: Path, data: bytes, *, force: bool) -> Path:
+    """Write ``data`` to ``target`` atomically (see ``write_atomically``)."""
+    return write_atomically(target, lambda temp: temp.write_bytes(data), force=force)

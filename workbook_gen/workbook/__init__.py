@@ -1,5 +1,5 @@
 """The workbook writer (XlsxWriter): Table, Parameters, Checks, Summary, Charts, About."""
 
-from .writer import output_path, write_workbook
+from .writer import output_path, workbook_bytes, write_workbook
 
-__all__ = ["output_path", "write_workbook"]
+__all__ = ["output_path", "workbook_bytes", "write_workbook"]

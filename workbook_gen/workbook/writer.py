@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 import datetime as dt
+import io
 from pathlib import Path
 
 import xlsxwriter
 
 from ..compute import Evaluated, evaluate
-from ..files import refuse_existing, write_atomically
+from ..files import refuse_existing, write_bytes_atomically
 from ..scene import Scene
 from ..version import VERSION
 from .charts import write_charts
@@ -22,8 +23,8 @@ from .table import write_table
 DOCUMENT_DATE = dt.datetime(2024, 1, 1)
 
 
-def _build(path: Path, result: Evaluated, filename: str) -> None:
-    workbook = xlsxwriter.Workbook(str(path), {"constant_memory": True})
+def _build(stream: io.BytesIO, result: Evaluated, filename: str) -> None:
+    workbook = xlsxwriter.Workbook(stream, {"constant_memory": True})
     workbook.set_properties({
         "title": result.scene.title,
         "subject": f"{result.scene.template.id} kinematics",
@@ -46,9 +47,20 @@ def output_path(scene: Scene, out_dir: str | Path) -> Path:
     return Path(out_dir) / f"{scene.name}.xlsx"
 
 
+def workbook_bytes(scene: Scene, filename: str | Path, result: Evaluated | None = None) -> bytes:
+    """The workbook of ``scene`` as it would be written to ``filename`` (the About sheet
+    names that path), built in memory: the one code path of ``generate`` and ``batch``.
+    Raises CannotAssembleError where nothing assembles."""
+    if result is None:
+        result = evaluate(scene)
+    stream = io.BytesIO()
+    _build(stream, result, str(filename))
+    return stream.getvalue()
+
+
 def write_workbook(scene: Scene, out_dir: str | Path = "outputs", *, force: bool = False) -> Path:
     """Write ``out_dir/<name>.xlsx``; refuses to overwrite unless ``force``."""
     target = output_path(scene, out_dir)
     refuse_existing(target, force)
-    result = evaluate(scene)  # refuses a sweep where nothing assembles, before any write
-    return write_atomically(target, lambda temp: _build(temp, result, str(target)), force=force)
+    data = workbook_bytes(scene, target)  # refuses a sweep where nothing assembles, before any write
+    return write_bytes_atomically(target, data, force=force)
