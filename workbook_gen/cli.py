@@ -68,7 +68,8 @@ def _audit(args: argparse.Namespace) -> int:
 
 def _tradeoff(args: argparse.Namespace) -> int:
     from .scene import load_scene
-    from .tradeoff import ProgressBar, format_table, measure, units, write_tradeoff_workbook
+    from .progress import Progress
+    from .tradeoff import format_table, measure, units, write_tradeoff_workbook
     scene = load_scene(args.scene)
     if args.out:
         from .errors import OutputExistsError
@@ -76,11 +77,8 @@ def _tradeoff(args: argparse.Namespace) -> int:
         target = output_path(scene, args.out)
         if target.exists() and not args.force:  # refuse before minutes of measuring
             raise OutputExistsError(f"{target} exists; use --force to overwrite it")
-    bar = ProgressBar(units(scene))
-    try:
+    with Progress(units(scene), desc="tradeoff", unit="run") as bar:
         result = measure(scene, progress=bar)
-    finally:
-        bar.close()
     if args.json:
         print(json.dumps(result.to_json(), indent=2, allow_nan=False))
     else:

@@ -9,14 +9,13 @@ Modules: ``reference50`` (the scene's trees at 50 digits, true extremes),
 ``steps`` (step and derivative dimensions), ``methods`` (closed form against
 Newton or halving), ``precision`` (float64 against 50 digits), ``rates``
 (which positions differentiate to which rate columns), ``variants`` (the scene
-with another step, options or outputs), ``report`` (terminal table, progress
-bar), ``book`` (the Tradeoff workbook).
+with another step, options or outputs), ``report`` (terminal table), ``book`` (the Tradeoff workbook).
 """
 
 from .book import write_tradeoff_workbook
 from .common import Row
 from .measure import Tradeoff, measure, units
-from .report import ProgressBar, format_table
+from .report import format_table
 
-__all__ = ["measure", "units", "Tradeoff", "Row", "format_table", "ProgressBar",
+__all__ = ["measure", "units", "Tradeoff", "Row", "format_table",
            "write_tradeoff_workbook"]

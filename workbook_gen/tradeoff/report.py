@@ -1,10 +1,7 @@
-"""The tradeoff on the terminal: a readable table, and a progress bar on stderr."""
+"""The tradeoff on the terminal: a readable table (the progress bar is
+``workbook_gen.progress``)."""
 
 from __future__ import annotations
-
-import sys
-import time
-from typing import TextIO
 
 from .measure import Tradeoff
 
@@ -49,27 +46,3 @@ def format_table(result: Tradeoff) -> str:
     lines.append(f"\nmeasured in {result.seconds:.1f} s")
     return "\n".join(lines)
 
-
-class ProgressBar:
-    """``bar(label)`` advances one unit; draws on ``stream`` only when it is a terminal."""
-
-    def __init__(self, total: int, stream: TextIO | None = None, width: int = 30):
-        self.total, self.done, self.width = max(total, 1), 0, width
-        self.stream = stream if stream is not None else sys.stderr
-        self.enabled = bool(getattr(self.stream, "isatty", lambda: False)())
-        self.started = time.perf_counter()
-
-    def __call__(self, label: str) -> None:
-        self.done = min(self.done + 1, self.total)
-        if not self.enabled:
-            return
-        filled = self.width * self.done // self.total
-        elapsed = time.perf_counter() - self.started
-        self.stream.write(f"\r[{'#' * filled}{'.' * (self.width - filled)}] "
-                          f"{self.done}/{self.total} {elapsed:5.1f} s  {label[:40]:<40}")
-        self.stream.flush()
-
-    def close(self) -> None:
-        if self.enabled:
-            self.stream.write("\r" + " " * (self.width + 62) + "\r")
-            self.stream.flush()
