@@ -43,7 +43,7 @@ def evaluate(scene: Scene) -> Evaluated:
     columns = {scene.template.input.name: xm.array(inputs)}
     for quantity in model.columns:
         columns[quantity.name] = compile_numpy(quantity.expr)(columns, params, n)
-    status = compile_numpy(scene.template.status)(columns, params, n)
+    status = compile_numpy(model.status)(columns, params, n)
     texts = np.where(status.err != 0, "cannot assemble", status.val).astype(object)
     if not np.any(texts != "cannot assemble"):
         raise CannotAssembleError(

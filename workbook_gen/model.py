@@ -10,8 +10,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .expr import variables
-from .mechanisms.base import Chart, Check, Figure, Quantity, Span, Template
+from .expr import Node, variables
+from .mechanisms.base import Chart, Check, Condition, Figure, Quantity, Span, Template
 
 
 @dataclass(frozen=True)
@@ -23,6 +23,8 @@ class Model:
     charts: tuple[Chart, ...]
     spans: tuple[Span, ...]
     figures: tuple[Figure, ...]
+    status: Node                    # the status column's tree for these columns
+    conditions: tuple[Condition, ...] = ()
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -49,7 +51,9 @@ def needed(template: Template, roots: set[str]) -> set[str]:
 
 
 def select(template: Template, requested: tuple[str, ...]) -> Model:
-    keep = needed(template, set(requested) | variables(template.status))
+    status = (template.status if template.status_for is None
+              else template.status_for(frozenset(needed(template, set(requested)))))
+    keep = needed(template, set(requested) | variables(status))
     columns = tuple(q for q in template.quantities if q.name in keep)
     present = keep | {template.input.name}
     return Model(
@@ -60,8 +64,15 @@ def select(template: Template, requested: tuple[str, ...]) -> Model:
         charts=tuple(c for c in template.charts
                      if _chart_wanted(c, template, present, set(requested))),
         spans=tuple(s for s in template.spans if s.quantity in requested),
-        figures=template.figures,
+        figures=tuple(f for f in template.figures if _shown(f.needs, present)),
+        status=status,
+        conditions=tuple(c for c in template.conditions if _shown(c.needs, present)),
     )
+
+
+def _shown(needs: tuple[str, ...], present: set[str]) -> bool:
+    """A figure or condition about some columns is shown when one of them is."""
+    return not needs or bool(set(needs) & present)
 
 
 def _chart_wanted(chart: Chart, template: Template, present: set[str],

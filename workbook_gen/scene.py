@@ -202,7 +202,7 @@ def parse_scene(text: str, source: str, overrides: Mapping[str, Any] | None = No
     options = _options(source, base, _table(source, "options", data.get("options", {})))
     template = base.with_options(options)
     masses = _masses(source, template, _table(source, "masses", data.get("masses", {})))
-    if options.get("balance") and not masses:
+    if options.get("balance") and template.links and not masses:
         raise _fail(source, "options.balance", "needs a [masses] table (the counterweights "
                     "balance the links' masses)", True)
     if masses:

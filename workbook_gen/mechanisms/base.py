@@ -82,6 +82,23 @@ class Figure:
     unit: str
     expr: Node
     description: str
+    needs: tuple[str, ...] = ()  # if given: shown only when one of these columns is
+
+
+@dataclass(frozen=True)
+class Condition:
+    """A design condition over the parameters alone (a balancing condition): ``expr`` is
+    its residual in ``unit``, 0 when it holds; ``scale`` (>= 0, same unit) the sum of the
+    magnitudes of its terms.  It holds when |expr| <= check_tol * scale.  Unlike a Check
+    it says nothing of the workbook's correctness: shown on the Checks sheet below the
+    rows, kept only when one of the Table columns ``needs`` is (if given)."""
+
+    name: str
+    unit: str
+    expr: Node
+    scale: Node
+    description: str
+    needs: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -162,12 +179,16 @@ class Template:
     options: tuple[OptionSpec, ...] = ()
     derived: tuple[Derived, ...] = ()  # in order: each may use the parameters and earlier ones
     links: tuple[Link, ...] = ()
+    conditions: tuple[Condition, ...] = ()
     length_unit_m: float = 1e-3  # metres per length unit of the template (mm)
     # Options -> the template for them (branch, method, iterations, balance ...).
     configure: Callable[["Template", Mapping[str, object]], "Template"] = (
         lambda template, options: template)
     # Cross-parameter rule: a message naming the offending parameter, or None.
     validate: Callable[[Mapping[str, float]], tuple[str, str] | None] = lambda p: None
+    # The status over only the columns a scene keeps, for templates whose parts are
+    # independent (the legs of a parallel mechanism); None: ``status`` whatever is kept.
+    status_for: Callable[[frozenset[str]], Node] | None = None
     # Why nothing assembles, for the error message.
     assembly_failure: Callable[[Mapping[str, float]], str] = lambda p: "no row assembles"
 
@@ -180,6 +201,8 @@ class Template:
         known = earlier
         for c in self.checks:
             _check_refs(self.id, c.name, c.expr, known, params)
+        for c in self.conditions:
+            _check_refs(self.id, c.name, c.expr + c.scale, set(), params)
         _check_refs(self.id, "status", self.status, known, params)
 
     def quantity(self, name: str) -> Quantity:

@@ -14,6 +14,7 @@ from ..compute import Evaluated
 from ..expr import Node, Var, eq, if_
 from ..expr.excel import row_template
 from ..expr.numeric import compile_numpy
+from .conditions import write_conditions
 from .layout import CHECK_FIRST_ROW, CHECKS, FIRST_ROW, STATUS, TableLayout, add_sheet
 
 TOLERANCE = 1e-9
@@ -119,3 +120,4 @@ def write_checks(workbook, formats, result: Evaluated, layout: TableLayout) -> N
                       1 if texts[i] == "cannot assemble" else 0)
         write_formula(r0, flag_col + 1, flagged.render(t_row), None,
                       1 if is_flagged(texts[i]) else 0)
+    write_conditions(sheet, formats, result, last - 1, TOLERANCE)

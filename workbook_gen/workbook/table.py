@@ -36,7 +36,7 @@ def write_table(workbook, formats, result: Evaluated, layout: TableLayout) -> No
     sheet.set_column(len(names), len(names), 15)
 
     templates = [row_template(q.expr, layout.local) for q in model.columns]
-    status = row_template(model.template.status, layout.local)
+    status = row_template(model.status, layout.local)
     values = [cached_values(result.columns[q.name]) for q in model.columns]
     inputs = result.inputs.tolist()
     texts = result.status.tolist()
