@@ -15,17 +15,34 @@ from .mechanisms import TEMPLATES
 from .version import VERSION
 
 
-def _overrides(scene: str, items: Sequence[str]) -> dict[str, float]:
+def _value(text: str) -> int | float | bool | str:
+    """A --set value as TOML would read it: integer, number, true/false, else text."""
+    text = text.strip()
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    if text in ("true", "false"):
+        return text == "true"
+    return text.strip('"')
+
+
+def _overrides(scene: str, items: Sequence[str]) -> dict[str, object]:
+    """--set NAME=VALUE items: parameters (numbers) or options (``branch=crossed``)."""
     values = {}
     for item in items:
         name, sep, text = item.partition("=")
-        try:
-            if not sep or not name:
-                raise ValueError
-            values[name.strip()] = float(text)
-        except ValueError:
-            raise SceneError(f"{scene}: --set {item!r}: expected NAME=VALUE with a number") from None
+        if not sep or not name.strip() or not text.strip():
+            raise SceneError(f"{scene}: --set {item!r}: expected NAME=VALUE (a parameter "
+                             f"with a number, or an option: branch=crossed)")
+        values[name.strip()] = _value(text)
     return values
+
+
+def _warn(scene) -> None:
+    for warning in scene.warnings:
+        print(f"workbook-gen: warning: {warning}", file=sys.stderr)
 
 
 def _list(args: argparse.Namespace) -> int:
@@ -49,7 +66,9 @@ def _list(args: argparse.Namespace) -> int:
 def _generate(args: argparse.Namespace) -> int:
     from .scene import load_scene
     from .workbook import write_workbook
-    scene = load_scene(args.scene, overrides=_overrides(args.scene, args.set), step=args.step)
+    scene = load_scene(args.scene, overrides=_overrides(args.scene, args.set), step=args.step,
+                       start=args.start, stop=args.stop, name=args.name)
+    _warn(scene)
     path = write_workbook(scene, args.out, force=args.force)
     print(path)
     return 0
@@ -105,8 +124,13 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default="outputs", metavar="DIR",
                    help="output folder (default: outputs)")
     p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
-                   help="override a parameter (repeatable)")
+                   help="override a parameter (l_BC=105) or an option (branch=crossed); "
+                        "repeatable")
     p.add_argument("--step", type=float, metavar="X", help="override the sweep step")
+    p.add_argument("--start", type=float, metavar="X", help="override the sweep start")
+    p.add_argument("--stop", type=float, metavar="X", help="override the sweep stop")
+    p.add_argument("--name", metavar="STEM", help="output file stem instead of the scene's "
+                                                  "name (a variant beside its baseline)")
     p.add_argument("--force", action="store_true", help="overwrite an existing file")
     p.set_defaults(run=_generate)
 

@@ -13,6 +13,13 @@ from .errors import OutputExistsError, WorkbookGenError
 
 
 def refuse_existing(target: Path, force: bool) -> None:
+    """Refuse before any work: an existing file without ``force``, a folder that is a file."""
+    for folder in (target.parent, *target.parent.parents):
+        if folder.exists():
+            if not folder.is_dir():
+                raise WorkbookGenError(f"{folder} is a file, not a folder: --out names the "
+                                       f"folder the file {target.name} is written into")
+            break
     if target.exists() and not force:
         raise OutputExistsError(f"{target} exists; use --force to overwrite it")
 

@@ -14,13 +14,19 @@ from pathlib import Path
 from typing import Any, Mapping
 
 from .errors import SceneError
-from .mechanisms import get_template
+from .mechanisms import TEMPLATES, get_template
 from .mechanisms.base import Mass, Template
 from .names import check_name
 
 MAX_ROWS = 1_048_576 - 1  # Excel's rows, less the header
 _TOP_KEYS = {"name", "mechanism", "title", "parameters", "sweep", "outputs", "options", "masses"}
 _STEM = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.-]*$")
+# A file stem that every file system takes: with "_tradeoff.xlsx" and the temporary
+# file's prefix and suffix it stays far below the 255 bytes of a file name.
+MAX_STEM = 100
+# Windows refuses these as file names whatever the extension.
+_RESERVED = re.compile(r"^(CON|PRN|AUX|NUL|COM[0-9]|LPT[0-9])(\..*)?$", re.IGNORECASE)
+MIN_ROWS = 3  # rates and extremes need a neighbour on each side
 
 
 @dataclass(frozen=True)
@@ -51,6 +57,8 @@ class Scene:
     masses: Mapping[str, Mass] = field(default_factory=dict)
     text: str = ""              # the scene file as given
     overrides: tuple[str, ...] = ()  # the command-line overrides, as given
+    warnings: tuple[str, ...] = ()   # legal but probably unintended (a sweep short of its stop)
+    cli: Mapping[str, Any] = field(default_factory=dict)  # the overrides, to re-apply (variants)
 
     @property
     def mechanism(self) -> str:
@@ -98,45 +106,104 @@ def _parameters(source: str, template: Template, given: dict) -> dict[str, float
     return values
 
 
-def _sweep(source: str, template: Template, given: dict, step: float | None) -> Sweep:
+def _sweep(source: str, template: Template, given: dict,
+           cli: Mapping[str, float | None]) -> tuple[Sweep, tuple[str, ...]]:
+    """The sweep, and warnings about a legal but probably unintended one.
+
+    ``cli`` holds the command line's --start/--stop/--step (None: not given); they win
+    over the scene's keys and messages name them as given."""
     unknown = set(given) - {"start", "stop", "step"}
     if unknown:
         key = sorted(unknown)[0]
         raise _fail(source, f"sweep.{key}", "is not a sweep key (start, stop, step)",
                     given[key])
     spec = template.input
-    start = _number(source, "sweep.start", given.get("start", spec.start))
-    stop = _number(source, "sweep.stop", given.get("stop", spec.stop))
-    where = "--step" if step is not None else "sweep.step"
-    step = _number(source, where, step if step is not None else given.get("step", spec.step))
+    values, where = {}, {}
+    for key in ("start", "stop", "step"):
+        if cli.get(key) is not None:
+            where[key], raw = f"--{key}", cli[key]
+        else:
+            where[key], raw = f"sweep.{key}", given.get(key, getattr(spec, key))
+        values[key] = _number(source, where[key], raw)
+    start, stop, step = values["start"], values["stop"], values["step"]
     if step <= 0:
-        raise _fail(source, where, "must be > 0", step)
+        raise _fail(source, where["step"], "must be > 0", step)
     if stop < start:
-        raise _fail(source, "sweep.stop", f"must be >= sweep.start = {start:g}", stop)
+        raise _fail(source, where["stop"], f"must be >= {where['start']} = {start:g}", stop)
     if (stop - start) / step + 1 > MAX_ROWS:
-        raise _fail(source, where, f"gives more rows than Excel allows ({MAX_ROWS:,} below "
-                    f"the header) for {start:g}..{stop:g}", step)
-    return Sweep(start, stop, step)
+        raise _fail(source, where["step"], f"gives more rows than Excel allows ({MAX_ROWS:,} "
+                    f"below the header) for {start:g}..{stop:g}", step)
+    sweep = Sweep(start, stop, step)
+    if sweep.rows < MIN_ROWS:
+        key = where["step"] if stop > start else where["stop"]
+        raise _fail(source, key, f"leaves {sweep.rows} row(s) for {start:g}..{stop:g} by "
+                    f"{step:g}; at least {MIN_ROWS} are needed (rates and extremes)",
+                    values[key.lstrip("-").removeprefix("sweep.")])
+    warnings = ()
+    last = start + (sweep.rows - 1) * step
+    if abs(stop - last) > 1e-9 * max(abs(stop), abs(start), step):
+        warnings = (f"{source}: {where['step']} = {step:g} does not reach {where['stop']} = "
+                    f"{stop:g}: the last row is {sweep.values()[-1]:g}",)
+    return sweep, warnings
 
 
-def _outputs(source: str, template: Template, given: dict) -> tuple[str, ...]:
+def _quantity_names(source: str, given: dict) -> list[str] | None:
     unknown = set(given) - {"quantities"}
     if unknown:
         key = sorted(unknown)[0]
         raise _fail(source, f"outputs.{key}", "is not an outputs key (quantities)", given[key])
     if "quantities" not in given:
-        return template.outputs
+        return None
     names = given["quantities"]
     if not isinstance(names, list) or not names or not all(isinstance(n, str) for n in names):
         raise _fail(source, "outputs.quantities", "must be a non-empty list of names", names)
-    known = [q.name for q in template.quantities]
+    if len(set(names)) != len(names):
+        raise _fail(source, "outputs.quantities", "lists a quantity twice", names)
+    return names
+
+
+def _implied_options(source: str, base: Template, names: list[str] | None,
+                     options: dict[str, object]) -> dict[str, object]:
+    """``options`` with what the requested quantities imply: asking for an iterative
+    quantity (``phi_2_iter``) asks for the method that makes it.  An option given
+    explicitly with another value is an error saying so."""
+    if not names:
+        return options
+    implied = dict(options)
+    for name in names:
+        if name in _known(base.with_options(implied)):
+            continue
+        for spec in base.options:
+            for choice in spec.choices:
+                trial = {**implied, spec.name: choice}
+                if name not in _known(base.with_options(trial)):
+                    continue
+                if spec.name in options:
+                    raise _fail(source, "outputs.quantities",
+                                f"asks for {name}, which needs options.{spec.name} = "
+                                f"{choice!r}, but the scene sets options.{spec.name}",
+                                options[spec.name])
+                implied = trial
+                break
+            else:
+                continue
+            break
+    return implied
+
+
+def _known(template: Template) -> set[str]:
+    return {q.name for q in template.quantities}
+
+
+def _outputs(source: str, template: Template, names: list[str] | None) -> tuple[str, ...]:
+    if names is None:
+        return template.outputs
+    known = _known(template)
     for name in names:
         if name not in known:
             raise _fail(source, "outputs.quantities",
                         f"names an unknown quantity of {template.id} (known: "
                         f"{', '.join(template.outputs)})", name)
-    if len(set(names)) != len(names):
-        raise _fail(source, "outputs.quantities", "lists a quantity twice", names)
     return tuple(names)
 
 
@@ -169,19 +236,47 @@ def _masses(source: str, template: Template, given: dict) -> dict[str, Mass]:
         if unknown:
             extra = sorted(unknown)[0]
             raise _fail(source, f"{key}.{extra}", "is not a mass key (m, u, v)", entry[extra])
-        if "m" not in entry:
-            raise SceneError(f"{source}: {key}.m is missing")
+        for part in ("m", "u", "v"):  # u, v: no silent default for a centre of mass
+            if part not in entry:
+                raise SceneError(f"{source}: {key}.{part} is missing (an entry is "
+                                 f"{{ m = kg, u = along the link, v = to its left }})")
         m = _number(source, f"{key}.m", entry["m"])
         if m < 0:
             raise _fail(source, f"{key}.m", "must be >= 0", entry["m"])
-        masses[name] = Mass(m, _number(source, f"{key}.u", entry.get("u", 0.0)),
-                            _number(source, f"{key}.v", entry.get("v", 0.0)))
+        masses[name] = Mass(m, _number(source, f"{key}.u", entry["u"]),
+                            _number(source, f"{key}.v", entry["v"]))
     return masses
 
 
+def _split_overrides(source: str, base: Template, overrides: Mapping[str, Any]
+                     ) -> tuple[dict[str, Any], dict[str, Any]]:
+    """Overrides by name: an option of the template (``branch``) or a parameter."""
+    option_names = {o.name for o in base.options}
+    options, parameters = {}, {}
+    for key, value in overrides.items():
+        (options if key in option_names else parameters)[key] = value
+    return parameters, options
+
+
+def _check_stem(source: str, key: str, name: str) -> None:
+    if len(name) > MAX_STEM:
+        raise _fail(source, key, f"is {len(name)} characters long; a file stem may have at "
+                    f"most {MAX_STEM}", name if len(name) <= 40 else name[:37] + "...")
+    if not _STEM.match(name) or name.endswith(".") or _RESERVED.match(name):
+        raise _fail(source, key, "must be a file stem of letters, digits, '_', '-', '.' "
+                    "(not starting with '.' or '-', not ending with '.', not a reserved "
+                    "device name)", name)
+
+
 def parse_scene(text: str, source: str, overrides: Mapping[str, Any] | None = None,
-                step: float | None = None) -> Scene:
-    """A validated Scene from TOML text; ``overrides`` replace parameters."""
+                step: float | None = None, *, start: float | None = None,
+                stop: float | None = None, name: str | None = None) -> Scene:
+    """A validated Scene from TOML text.
+
+    ``overrides`` replace parameters or options (by name: ``{"l_BC": 105.0,
+    "branch": "crossed"}``); ``start``/``stop``/``step`` the sweep's; ``name`` the
+    file stem (a variant beside its baseline)."""
+    text = text.removeprefix("\ufeff")  # a byte-order mark, as Windows editors save
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -194,12 +289,21 @@ def parse_scene(text: str, source: str, overrides: Mapping[str, Any] | None = No
     for key in ("name", "mechanism"):
         if key not in data:
             raise SceneError(f"{source}: {key} is missing")
-    name = _string(source, "name", data["name"])
-    if not _STEM.match(name):
-        raise _fail(source, "name", "must be a file stem of letters, digits, '_', '-', '.'",
-                    name)
-    base = get_template(_string(source, "mechanism", data["mechanism"]))
-    options = _options(source, base, _table(source, "options", data.get("options", {})))
+    stem = _string(source, "name", data["name"])
+    _check_stem(source, "name", stem)
+    if name is not None:
+        stem = _string(source, "--name", name)
+        _check_stem(source, "--name", stem)
+    mechanism = _string(source, "mechanism", data["mechanism"])
+    if mechanism not in TEMPLATES:
+        raise _fail(source, "mechanism", f"is not a template (known: "
+                    f"{', '.join(sorted(TEMPLATES))})", mechanism)
+    base = get_template(mechanism)
+    set_parameters, set_options = _split_overrides(source, base, overrides or {})
+    given_options = {**_table(source, "options", data.get("options", {})), **set_options}
+    options = _options(source, base, given_options)
+    names = _quantity_names(source, _table(source, "outputs", data.get("outputs", {})))
+    options = _implied_options(source, base, names, options)
     template = base.with_options(options)
     masses = _masses(source, template, _table(source, "masses", data.get("masses", {})))
     if options.get("balance") and template.links and not masses:
@@ -210,26 +314,39 @@ def parse_scene(text: str, source: str, overrides: Mapping[str, Any] | None = No
         template = add_dynamics(template, masses, options)
     title = _string(source, "title", data.get("title", template.title))
     given = dict(_table(source, "parameters", data.get("parameters", {})))
-    given.update(overrides or {})
+    given.update(set_parameters)
     parameters = _parameters(source, template, given)
     problem = template.validate(parameters)
     if problem:
         key, message = problem
         raise _fail(source, f"parameters.{key}", message, parameters[key])
+    sweep, warnings = _sweep(source, template, _table(source, "sweep", data.get("sweep", {})),
+                             {"start": start, "stop": stop, "step": step})
+    shown = [f"--set {k}={v}" for k, v in (overrides or {}).items()]
+    shown += [f"--{k} {v:g}" for k, v in (("start", start), ("stop", stop)) if v is not None]
+    shown += [f"--name {name}"] if name is not None else []
     return Scene(
-        source=source, name=name, template=template, title=title, parameters=parameters,
-        sweep=_sweep(source, template, _table(source, "sweep", data.get("sweep", {})), step),
-        outputs=_outputs(source, template, _table(source, "outputs", data.get("outputs", {}))),
+        source=source, name=stem, template=template, title=title, parameters=parameters,
+        sweep=sweep,
+        outputs=_outputs(source, template, names),
         options=options,
         masses=masses,
         text=text,
-        overrides=tuple(f"{k}={v}" for k, v in (overrides or {}).items()),
+        overrides=tuple(shown),
+        warnings=warnings,
+        cli={"overrides": dict(overrides or {}), "start": start, "stop": stop, "name": name},
     )
 
 
 def load_scene(path: str | Path, overrides: Mapping[str, Any] | None = None,
-               step: float | None = None) -> Scene:
-    """Read and validate a scene file (see SPEC section 3)."""
+               step: float | None = None, *, start: float | None = None,
+               stop: float | None = None, name: str | None = None) -> Scene:
+    """Read and validate a scene file (see SPEC section 3).
+
+    ``overrides`` replace parameters or options by name, ``start``/``stop``/``step``
+    the sweep, ``name`` the output file stem; the command line's --set, --start,
+    --stop, --step and --name are these.  ``scene.warnings`` lists what is legal but
+    probably unintended (a step that does not reach the sweep's stop)."""
     source = str(path)
     try:
         text = Path(path).read_text(encoding="utf-8")
@@ -237,4 +354,4 @@ def load_scene(path: str | Path, overrides: Mapping[str, Any] | None = None,
         raise SceneError(f"{source}: cannot read: {exc.strerror}") from None
     except UnicodeDecodeError:
         raise SceneError(f"{source}: not UTF-8 text") from None
-    return parse_scene(text, source, overrides, step)
+    return parse_scene(text, source, overrides, step, start=start, stop=stop, name=name)

@@ -57,8 +57,8 @@ def variant(scene: Scene, *, step: float | None = None,
         data["outputs"] = {"quantities": list(outputs)}
     if step is not None:
         data["sweep"] = {**data.get("sweep", {}), "step": float(step)}
-    overrides = {}
-    for item in scene.overrides:  # the command line's --set, as given
-        name, _, text = item.partition("=")
-        overrides[name] = float(text)
-    return parse_scene(dumps(data), scene.source, overrides or None)
+    cli = dict(scene.cli)  # the command line's --set, --start, --stop, --name, re-applied
+    overrides = dict(cli.pop("overrides", {}))
+    for name in (options or {}):  # the variant's own options win over --set ones
+        overrides.pop(name, None)
+    return parse_scene(dumps(data), scene.source, overrides or None, **cli)

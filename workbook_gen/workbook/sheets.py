@@ -49,7 +49,7 @@ def write_about(workbook, formats, result: Evaluated, version: str, filename: st
         ("options", json.dumps(dict(scene.options), sort_keys=True)),
         ("generator", f"workbook-gen {version}"),
         ("scene file", scene.source),
-        ("overrides", " ".join(f"--set {o}" for o in scene.overrides) or "none"),
+        ("overrides", " ".join(scene.overrides) or "none"),
         ("sweep", f"{scene.sweep.start:g} to {scene.sweep.stop:g} by {scene.sweep.step:g} "
                   f"{scene.template.input.unit} ({result.rows} rows)"),
         ("outputs", ", ".join(scene.outputs)),
