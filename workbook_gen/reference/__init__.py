@@ -16,12 +16,14 @@ import numpy as np
 
 from workbook_gen.errors import WorkbookGenError
 
-from . import actuator_linkage, five_bar, four_bar, sewing_machine, slider_crank, walking_beam
+from . import (actuator_linkage, five_bar, four_bar, parallel_4dof, sewing_machine, slider_crank,
+               walking_beam)
 
 _MODULES = {"slider_crank": slider_crank, "sewing_machine": sewing_machine,
             "actuator_linkage": actuator_linkage,
             "five_bar": five_bar,
-            "four_bar": four_bar, "walking_beam": walking_beam}
+            "four_bar": four_bar, "walking_beam": walking_beam,
+            "parallel_4dof": parallel_4dof}
 MECHANISMS: tuple[str, ...] = tuple(_MODULES)
 
 
