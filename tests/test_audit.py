@@ -135,15 +135,43 @@ def test_cli_exit_codes_and_json(sewing_workbook, tmp_path):
     assert len(result.stderr.strip().splitlines()) == 1
 
 
-def test_cycle_is_reported_not_looped_on(tmp_path):
-    book = openpyxl.Workbook()
-    book.active["A1"] = "=B1+1"
-    book.active["B1"] = "=A1*2"
+def test_cycle_is_reported_and_the_rest_still_audited(tmp_path):
+    import xlsxwriter
     path = tmp_path / "cycle.xlsx"
-    book.save(path)
-    result = run_cli("audit", str(path))
-    assert result.returncode == 2
-    assert "circular reference" in result.stderr and "A1" in result.stderr
+    book = xlsxwriter.Workbook(path)
+    sheet = book.add_worksheet()
+    sheet.write_formula("A1", "=B1+1", None, 0)
+    sheet.write_formula("B1", "=A1*2", None, 0)
+    sheet.write_formula("C1", "=A1+5", None, 5)       # reads the cycle: not checked
+    sheet.write_number("D1", 3)
+    sheet.write_formula("E1", "=D1*2", None, 6)       # independent: checked, agrees
+    sheet.write_formula("F1", "=D1*3", None, 10)      # independent: checked, disagrees
+    book.close()
+    result = run_cli("audit", str(path), "--json")
+    assert result.returncode == 1, result.stderr
+    data = json.loads(result.stdout)
+    reasons = {e["cell"]: e["reason"] for e in data["not_checked"]}
+    assert set(reasons) == {"Sheet1!A1", "Sheet1!B1", "Sheet1!C1"}
+    assert "circular reference" in reasons["Sheet1!A1"]
+    assert reasons["Sheet1!C1"].startswith("depends on Sheet1!A1")
+    assert (data["cells_agree"], data["cells_disagree"], data["cells_not_checked"]) == (1, 1, 3)
+    assert [m["cell"] for m in data["mismatches"]] == ["Sheet1!F1"]
+    cycle = [f for f in data["findings"] if f["kind"] == "circular_reference"]
+    assert len(cycle) == 1 and "Sheet1!A1" in cycle[0]["message"] \
+        and "Sheet1!B1" in cycle[0]["message"]
+
+
+def test_range_size_functions_make_no_cycle(tmp_path):
+    import xlsxwriter
+    path = tmp_path / "rows.xlsx"
+    book = xlsxwriter.Workbook(path)
+    sheet = book.add_worksheet()
+    sheet.write_formula("A1", "=ROWS(A1:B3)*COLUMNS(A1:B3)", None, 6)
+    sheet.write_formula("B2", "=ROW(B2)+COLUMN(A1:A2)", None, 3)
+    book.close()
+    report = audit(path)
+    assert not any(f.kind == "circular_reference" for f in report.findings)
+    assert all("circular" not in r for r in report.not_checked.values())
 
 
 def test_unsupported_function_is_reported_by_cell(tmp_path):
@@ -153,11 +181,21 @@ def test_unsupported_function_is_reported_by_cell(tmp_path):
     sheet = book.add_worksheet()
     sheet.write_number("A1", 1)
     sheet.write_formula("B1", "=VLOOKUP(A1,A1:A1,1,FALSE)", None, 1)
+    sheet.write_formula("C1", "=B1*2", None, 2)       # depends on it: not checked
+    sheet.write_formula("D1", "=A1+1", None, 2)       # independent: checked
     book.close()
     report = audit(path)
-    assert not report.ok
-    assert any(f.kind == "unsupported function" and f.where == "Sheet1!B1" and "VLOOKUP" in f.detail
-               for f in report.findings)
+    assert report.ok  # a cell not checked never fails the audit on its own
+    assert report.not_checked["Sheet1!B1"] == "unsupported function VLOOKUP"
+    assert report.not_checked["Sheet1!C1"].startswith("depends on Sheet1!B1")
+    assert (report.cells_agree, report.cells_disagree, report.cells_not_checked) == (1, 0, 2)
+    assert any(f.kind == "unsupported_function" and f.cell == "Sheet1!B1"
+               and "VLOOKUP" in f.message for f in report.findings)
+    result = run_cli("audit", str(path))
+    assert result.returncode == 0 and len(result.stdout.splitlines()) <= 8, result.stdout
+    assert "1 unsupported function VLOOKUP" in result.stdout
+    verbose = run_cli("audit", str(path), "--verbose").stdout
+    assert "Sheet1!C1: depends on Sheet1!B1" in verbose
 
 
 def test_engine_libreoffice_agrees_on_our_workbook(libreoffice, sewing_workbook):

@@ -6,11 +6,21 @@
     path = write_workbook(scene, "outputs")
 """
 
-from .compute import compute
 from .errors import WorkbookGenError
-from .scene import load_scene
 from .version import VERSION as __version__
-from .workbook import write_workbook
+
+_LAZY = {"compute": ".compute", "load_scene": ".scene", "write_workbook": ".workbook"}
+
+
+def __getattr__(name):
+    """compute, load_scene and write_workbook on first use: ``audit`` needs none of
+    them (pandas alone takes a second to import)."""
+    if name in _LAZY:
+        import importlib
+        value = getattr(importlib.import_module(_LAZY[name], __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def audit(path, **options):

@@ -81,7 +81,7 @@ def _audit(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps(report.to_json(), indent=2, allow_nan=False))
     else:
-        print(format_report(report))
+        print(format_report(report, verbose=args.verbose))
     return 0 if report.ok else 1
 
 
@@ -139,6 +139,8 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--engine", choices=["libreoffice"],
                    help="also recalculate the file in LibreOffice headless and compare")
+    p.add_argument("--verbose", action="store_true",
+                   help="list every column, disagreeing cell, cell not checked and finding")
     p.set_defaults(run=_audit)
 
     p = sub.add_parser("tradeoff", help="speed against accuracy on a scene: step, method, "

@@ -58,7 +58,10 @@ class _Resolver:
         text = self._upper.get(name.upper())
         if text is None:
             return ExcelError.NAME
-        node = parse(str(text).lstrip("="))
+        try:
+            node = parse(str(text).lstrip("="))
+        except FormulaSyntaxError:
+            return ExcelError.NAME
         return evaluate_scalar(node, self)
 
 
@@ -152,13 +155,9 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
     timings["read"] = time.perf_counter() - started
     t = time.perf_counter()
     evaluation = evaluate_cells(inputs.formulas, inputs.constants, inputs.book.defined_names,
-                                vectorize=vectorize)
+                                vectorize=vectorize, uncheckable=inputs.uncheckable())
     timings["evaluate_all"] = time.perf_counter() - t
-    if evaluation.cycles:
-        cycle = evaluation.cycles[0]
-        raise WorkbookReadError(
-            f"{path}: circular reference: " + " -> ".join(_cell_name(k) for k in cycle + cycle[:1])
-            + (f" (and {len(evaluation.cycles) - 1} more)" if len(evaluation.cycles) > 1 else ""))
+    skipped = evaluation.not_checked
 
     values, constants = evaluation.values, inputs.constants
     local = _local_evaluation(inputs)
@@ -179,7 +178,8 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
     max_abs = max_rel = 0.0
     by_column: dict[tuple[str, int], list] = {}
     for key in inputs.cached:
-        by_column.setdefault((key[0], key[2]), []).append(key)
+        if key not in skipped:
+            by_column.setdefault((key[0], key[2]), []).append(key)
     store = evaluation.store
     for (sheet, col), keys in by_column.items():
         stats = columns[(sheet, col)] = ColumnStats(sheet, xl_col_to_name(col - 1))
@@ -220,25 +220,28 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
             else:
                 max_abs = max(max_abs, verdict.abs_error)
                 max_rel = max(max_rel, verdict.rel_error)
-    differ = {_cell_name(k) for k in local.values
-              if not compare(inputs.cached[k], values[k], evaluation.operands_scale[k]).agree}
+    differ = {_cell_name(k) for k in local.values if k not in skipped
+              and not compare(inputs.cached[k], values[k], evaluation.operands_scale[k]).agree}
     _mark_roots(inputs, mismatches, differ)
     timings["compare"] = time.perf_counter() - t
     t = time.perf_counter()
     mechanics = check_mechanics(inputs.book, value_of, evaluation.store.column_values)
     timings["reference"] = time.perf_counter() - t
     findings = check_structure(inputs, evaluation, _cell_name)
-    engine_result = (_engine(path, engine, inputs, value_of, evaluation.operands_scale)
+    engine_result = (_engine(path, engine, inputs, value_of, evaluation.operands_scale, skipped)
                      if engine else None)
+    not_checked = {_cell_name(k): reason for k, reason in sorted(skipped.items())
+                   if inputs.is_formula(k)}
     return AuditReport(
-        path=str(path), formula_cells=len(inputs.formulas), cells_checked=checked + explained,
-        mismatches=mismatches, columns=[columns[k] for k in sorted(columns)],
+        path=str(path), formula_cells=inputs.formula_count, cells_checked=checked + explained,
+        mismatches=mismatches, not_checked=not_checked, columns=[columns[k] for k in sorted(columns)],
         max_abs_error=max_abs, max_rel_error=max_rel, findings=findings, mechanics=mechanics,
         libreoffice_semantics=explained, vector_cells=evaluation.groups.vector_cells,
         seconds=time.perf_counter() - started, engine=engine_result, timings=timings)
 
 
-def _engine(path, engine: str, inputs: AuditInputs, value_of, scales) -> EngineResult:
+def _engine(path, engine: str, inputs: AuditInputs, value_of, scales,
+            scales_skip=()) -> EngineResult:
     if engine != "libreoffice":
         raise WorkbookGenError(f"unknown engine {engine!r} (known: libreoffice)")
     from ..engines.libreoffice import recalculated_values
@@ -249,6 +252,8 @@ def _engine(path, engine: str, inputs: AuditInputs, value_of, scales) -> EngineR
     seen = {k: theirs.get(k[0], {}).get(inputs.ref(k)) for k in inputs.formulas}
     local = _local_evaluation(inputs, seen)
     for key, formula in inputs.formulas.items():
+        if key in scales_skip:
+            continue
         sheet = sheet_of[key[0]]
         ref = inputs.ref(key)
         if ref not in theirs.get(sheet.name, {}):

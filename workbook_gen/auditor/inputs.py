@@ -25,6 +25,27 @@ class AuditInputs:
     broken: dict[Key, str] = field(default_factory=dict)       # shared formulas that do not expand
     _names: dict[str, Key] | None = None
 
+    def uncheckable(self) -> dict[Key, str]:
+        """Formula cells not handed to the evaluator, with the reason (cells an array
+        formula fills included: what reads them is not checked either)."""
+        out = {k: f"formula syntax: {msg}" for k, msg in self.broken.items()}
+        for key in self.array_cells:
+            out[key] = "array formula: not recomputed"
+        return out
+
+    @property
+    def formula_count(self) -> int:
+        """Formula cells as the file stores them: an array formula counts once."""
+        masters = sum(1 for k in self.array_cells
+                      if self.book.sheet(k[0]).cell(k[1], k[2]).is_array)
+        return len(self.formulas) + len(self.broken) + masters
+
+    def is_formula(self, key: Key) -> bool:
+        if key in self.formulas or key in self.broken:
+            return True
+        cell = self.book.sheet(key[0]).cell(key[1], key[2])
+        return cell is not None and cell.is_array
+
     @staticmethod
     def ref(key: Key) -> str:
         """The A1 reference of a cell key: (sheet, 2, 3) -> 'C2'."""
@@ -61,6 +82,8 @@ def read_inputs(path: str | Path) -> AuditInputs:
                     text = expand_shared(text, master.row, master.col, cell.row, cell.col)
                 except FormulaSyntaxError as exc:
                     inputs.broken[key] = str(exc)
+                    inputs.constants[key] = cell.value
+                    continue
             inputs.formulas[key] = text
             inputs.cached[key] = cell.value
     return inputs

@@ -10,7 +10,8 @@ from .compare import ColumnStats
 from .mechanics import REFERENCE_TOLERANCE, MechanicsReport
 from .structure import Finding
 
-MAX_LISTED = 20  # disagreeing cells listed per column in the terminal
+MAX_LISTED = 20  # disagreeing cells listed per column in the terminal (--verbose)
+WORST = 5  # disagreeing cells shown in the default summary
 
 
 @dataclass
@@ -48,13 +49,42 @@ class AuditReport:
     seconds: float
     engine: EngineResult | None = None
     timings: dict[str, float] = field(default_factory=dict)
+    # formula cells that could not be recomputed, or read one: cell -> reason
+    not_checked: dict[str, str] = field(default_factory=dict)
 
     @property
     def ok(self) -> bool:
+        """True unless a cell disagrees (with its cached value, the reference model or
+        the other engine): findings and cells not checked never fail an audit."""
         return (not self.mismatches
-                and not any(f.blocking for f in self.findings)
                 and (self.mechanics is None or self.mechanics.ok)
                 and (self.engine is None or not self.engine.mismatches))
+
+    @property
+    def cells_disagree(self) -> int:
+        return len(self.mismatches)
+
+    @property
+    def cells_agree(self) -> int:
+        return self.cells_checked - len(self.mismatches)
+
+    @property
+    def cells_not_checked(self) -> int:
+        return len(self.not_checked)
+
+    def not_checked_reasons(self) -> list[tuple[str, int]]:
+        """(reason, cells) most frequent first; dependents grouped by what they read."""
+        counts: dict[str, int] = {}
+        for reason in self.not_checked.values():
+            if reason.startswith("depends on"):
+                key = "depend on a cell not checked"
+            elif reason.startswith(("formula syntax", "circular reference", "defined name")):
+                key = reason.split(" at position")[0].split(" (")[0].split(" '")[0]
+                key = key if len(key) < 70 else key[:67] + "..."
+            else:
+                key = reason
+            counts[key] = counts.get(key, 0) + 1
+        return sorted(counts.items(), key=lambda kv: (-kv[1], kv[0]))
 
     @property
     def reference(self) -> dict[str, float]:
@@ -68,11 +98,16 @@ class AuditReport:
             "file": self.path,
             "formula_cells": self.formula_cells,
             "cells_checked": self.cells_checked,
+            "cells_agree": self.cells_agree,
+            "cells_disagree": self.cells_disagree,
+            "cells_not_checked": self.cells_not_checked,
+            "not_checked": [{"cell": c, "reason": r} for c, r in self.not_checked.items()],
             "mismatches": [_mismatch_json(m) for m in self.mismatches],
             "max_abs_error": self.max_abs_error,
             "max_rel_error": self.max_rel_error,
             "reference": self.reference,
-            "findings": [f.__dict__ for f in self.findings],
+            "findings": [{"cell": f.cell, "kind": f.kind, "message": f.message}
+                         for f in self.findings],
             "libreoffice_semantics": self.libreoffice_semantics,
             "vectorized_cells": self.vector_cells,
             "seconds": self.seconds,
@@ -117,42 +152,86 @@ def _show(value: object) -> str:
     return repr(value)
 
 
-def format_report(report: AuditReport) -> str:
+def _worst(report: AuditReport) -> list:
+    """Disagreeing cells, sources first, then by the size of the difference."""
+    def size(m):
+        return m.abs_error if m.abs_error is not None and math.isfinite(m.abs_error) else math.inf
+    return sorted(report.mismatches, key=lambda m: (not m.root, -size(m)))
+
+
+def format_report(report: AuditReport, verbose: bool = False) -> str:
+    """A few lines (counts, reasons, the worst cells, the verdict); ``verbose``: every
+    column, every disagreeing cell, every cell not checked and every finding."""
     lines = [f"audit of {report.path}",
-             f"  {report.formula_cells} formula cells, {report.cells_checked} checked "
-             f"({report.vector_cells} as vectorised columns), {report.seconds:.2f} s"]
-    lines.append("")
-    lines.append(f"  {'sheet':<12}{'column':<8}{'cells':>8}{'worst error':>14}  {'at':<10}disagree")
-    for c in report.columns:
-        lines.append(f"  {c.sheet:<12}{c.column:<8}{c.cells:>8}{c.worst_error:>14.2e}  "
-                     f"{c.worst_cell:<10}{c.mismatches}")
-    if report.mismatches:
-        roots = [m for m in report.mismatches if m.root]
-        lines += ["", f"  {len(report.mismatches)} cells disagree (cached against recomputed), "
-                      f"{len(roots)} at their source (no precedent disagrees):"]
-        ordered = roots + [m for m in report.mismatches if not m.root]
-        for m in ordered[:MAX_LISTED * 5]:
-            lines.append(f"    {m.cell}: ={m.formula}{'' if m.root else '  (follows)'}")
-            lines.append(f"      cached {_show(m.cached)}, recomputed {_show(m.recomputed)}")
+             f"  {report.formula_cells} formula cells: {report.cells_checked} checked "
+             f"({report.cells_agree} agree, {report.cells_disagree} disagree), "
+             f"{report.cells_not_checked} not checked; {report.seconds:.2f} s"]
+    reasons = report.not_checked_reasons()
+    if reasons:
+        shown = reasons if verbose else reasons[:3]
+        lines.append("  not checked: " + "; ".join(f"{n} {r}" for r, n in shown)
+                     + ("; ..." if len(shown) < len(reasons) else ""))
     if report.libreoffice_semantics:
         lines.append(f"  {report.libreoffice_semantics} cells hold LibreOffice's answer where "
                      f"Excel's differs (e.g. SQRT(-1) is #VALUE! there): accepted")
+    worst = _worst(report)
+    if worst:
+        roots = sum(1 for m in worst if m.root)
+        lines.append(f"  {len(worst)} cells disagree (cached against recomputed), {roots} at "
+                     f"their source (no precedent disagrees)"
+                     + ("; the worst:" if not verbose and len(worst) > WORST else ":"))
+        for m in worst[:(MAX_LISTED * 5 if verbose else WORST)]:
+            lines.append(f"    {m.cell}: ={m.formula}{'' if m.root else '  (follows)'}")
+            lines.append(f"      cached {_show(m.cached)}, recomputed {_show(m.recomputed)}")
+    if verbose:
+        lines += _columns(report)
+        if report.not_checked:
+            lines += ["", "  not checked:"]
+            lines += [f"    {cell}: {reason}" for cell, reason in report.not_checked.items()]
     if report.findings:
-        lines += ["", "  structure:"]
-        for f in report.findings[:200]:
-            mark = "" if f.blocking else " (reported)"
-            lines.append(f"    {f.kind}{mark}: {f.where}: {f.detail}")
+        kinds: dict[str, int] = {}
+        for f in report.findings:
+            kinds[f.kind] = kinds.get(f.kind, 0) + 1
+        lines.append("  findings: " + ", ".join(f"{k} {n}" for k, n in sorted(kinds.items())))
+        for f in report.findings[:None if verbose else 3]:
+            lines.append(f"    {f.kind}: {f.cell}: {f.message}")
     if report.mechanics is not None:
-        lines += _mechanics_lines(report.mechanics)
+        lines += _mechanics_lines(report.mechanics) if verbose else _mechanics_line(report.mechanics)
     if report.engine is not None:
         e = report.engine
-        lines += ["", f"  {e.engine}: {e.cells} cells recalculated in {e.seconds:.1f} s, "
-                      f"{len(e.mismatches)} disagree with the recomputed values"]
-        for m in e.mismatches[:MAX_LISTED]:
-            lines.append(f"    {m.cell}: ={m.formula}: {e.engine} {_show(m.cached)}, "
-                         f"ours {_show(m.recomputed)}")
-    lines += ["", "  OK: every cell agrees" if report.ok else "  FAILED: see above"]
+        lines += [f"  {e.engine}: {e.cells} cells recalculated in {e.seconds:.1f} s, "
+                  f"{len(e.mismatches)} disagree with the recomputed values"]
+        for m in e.mismatches[:MAX_LISTED if verbose else WORST]:
+            lines.append(f"    {m.cell}: ={_cut(m.formula)}: {e.engine} {_cut(_show(m.cached))}, "
+                         f"ours {_cut(_show(m.recomputed))}")
+    if report.ok:
+        verdict = "  OK: every checked cell agrees"
+        if report.cells_not_checked:
+            verdict += f" ({report.cells_not_checked} not checked)"
+    else:
+        verdict = "  FAILED: cells disagree (see above" + ("" if verbose else "; --verbose lists all") + ")"
+    lines.append(verdict)
     return "\n".join(lines)
+
+
+def _cut(text: str, width: int = 80) -> str:
+    return text if len(text) <= width else text[:width - 3] + "..."
+
+
+def _columns(report: AuditReport) -> list[str]:
+    lines = ["", f"  {'sheet':<12}{'column':<8}{'cells':>8}{'worst error':>14}  {'at':<10}disagree"]
+    for c in report.columns:
+        lines.append(f"  {c.sheet:<12}{c.column:<8}{c.cells:>8}{c.worst_error:>14.2e}  "
+                     f"{c.worst_cell:<10}{c.mismatches}")
+    return lines
+
+
+def _mechanics_line(m: MechanicsReport) -> list[str]:
+    bad = [q.name for q in m.quantities if not q.ok]
+    worst = max((q.max_error for q in m.quantities), default=0.0)
+    line = (f"  reference model of {m.mechanism}: {len(m.quantities)} quantities, max error "
+            f"{worst:.2e}")
+    return [line + (f"; FAIL: {', '.join(bad)}" if bad else "")]
 
 
 def _mechanics_lines(m: MechanicsReport) -> list[str]:

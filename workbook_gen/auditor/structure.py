@@ -1,48 +1,103 @@
-"""Structure checks: legal names, references that resolve, only supported functions,
-no external links; volatile functions are reported."""
+"""Structure findings: names Excel would refuse, names that do not parse, references that
+do not resolve, external links, cycles, unsupported and volatile functions.
+
+A finding is reported and never fails the audit on its own: only cells that disagree do.
+The cells a finding keeps from being recomputed are listed in the report's ``not_checked``.
+"""
 
 from __future__ import annotations
 
+import re
+from collections import defaultdict
 from dataclasses import dataclass
 
 from ..formula import ast
-from ..names import name_problem
 
+# Excel's rules: a letter of any script, '_' or '\' first; then letters, digits, '_', '.',
+# '\' and '?'; not a cell reference, not R1C1-like; at most 255 characters.
+_NAME = re.compile(r"[^\W\d]|[_\\]", re.UNICODE)
+_NAME_REST = re.compile(r"[\w.\\?]*", re.UNICODE)
+_A1 = re.compile(r"\$?([A-Za-z]{1,3})\$?([0-9]+)")
+_R1C1 = re.compile(r"[Rr][0-9]*[Cc]?[0-9]*|[Cc][0-9]*")
+_BUILT_IN = re.compile(r"_xlnm\.[A-Za-z_]+")
 
 
 @dataclass(frozen=True)
 class Finding:
-    kind: str       # "illegal name", "unresolved reference", "unsupported function", ...
-    where: str      # a cell "Table!B2", a name, or a part of the file
-    detail: str
-    blocking: bool = True  # False: reported, does not fail the audit
+    cell: str       # a cell "Table!B2", a defined name, or a part of the file
+    kind: str       # snake_case: "illegal_name", "circular_reference", ...
+    message: str
+
+
+def excel_name_problem(name: str) -> str | None:
+    """Why Excel would refuse ``name`` as a defined name, or None."""
+    if _BUILT_IN.fullmatch(name):
+        return None  # _xlnm.Print_Area and friends
+    if not name or len(name) > 255:
+        return "a name has 1 to 255 characters"
+    if not _NAME.match(name[0]) or not _NAME_REST.fullmatch(name, 1):
+        return ("a name starts with a letter, '_' or '\\' and holds only letters, digits, "
+                "'_', '.', '\\' and '?'")
+    a1 = _A1.fullmatch(name)
+    if a1 and len(a1.group(1)) <= 3 and _col(a1.group(1)) <= 16384 \
+            and 1 <= int(a1.group(2)) <= 1048576:
+        return "it is a cell reference"
+    if _R1C1.fullmatch(name):
+        return "it reads as an R1C1 reference"
+    if name.upper() in ("TRUE", "FALSE"):
+        return "it is a boolean literal"
+    return None
+
+
+def _col(letters: str) -> int:
+    n = 0
+    for ch in letters.upper():
+        n = n * 26 + ord(ch) - 64
+    return n
 
 
 def check_structure(inputs, evaluation, cell_name) -> list[Finding]:
     book = inputs.book
     findings = []
-    for name in book.defined_names:
-        problem = name_problem(name)
+    scoped = [(n, None) for n in book.defined_names] + [
+        (n, s.name) for s in book.sheets for n in s.defined_names]
+    for name, sheet in scoped:
+        problem = excel_name_problem(name)
         if problem:
-            findings.append(Finding("illegal name", name, problem))
+            findings.append(Finding(name if sheet is None else f"{sheet}!{name}",
+                                    "illegal_name", problem))
+    for name, message in sorted(evaluation.bad_names.items()):
+        findings.append(Finding(name, "defined_name_syntax",
+                                f"the defined name does not parse, so the cells that use it "
+                                f"are not checked: {message}"))
     for link in book.external_links:
-        findings.append(Finding("external link", str(getattr(link, "part", link)),
+        findings.append(Finding(str(getattr(link, "part", link)), "external_link",
                                 f"the workbook links to {getattr(link, 'target', link)}"))
-    for key, functions in evaluation.unsupported.items():
-        findings.append(Finding("unsupported function", cell_name(key), ", ".join(functions)))
-    for key, functions in evaluation.volatile.items():
-        findings.append(Finding("volatile function", cell_name(key), ", ".join(functions),
-                                blocking=False))
-    for key in evaluation.external:
-        findings.append(Finding("external reference", cell_name(key), inputs.formulas[key]))
-    for key, message in {**evaluation.syntax_errors, **inputs.broken}.items():
-        findings.append(Finding("formula syntax", cell_name(key), message))
-    for key in inputs.array_cells:
-        if book.sheet(key[0]).cell(key[1], key[2]).is_array:
-            findings.append(Finding("array formula", cell_name(key),
-                                    "array formulas are not recomputed", blocking=False))
+    for cycle in evaluation.cycles:
+        path = " -> ".join(cell_name(k) for k in cycle[:8])
+        more = f" (and {len(cycle) - 8} more)" if len(cycle) > 8 else ""
+        findings.append(Finding(cell_name(cycle[0]), "circular_reference",
+                                f"{len(cycle)} cells refer to each other: {path}{more}; "
+                                "they and their dependents are not checked"))
+    findings += _by_function(evaluation.unsupported, "unsupported_function",
+                             "{n} cells call {f}, which the evaluator lacks; they and their "
+                             "dependents are not checked", cell_name)
+    findings += _by_function(evaluation.volatile, "volatile_function",
+                             "{n} cells call {f}, a volatile function", cell_name)
     findings.extend(_unresolved(inputs, evaluation, cell_name))
     return findings
+
+
+def _by_function(cells: dict, kind: str, text: str, cell_name) -> list[Finding]:
+    """One finding per function: its first cell and how many cells call it."""
+    first: dict[str, tuple] = {}
+    count: dict[str, int] = defaultdict(int)
+    for key in sorted(cells):
+        for f in cells[key]:
+            first.setdefault(f, key)
+            count[f] += 1
+    return [Finding(cell_name(first[f]), kind, text.format(n=count[f], f=f))
+            for f in sorted(first)]
 
 
 def _unresolved(inputs, evaluation, cell_name) -> list[Finding]:
@@ -54,16 +109,20 @@ def _unresolved(inputs, evaluation, cell_name) -> list[Finding]:
     sheets = {s.upper() for s in book.sheet_names}
     names = {n.upper() for n in book.defined_names}
     local = {(s.name, n.upper()) for s in book.sheets for n in s.defined_names}
+    local_any = {n for _, n in local}
     findings = []
     for run in evaluation.runs:
         key = (run.sheet, run.first, run.col)
         for node in ast.walk(run.node):
             sheet = getattr(node, "sheet", None)
             if sheet and sheet.upper() not in sheets and not sheet.startswith("["):
-                findings.append(Finding("unresolved reference", cell_name(key),
+                findings.append(Finding(cell_name(key), "unresolved_reference",
                                         f"no sheet named {sheet!r}"))
-            if isinstance(node, ast.Name) and node.name.upper() not in names \
-                    and (run.sheet, node.name.upper()) not in local:
-                findings.append(Finding("unresolved reference", cell_name(key),
-                                        f"no defined name {node.name!r}"))
+            if isinstance(node, ast.Name):
+                upper = node.name.upper()
+                known = (upper in local_any if node.sheet else
+                         upper in names or (run.sheet, upper) in local)
+                if not known:
+                    findings.append(Finding(cell_name(key), "unresolved_reference",
+                                            f"no defined name {node.name!r}"))
     return findings

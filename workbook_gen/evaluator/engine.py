@@ -8,7 +8,10 @@ part in a cycle of runs, is split into single cells.
 
 Documented choices:
 - a cell in a circular reference gets ``#REF!`` (Excel shows 0 with a warning; an
-  error can never pass for a number) and each cycle is reported once;
+  error can never pass for a number) and each cycle is reported once; the rest of the
+  workbook is still evaluated;
+- every cell that cannot be recomputed, and every cell that reads one (directly or
+  through others), is in ``not_checked`` with the reason (:mod:`taint`);
 - a formula that does not parse gets ``#NAME?`` and its message in ``syntax_errors``;
 - an external reference (``[1]Sheet!A1``) gives ``#REF!`` and the cell is in ``external``;
 - an unsupported function gives ``#NAME?`` where it is evaluated; volatile functions
@@ -26,6 +29,7 @@ from dataclasses import dataclass, field
 
 from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.evaluator import graph
+from workbook_gen.evaluator.taint import Shape, Taint
 from workbook_gen.evaluator.grouping import Run, group_formulas
 from workbook_gen.evaluator.ops import Const
 from workbook_gen.evaluator.store import Names, Num, Obj, SheetResolver, Store, value_scale
@@ -38,7 +42,12 @@ from workbook_gen.xlerror import ExcelError
 log = logging.getLogger(__name__)
 
 Cell = tuple[str, int, int]
-VOLATILE = frozenset({"NOW", "TODAY", "RAND", "RANDBETWEEN", "OFFSET", "INDIRECT"})
+VOLATILE = frozenset({"NOW", "TODAY", "RAND", "RANDBETWEEN", "RANDARRAY", "OFFSET",
+                      "INDIRECT"})
+# volatile and not reproducible: the cached value is from another moment or another draw
+CHANGING = frozenset({"NOW", "TODAY", "RAND", "RANDBETWEEN", "RANDARRAY"})
+# functions that use a reference's position or size, never its cells' values
+REFERENCE_ONLY = frozenset({"ROW", "COLUMN", "ROWS", "COLUMNS", "ISREF", "AREAS"})
 CYCLE_VALUE = ExcelError.REF
 SYNTAX_VALUE = ExcelError.NAME
 EXTERNAL_VALUE = ExcelError.REF
@@ -79,6 +88,9 @@ class Evaluation:
     syntax_errors: dict[Cell, str] = field(default_factory=dict)
     volatile: dict[Cell, list[str]] = field(default_factory=dict)
     external: list[Cell] = field(default_factory=list)
+    # every cell that cannot be recomputed or reads one: (sheet, row, col) -> reason
+    not_checked: dict[Cell, str] = field(default_factory=dict)
+    bad_names: dict[str, str] = field(default_factory=dict)  # name -> why it does not parse
     groups: GroupStats = field(default_factory=GroupStats)
     seconds: dict[str, float] = field(default_factory=dict)  # grouping, graph, vector, scalar
     store: Store | None = None  # the values column by column, for array-wise comparison
@@ -99,14 +111,21 @@ class _Unit:
 
 
 def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object],
-                   names: Mapping[str, str], *, vectorize: bool = True) -> Evaluation:
-    """Recompute every formula (texts without '=') of a workbook; see the module doc."""
+                   names: Mapping[str, str], *, vectorize: bool = True,
+                   uncheckable: Mapping[Cell, str] | None = None) -> Evaluation:
+    """Recompute every formula (texts without '=') of a workbook; see the module doc.
+
+    ``uncheckable``: cells among ``constants`` that are formulas the caller could not
+    hand over (with the reason): their readers are not checked either."""
     sheets = {k[0] for k in formulas} | {k[0] for k in constants}
     store = Store(sheets)
     store.put_constants(constants)
     name_table = Names(dict(names))
     result = Evaluation(CellMap(formulas, store.get), CellMap(formulas, store.scale),
-                        store=store)
+                        store=store, bad_names=dict(name_table.errors))
+    taint = Taint()
+    for cell, reason in (uncheckable or {}).items():
+        _source(result, taint, cell, cell, reason)
 
     clock = time.perf_counter()
     runs, errors = _runs(formulas, vectorize)
@@ -115,17 +134,22 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
         if _EXTERNAL.search(formulas[cell]):
             result.external.append(cell)
             store.put(*cell, EXTERNAL_VALUE)
+            _source(result, taint, cell, cell, "external reference")
         else:
             result.syntax_errors[cell] = message
             store.put(*cell, SYNTAX_VALUE)
+            _source(result, taint, cell, cell, f"formula syntax: {message}")
     units = _units(runs, vectorize, store, result)
+    for cell in result.external:
+        _source(result, taint, cell, cell, "external reference")
     _report_functions(units, result)
 
     result.seconds["grouping"] = time.perf_counter() - clock
     clock = time.perf_counter()
     deps = []
     while True:
-        inputs = [_rects(u, store, name_table) for u in units]
+        shapes = [_shapes(u, store, name_table) for u in units]
+        inputs = [_rects(u, s) for u, s in zip(units, shapes)]
         deps = graph.build([(u.sheet, u.col, u.first, u.last) for u in units], inputs)
         components = graph.order(deps)
         cyclic = [c for c in components if graph.is_cycle(c, deps)]
@@ -141,10 +165,15 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
         if graph.is_cycle(component, deps):
             cells = sorted(c for u in component for c in units[u].cells())
             result.cycles.append(cells)
+            where = _where(cells[0]) + (f" and {len(cells) - 1} more" if len(cells) > 1 else "")
             for cell in cells:
                 store.put(*cell, CYCLE_VALUE)
+                _source(result, taint, cell, cell, f"circular reference ({where})")
             continue
         for u in component:
+            head = (units[u].sheet, units[u].first, units[u].col)
+            if taint or shapes[u][1] or head in result.unsupported or head in result.volatile:
+                _spread(units[u], shapes[u], taint, result)
             clock = time.perf_counter()
             _evaluate(units[u], store, name_table)
             spent["vector" if units[u].block is not None else "scalar"] += (
@@ -206,42 +235,115 @@ def _singles(unit: _Unit) -> list[_Unit]:
 
 def _report_functions(units: list[_Unit], result: Evaluation) -> None:
     for u in units:
+        called = {n.name for n in ast.walk(u.node) if isinstance(n, ast.Func)}
         bad = sorted(unsupported_functions(u.node))
-        if not bad:
+        volatile = sorted(called & VOLATILE)
+        if not bad and not volatile:
             continue
-        volatile = [f for f in bad if f in VOLATILE]
         for cell in u.cells():
-            result.unsupported[cell] = bad
+            if bad:
+                result.unsupported[cell] = bad
             if volatile:
                 result.volatile[cell] = volatile
 
 
-def _rects(unit: _Unit, store: Store, names: Names) -> list[graph.Rect]:
-    """The rectangles of cells a unit reads (defined names followed)."""
-    span = unit.last - unit.first
-    out: list[graph.Rect] = []
+def _where(cell: Cell) -> str:
+    from workbook_gen.formula.printer import column_letters, quote_sheet
+    return f"{quote_sheet(cell[0])}!{column_letters(cell[2])}{cell[1]}"
+
+
+def _source(result: Evaluation, taint: Taint, cell: Cell, origin: Cell, reason: str) -> None:
+    """``cell`` cannot be recomputed (``origin`` is the cell the reason is about)."""
+    if cell not in result.not_checked:
+        result.not_checked[cell] = reason
+        taint.add(cell[0], cell[2], cell[1], cell[1], origin)
+
+
+def _unit_reason(unit: _Unit, result: Evaluation, bad_names: list[str]) -> str | None:
+    """Why a unit cannot be recomputed at all, or None."""
+    cell = (unit.sheet, unit.first, unit.col)
+    if cell in result.unsupported:
+        return "unsupported function " + ", ".join(result.unsupported[cell])
+    changing = [f for f in result.volatile.get(cell, ()) if f in CHANGING]
+    if changing:
+        return (f"volatile function {', '.join(changing)}: its value changes at every "
+                "recalculation")
+    if bad_names:
+        name = bad_names[0]
+        return f"defined name {name} does not parse: {result.bad_names.get(name, '')}"
+    return None
+
+
+def _spread(unit: _Unit, shaped: tuple, taint: Taint, result: Evaluation) -> None:
+    """Mark the unit's cells that cannot be recomputed or read a cell that cannot."""
+    shapes, bad_names = shaped
+    reason = _unit_reason(unit, result, bad_names)
+    if reason is not None:
+        for cell in unit.cells():
+            _source(result, taint, cell, cell, reason)
+        return
+    n = unit.last - unit.first + 1
+    for shape in shapes:
+        for lo, hi, origin in taint.hits(shape, n):
+            why = result.not_checked.get(origin, "")
+            for i in range(lo, hi + 1):
+                cell = (unit.sheet, unit.first + i, unit.col)
+                if cell not in result.not_checked:
+                    result.not_checked[cell] = f"depends on {_where(origin)}: {why}"
+                    taint.add(unit.sheet, unit.col, cell[1], cell[1], origin)
+
+
+def _reads(node: ast.Node):
+    """The references and names whose cells a formula reads: not the references given to
+    functions that use only their position or size (``ROWS(A1:A9)`` reads no cell)."""
+    stack = [node]
+    while stack:
+        n = stack.pop()
+        if isinstance(n, (ast.CellRef, ast.RangeRef, ast.Name)):
+            yield n
+        elif isinstance(n, ast.Func) and n.name in REFERENCE_ONLY:
+            stack.extend(a for a in n.args if not isinstance(a, (ast.CellRef, ast.RangeRef)))
+        else:
+            stack.extend(ast.children(n))
+
+
+def _shapes(unit: _Unit, store: Store, names: Names) -> tuple[list[Shape], list[str]]:
+    """The rectangles of cells a unit reads at its first row (defined names followed),
+    and the names it uses that do not parse."""
+    out: list[Shape] = []
+    bad: list[str] = []
     pending = [(unit.node, unit.sheet)]
     seen_names: set[str] = set()
     while pending:
         node, home = pending.pop()
-        for n in ast.walk(node):
+        for n in _reads(node):
             if isinstance(n, ast.Name):
                 key = n.name.upper()
-                if key not in seen_names and names.node(key) is not None:
-                    seen_names.add(key)
+                if key in seen_names:
+                    continue
+                seen_names.add(key)
+                if names.node(key) is not None:
                     pending.append((names.node(key), home))
+                elif key in names.errors:
+                    bad.append(key)
                 continue
             if isinstance(n, ast.CellRef):
-                corners = [n]
-            elif isinstance(n, ast.RangeRef):
-                corners = [n.first, n.last]
+                first = last = n
             else:
-                continue
+                first, last = n.first, n.last
             sheet = home if n.sheet is None else store.sheet(n.sheet)
-            rows = [c.row for c in corners] + [c.row + span for c in corners if not c.row_abs]
-            cols = [c.col for c in corners]
-            out.append((sheet, min(rows), min(cols), max(rows), max(cols)))
-    return out
+            if first.row > last.row:
+                first, last = last, first
+            out.append(Shape(sheet, first.row, min(first.col, last.col), last.row,
+                             max(first.col, last.col), not first.row_abs, not last.row_abs))
+    return out, bad
+
+
+def _rects(unit: _Unit, shaped: tuple) -> list[graph.Rect]:
+    """The rectangles of cells a unit reads over all its rows."""
+    span = unit.last - unit.first
+    return [(s.sheet, s.row1, s.col1, s.row2 + (span if s.rel2 else 0), s.col2)
+            for s in shaped[0]]
 
 
 def _evaluate(unit: _Unit, store: Store, names: Names) -> None:
