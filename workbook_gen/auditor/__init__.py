@@ -26,6 +26,7 @@ from ..xlerror import ExcelError
 import numpy as np
 
 from .compare import ColumnStats, compare, compare_numbers
+from .findings import find as find_findings
 from .inputs import AuditInputs, read_inputs
 from .mechanics import check_mechanics
 from .report import AuditReport, EngineResult, Mismatch
@@ -228,6 +229,9 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
     mechanics = check_mechanics(inputs.book, value_of, evaluation.store.column_values)
     timings["reference"] = time.perf_counter() - t
     findings = check_structure(inputs, evaluation, _cell_name)
+    t = time.perf_counter()
+    findings += find_findings(inputs, evaluation.runs, _cell_name)
+    timings["findings"] = time.perf_counter() - t
     engine_result = (_engine(path, engine, inputs, value_of, evaluation.operands_scale, skipped)
                      if engine else None)
     not_checked = {_cell_name(k): reason for k, reason in sorted(skipped.items())
