@@ -24,12 +24,16 @@ _ATOM = 9
 
 
 class Row:
-    """Marker for 'the row number of the cell being written' in a template."""
+    """Marker for 'the row number of the cell being written' in a template, plus
+    ``offset`` (a reference from another sheet whose rows start elsewhere)."""
 
-    __slots__ = ()
+    __slots__ = ("offset",)
+
+    def __init__(self, offset: int = 0):
+        self.offset = offset
 
     def __repr__(self) -> str:
-        return "ROW"
+        return f"ROW{self.offset:+d}" if self.offset else "ROW"
 
 
 ROW = Row()
@@ -101,22 +105,31 @@ class RowTemplate:
     """A formula printed once, with slots for the row number."""
 
     parts: tuple[str, ...]  # text between row slots; len(parts) == slots + 1
+    offsets: tuple[int, ...] = ()  # per slot, added to the row; () when all are 0
 
     def render(self, row: int) -> str:
         """The formula text (with leading '=') for worksheet row ``row`` (1-based)."""
-        return str(row).join(self.parts)
+        if not self.offsets:
+            return str(row).join(self.parts)
+        out = [self.parts[0]]
+        for offset, part in zip(self.offsets, self.parts[1:]):
+            out.append(str(row + offset))
+            out.append(part)
+        return "".join(out)
 
 
 def row_template(node: Node, resolve: Resolver) -> RowTemplate:
     pieces: list[Piece] = ["="]
     _pieces(node, resolve, pieces)
     parts: list[str] = [""]
+    offsets: list[int] = []
     for piece in pieces:
         if isinstance(piece, Row):
             parts.append("")
+            offsets.append(piece.offset)
         else:
             parts[-1] += piece
-    return RowTemplate(tuple(parts))
+    return RowTemplate(tuple(parts), tuple(offsets) if any(offsets) else ())
 
 
 def to_excel(node: Node, resolve: Callable[[str], str] | None = None) -> str:

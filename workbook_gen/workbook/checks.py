@@ -12,10 +12,12 @@ from xlsxwriter.utility import xl_col_to_name
 from .. import xlmath as xm
 from ..compute import Evaluated
 from ..expr import Node, Var, eq, if_
-from ..expr.excel import row_template
 from ..expr.numeric import compile_numpy
 from .conditions import write_conditions
-from .layout import CHECK_FIRST_ROW, CHECKS, FIRST_ROW, STATUS, TableLayout, add_sheet
+from ..xlerror import ExcelError
+from .layout import CHECK_FIRST_ROW, CHECKS, STATUS, TableLayout, add_sheet
+from .rows import Column
+from .table import cached_values
 
 TOLERANCE = 1e-9
 TOLERANCE_NAME = "check_tol"
@@ -54,17 +56,27 @@ def residuals(result: Evaluated) -> dict[str, xm.XArray]:
             for c in result.model.checks}
 
 
-def _max_abs(column: xm.XArray) -> float:
-    """What MAX(MAX(r),-MIN(r)) gives: texts are skipped, none left is 0."""
+def _max_abs(column: xm.XArray) -> float | str:
+    """What MAX(MAX(r),-MIN(r)) gives: the first error of the range if any (Excel's
+    MAX propagates it), else the largest magnitude; texts are skipped, none left is 0."""
+    if column.err.any():
+        return ExcelError.from_code(int(column.err[np.flatnonzero(column.err)[0]])).value
     numbers = [abs(v) for v in column.val if not isinstance(v, str)]
     return max(numbers, default=0.0)
 
 
-def write_checks(workbook, formats, result: Evaluated, layout: TableLayout) -> None:
+def _verdict(maximum: float | str) -> str:
+    """What IF(max<=check_tol,"PASS","FAIL") gives (an error passes through)."""
+    if isinstance(maximum, str):
+        return maximum
+    return "PASS" if maximum <= TOLERANCE else "FAIL"
+
+
+def write_checks(workbook, formats, result: Evaluated, layout: TableLayout,
+                 progress=None) -> None:
     sheet = add_sheet(workbook, CHECKS)
     checks = result.model.checks
     values = residuals(result)
-    first, last = CHECK_FIRST_ROW, CHECK_FIRST_ROW + result.rows - 1
     flag_col = len(checks) + 1
     maxima = {name: _max_abs(column) for name, column in values.items()}
     spec = result.scene.template.input
@@ -76,7 +88,8 @@ def write_checks(workbook, formats, result: Evaluated, layout: TableLayout) -> N
                              "scale (dimensionless); rows that are not 'ok' show n/a.")
     sheet.write_string(1, 0, "all checks", formats["label"])
     if checks:
-        verdict = "PASS" if all(m <= TOLERANCE for m in maxima.values()) else "FAIL"
+        errors = [m for m in maxima.values() if isinstance(m, str)]
+        verdict = errors[0] if errors else _verdict(max(maxima.values()))
         sheet.write_formula(1, 1, f'=IF(MAX(B4:{xl_col_to_name(len(checks))}4)<=check_tol,'
                                   '"PASS","FAIL")', formats["label"], verdict)
     sheet.freeze_panes(CHECK_FIRST_ROW - 1, 1)
@@ -84,40 +97,34 @@ def write_checks(workbook, formats, result: Evaluated, layout: TableLayout) -> N
     sheet.set_column(1, len(checks), 14, formats["residual"])
     sheet.set_row(2, 45)
     # constant_memory: each row is written whole, top to bottom
-    columns = [(c, xl_col_to_name(c), check) for c, check in enumerate(checks, start=1)]
-    for c, col, check in columns:
+    first, last = CHECK_FIRST_ROW, CHECK_FIRST_ROW + result.rows - 1
+    named = [(c, xl_col_to_name(c), check) for c, check in enumerate(checks, start=1)]
+    for c, col, check in named:
         sheet.write_string(2, c, check.description, formats["wrap"])
     sheet.write_string(3, 0, "max |r|", formats["label"])
-    for c, col, check in columns:
+    for c, col, check in named:
         sheet.write_formula(3, c, f"=MAX(MAX({col}{first}:{col}{last}),-MIN({col}{first}:{col}{last}))",
                             formats["residual"], maxima[check.name])
     sheet.write_string(4, 0, "result", formats["label"])
-    for c, col, check in columns:
+    for c, col, check in named:
         sheet.write_formula(4, c, f'=IF({col}4<=check_tol,"PASS","FAIL")', None,
-                            "PASS" if maxima[check.name] <= TOLERANCE else "FAIL")
+                            _verdict(maxima[check.name]))
     sheet.write_string(5, 0, "level", formats["label"])
-    for c, col, check in columns:
+    for c, col, check in named:
         sheet.write_string(5, c, check.level)
     sheet.write_string(6, 0, f"{spec.name} [{spec.unit}]", formats["header"])
-    for c, col, check in columns:
+    for c, col, check in named:
         sheet.write_string(6, c, check.name, formats["header"])
     sheet.write_string(6, flag_col, "cannot assemble", formats["header"])
     sheet.write_string(6, flag_col + 1, "flagged", formats["header"])
 
-    source = row_template(Var(spec.name), layout.remote)
-    templates = [row_template(guarded(c.expr), layout.remote) for c in checks]
-    cells = [values[c.name].val.tolist() for c in checks]
-    flag = row_template(cannot_assemble_flag(), layout.remote)
-    flagged = row_template(flagged_flag(), layout.remote)
-    inputs, texts = result.inputs.tolist(), result.status.tolist()
-    write_formula = sheet.write_formula
-    for i in range(result.rows):
-        t_row, r0 = FIRST_ROW + i, first + i - 1
-        write_formula(r0, 0, source.render(t_row), None, inputs[i])
-        for c, (template, column) in enumerate(zip(templates, cells), start=1):
-            write_formula(r0, c, template.render(t_row), None, column[i])
-        write_formula(r0, flag_col, flag.render(t_row), None,
-                      1 if texts[i] == "cannot assemble" else 0)
-        write_formula(r0, flag_col + 1, flagged.render(t_row), None,
-                      1 if is_flagged(texts[i]) else 0)
-    write_conditions(sheet, formats, result, last - 1, TOLERANCE)
+    texts = result.status.tolist()
+    columns = [Column(0, result.inputs.tolist(), layout.formula(Var(spec.name), True))]
+    columns += [Column(c, cached_values(values[check.name]), layout.formula(guarded(check.expr),
+                                                                             True))
+                for c, col, check in named]
+    columns.append(Column(flag_col, [1 if t == "cannot assemble" else 0 for t in texts],
+                          layout.formula(cannot_assemble_flag(), True)))
+    columns.append(Column(flag_col + 1, [1 if is_flagged(t) else 0 for t in texts],
+                          layout.formula(flagged_flag(), True)))
+    sheet.write_rows(CHECK_FIRST_ROW - 1, columns, progress)

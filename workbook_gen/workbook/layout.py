@@ -3,18 +3,22 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 from xlsxwriter.utility import xl_col_to_name
-from xlsxwriter.worksheet import Worksheet
 
 from ..compute import Evaluated
-from ..expr.excel import ROW, Piece
+from ..expr import Node
+from ..expr.excel import ROW, Piece, Row, RowTemplate, row_template
+from .rows import Sheet
 
 TABLE, PARAMETERS, CHECKS, SUMMARY, CHARTS, ABOUT = (
     "Table", "Parameters", "Checks", "Summary", "Charts", "About")
 STATUS = "status"  # the Table's last column
 FIRST_ROW = 2  # first data row of the Table (1-based); row 1 holds the headers
 CHECK_FIRST_ROW = 8  # first data row of the Checks sheet
+# A Checks row refers to the Table row this many rows up.
+_TABLE_ROW_FROM_CHECKS = Row(FIRST_ROW - CHECK_FIRST_ROW)
 
 
 @dataclass(frozen=True)
@@ -40,8 +44,16 @@ class TableLayout:
         return (self.letters[name], ROW)
 
     def remote(self, name: str) -> tuple[Piece, ...]:
-        """A same-row reference from another sheet: ``Table!C`` + row."""
-        return (f"{TABLE}!{self.letters[name]}", ROW)
+        """From a Checks row, the reference to the Table row of the same step: ``Table!C`` +
+        row - 6."""
+        return (f"{TABLE}!{self.letters[name]}", _TABLE_ROW_FROM_CHECKS)
+
+    def formula(self, node: Node, on_checks: bool = False,
+                local: tuple[tuple[str, str], ...] = ()) -> RowTemplate:
+        """``node`` printed for a Table row, or for a Checks row (``on_checks``) where the
+        names in ``local`` are columns of the Checks sheet; printed once per tree and
+        layout in a process (a batch prints each template's trees once)."""
+        return _printed(node, tuple(self.letters.items()), on_checks, local)
 
     def column(self, name: str, absolute: bool = False) -> str:
         """The whole data range of a column, e.g. ``Table!C$2:C$38``."""
@@ -64,17 +76,18 @@ FORMATS = {
 }
 
 
-class Sheet(Worksheet):
-    """A worksheet that writes our formula text as it is.
+@lru_cache(maxsize=4096)
+def _printed(node: Node, letters: tuple[tuple[str, str], ...], on_checks: bool,
+             local: tuple[tuple[str, str], ...]) -> RowTemplate:
+    table, own = dict(letters), dict(local)
 
-    Every formula we write is printed from a tree whose functions are Excel's
-    classic ones (``expr.tree.FUNCTIONS``), so XlsxWriter's hundred-odd regex
-    substitutions for 'future functions' have nothing to do; they were 80% of
-    the time to write a 3,600-row workbook.
-    """
-
-    def _prepare_formula(self, formula, expand_future_functions=False):
-        return formula[1:] if formula.startswith("=") else formula
+    def resolve(name: str) -> tuple[Piece, ...]:
+        if name in own:
+            return (own[name], ROW)
+        if on_checks:
+            return (f"{TABLE}!{table[name]}", _TABLE_ROW_FROM_CHECKS)
+        return (table[name], ROW)
+    return row_template(node, resolve)
 
 
 def add_sheet(workbook, name: str) -> Sheet:

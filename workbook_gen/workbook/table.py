@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..compute import Evaluated, headers
-from ..expr.excel import row_template
 from .. import xlmath as xm
 from .layout import FIRST_ROW, TABLE, TableLayout, add_sheet
+from .rows import Column
 from ..xlerror import ExcelError
 
 
@@ -22,7 +22,8 @@ def cached_values(column: xm.XArray) -> list:
     return values
 
 
-def write_table(workbook, formats, result: Evaluated, layout: TableLayout) -> None:
+def write_table(workbook, formats, result: Evaluated, layout: TableLayout,
+                progress=None) -> None:
     sheet = add_sheet(workbook, TABLE)
     model = result.model
     aux = {q.name for q in model.columns if not q.output}
@@ -35,17 +36,10 @@ def write_table(workbook, formats, result: Evaluated, layout: TableLayout) -> No
     sheet.set_column(1, len(names) - 1, 13, formats["value"])
     sheet.set_column(len(names), len(names), 15)
 
-    templates = [row_template(q.expr, layout.local) for q in model.columns]
-    status = row_template(model.status, layout.local)
-    values = [cached_values(result.columns[q.name]) for q in model.columns]
-    inputs = result.inputs.tolist()
-    texts = result.status.tolist()
-    write_formula, write_number = sheet.write_formula, sheet.write_number
     status_col = len(names)
-    for i in range(result.rows):
-        row = FIRST_ROW + i
-        r0 = row - 1
-        write_number(r0, 0, inputs[i])
-        for c, (template, column) in enumerate(zip(templates, values), start=1):
-            write_formula(r0, c, template.render(row), None, column[i])
-        write_formula(r0, status_col, status.render(row), None, texts[i])
+    columns = [Column(0, result.inputs.tolist())]
+    columns += [Column(c, cached_values(result.columns[q.name]), layout.formula(q.expr))
+                for c, q in enumerate(model.columns, start=1)]
+    columns.append(Column(status_col, result.status.tolist(),
+                          layout.formula(model.template.status)))
+    sheet.write_rows(FIRST_ROW - 1, columns, progress)

@@ -1,0 +1,153 @@
+"""Blocks of rows written whole, with the bytes XlsxWriter writes cell by cell.
+
+``write_formula`` costs a few microseconds per cell in XlsxWriter (argument
+decoding, a regex search for dynamic-array functions, XML escaping of every
+formula, a dict per cell) and that was most of the time to write a workbook.
+A Table or Checks column is one tree printed once with row slots
+(``RowTemplate``), so here a block of rows becomes one row template made once
+(XML-escaped once) and one ``str.format`` per row, written to the sheet's row
+data in ``constant_memory`` mode.  The XML is exactly what XlsxWriter writes
+for the same cells (tests compare the two byte for byte).
+
+Our formulas use only the classic functions of ``expr.tree.FUNCTIONS``, so
+XlsxWriter's future-function rewriting has nothing to do; a test checks that
+none of them is a future or dynamic-array function.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from itertools import repeat
+from typing import Callable, Sequence
+
+from xlsxwriter.utility import xl_col_to_name
+from xlsxwriter.worksheet import Worksheet
+
+from ..expr.excel import RowTemplate
+
+ERROR_CODES = frozenset(("#DIV/0!", "#N/A", "#NAME?", "#NULL!", "#NUM!", "#REF!", "#VALUE!"))
+_CHUNK = 500  # rows per write (and per progress call)
+
+
+@dataclass(frozen=True)
+class Column:
+    """One column of a block: a formula with its cached values, or numbers."""
+
+    col: int                           # 0-based column index
+    values: Sequence                   # one per row: the cached values, or the numbers
+    formula: RowTemplate | None = None  # None: number cells
+    cell_format: object = None         # an XlsxWriter Format, else the column's format
+
+
+def _escape(text: str) -> str:
+    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+
+
+def _brace(text: str) -> str:
+    return text.replace("{", "{{").replace("}", "}}")
+
+
+def cached_xml(value) -> tuple[str, str]:
+    """The type attribute and ``<v>`` text XlsxWriter writes for a formula's cached value."""
+    if isinstance(value, bool):
+        return ' t="b"', "1" if value else "0"
+    if isinstance(value, str):
+        if value == "":
+            return "", ""
+        if value in ERROR_CODES:
+            return ' t="e"', value
+        return ' t="str"', _escape(value)
+    return "", f"{value}"
+
+
+def _number_xml(value) -> str:
+    if not math.isfinite(value):
+        raise ValueError(f"a number cell cannot hold {value!r}")
+    return f"{value:.16G}"
+
+
+class Sheet(Worksheet):
+    """A worksheet that writes our formula text as it is, and blocks of rows whole."""
+
+    def _prepare_formula(self, formula, expand_future_functions=False):
+        return formula[1:] if formula.startswith("=") else formula
+
+    def _style(self, column: Column) -> str:
+        """The ``s`` attribute XlsxWriter gives the cell: its format, else the column's."""
+        fmt = column.cell_format
+        if fmt is None and column.col in self.col_info:
+            fmt = self.col_info[column.col].column_format
+        return "" if fmt is None else f' s="{fmt._get_xf_index()}"'
+
+    def write_rows(self, first_row: int, columns: Sequence[Column],
+                   progress: Callable[[int], None] | None = None) -> None:
+        """Write ``len(values)`` rows from ``first_row`` (0-based), the cells of
+        ``columns`` in each; the rows must lie below every cell written so far."""
+        count = len(columns[0].values) if columns else 0
+        if count == 0:
+            return
+        if any(len(c.values) != count for c in columns):
+            raise ValueError("write_rows: columns of different lengths")
+        last_row = first_row + count - 1
+        columns = sorted(columns, key=lambda c: c.col)
+        if not self.constant_memory:
+            raise ValueError("write_rows needs the constant_memory mode")
+        if first_row < self.previous_row or (first_row == self.previous_row
+                                             and self.table.get(first_row)):
+            raise ValueError(f"write_rows: row {first_row} is above rows already written")
+        if (self.excel_version != 2007 or self.default_row_height != self.original_row_height
+                or any(first_row <= r <= last_row for r in self.row_info)):
+            raise ValueError("write_rows writes plain rows only (no row formats or heights)")
+        for row, col in ((first_row, columns[0].col), (last_row, columns[-1].col)):
+            if self._check_dimensions(row, col):
+                raise ValueError(f"write_rows: cell ({row}, {col}) is outside the sheet")
+        if first_row > self.previous_row:  # flush the row XlsxWriter holds back
+            self._write_single_row(first_row)
+
+        template, offsets, arguments = self._row_template(columns)
+        starts = range(first_row + 1, last_row + 2)   # 1-based row numbers
+        rows = [[str(r + o) for r in starts] for o in offsets]
+        lists = rows + arguments
+        write = self.fh.write
+        fmt = template.format
+        for lo in range(0, count, _CHUNK):
+            hi = min(lo + _CHUNK, count)
+            write("".join([fmt(*cells) for cells in zip(*(a[lo:hi] for a in lists))]))
+            if progress is not None:
+                progress(hi - lo)
+        self.previous_row = last_row + 1
+        self.table.clear()
+
+    def _row_template(self, columns: Sequence[Column]) -> tuple[str, list[int], list[list]]:
+        """``'<row r="{0}">...</row>'`` with ``{k}`` slots, the row offsets of the first
+        slots, and the lists that fill the other slots (one item per row)."""
+        offsets = [0]
+        for c in columns:
+            if c.formula is not None:
+                offsets += [o for o in c.formula.offsets if o not in offsets]
+        slot = {o: "{%d}" % i for i, o in enumerate(offsets)}
+        arguments: list[list] = []
+
+        def add(values: list) -> str:
+            arguments.append(values)
+            return "{%d}" % (len(offsets) + len(arguments) - 1)
+
+        out = ['<row r="{0}">']
+        for c in columns:
+            out.append(f'<c r="{xl_col_to_name(c.col)}{{0}}"{self._style(c)}')
+            if c.formula is None:
+                out.append("><v>" + add([_number_xml(v) for v in c.values]) + "</v></c>")
+                continue
+            pairs = [cached_xml(v) for v in c.values]
+            types = {t for t, _ in pairs}
+            out.append(_brace(types.pop()) if len(types) == 1 else add([t for t, _ in pairs]))
+            parts = c.formula.parts
+            offs = c.formula.offsets or tuple(repeat(0, len(parts) - 1))
+            text = [_brace(_escape(parts[0].removeprefix("=")))]
+            for o, part in zip(offs, parts[1:]):
+                text += [slot[o], _brace(_escape(part))]
+            out.append("><f>" + "".join(text) + "</f><v>"
+                       + add([v for _, v in pairs]) + "</v></c>")
+        out.append("</row>")
+        return "".join(out), offsets, arguments
