@@ -128,3 +128,4 @@ def write_checks(workbook, formats, result: Evaluated, layout: TableLayout,
     columns.append(Column(flag_col + 1, [1 if is_flagged(t) else 0 for t in texts],
                           layout.formula(flagged_flag(), True)))
     sheet.write_rows(CHECK_FIRST_ROW - 1, columns, progress)
+    write_conditions(sheet, formats, result, last - 1, TOLERANCE)
