@@ -44,9 +44,11 @@ def _tied_extreme(path, ref: str, ours: float, theirs: float) -> bool:
     return abs(values[ours] - values[theirs]) <= 1e-12 * magnitude
 
 
-def compare_with_libreoffice(path) -> tuple[int, float]:
+def compare_with_libreoffice(path, theirs=None) -> tuple[int, float]:
+    """Every formula cell of ``path`` against LibreOffice's values (``theirs``: already
+    recalculated, e.g. several files in one run; None: recalculate now)."""
     ours = read_formula_values(path)
-    theirs = recalculated_values(path)
+    theirs = recalculated_values(path) if theirs is None else theirs
     cells, worst = 0, 0.0
     for sheet, values in ours.items():
         scale = _magnitudes(sheet, values)

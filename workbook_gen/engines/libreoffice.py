@@ -219,3 +219,40 @@ def recalculated_values(src: Path | str, *, timeout: float = 300) -> dict[str, d
     """
     with tempfile.TemporaryDirectory(prefix="workbook-gen-recalc-") as tmp:
         return read_formula_values(recalculate(src, tmp, timeout=timeout))
+
+
+def recalculated_values_many(srcs: list[Path | str], *,
+                             timeout: float = 600) -> list[dict[str, dict[str, object]]]:
+    """As ``recalculated_values`` for several xlsx files in one LibreOffice run (one start-up
+    instead of one per file); the files' stems must differ."""
+    srcs = [Path(s) for s in srcs]
+    stems = [s.stem for s in srcs]
+    if len(set(stems)) != len(stems):
+        raise WorkbookGenError(f"files to recalculate together need different names: {stems}")
+    soffice = find_soffice()
+    if soffice is None:
+        raise WorkbookGenError(f"LibreOffice (soffice) not found: set {SOFFICE_ENV}")
+    for src in srcs:
+        if not zipfile.is_zipfile(src):
+            raise WorkbookGenError(f"{src}: not an xlsx file (not a zip archive)")
+    with tempfile.TemporaryDirectory(prefix="workbook-gen-lo-") as tmp:
+        tmp_path = Path(tmp)
+        profile, conv_dir = tmp_path / "profile", tmp_path / "out"
+        conv_dir.mkdir()
+        _write_profile(profile)
+        cmd = [soffice, f"-env:UserInstallation={profile.as_uri()}", "--headless",
+               "--invisible", "--nologo", "--nodefault", "--norestore", "--nolockcheck",
+               "--convert-to", _XLSX_FILTER, "--outdir", str(conv_dir),
+               *(str(s.resolve()) for s in srcs)]
+        try:
+            done = _run(cmd, timeout)
+        except subprocess.TimeoutExpired:
+            raise WorkbookGenError(f"LibreOffice did not finish within {timeout:g} s") from None
+        out = []
+        for src in srcs:
+            produced = conv_dir / f"{src.stem}.xlsx"
+            if not produced.is_file():
+                raise WorkbookGenError(f"{src}: LibreOffice wrote no file "
+                                       f"(exit {done.returncode})")
+            out.append(read_formula_values(produced))
+        return out

@@ -227,14 +227,14 @@ def checks() -> tuple[Check, ...]:
     out = []
     for i in LEGS:
         l1, l2, om = _p(f"l_{i}1"), _p(f"l_{i}2"), _v(f"omega_{i}1")
-        link = sub(_vv("", f"P{i}"), _vv("", f"O{i}2"))
+        xi, eta, _ = _frame(i)      # O_i2 rebuilt from theta_i1: the check needs no O_i2
+        link = sub(_vv("", f"P{i}"), add(_hinge(i), combine((l1, xi))))
         vP = _vv("v", f"P{i}")
-        eta = _frame(i)[1]
         rate = dot(link, sub(vP, combine((l1 * om, eta))))
         size = l2 * (abs_(vP[0]) + abs_(vP[1]) + abs_(vP[2]) + l1 * abs_(om))
         out += [
             Check(f"leg{i}_closure", "position", (norm(link) - l2) / l2,
-                  f"leg {i}: (|P{i} - O_{i}2| - l_{i}2) / l_{i}2"),
+                  f"leg {i}: (|P{i} - O_{i}1 - l_{i}1 xi_{i}1(theta_{i}1)| - l_{i}2) / l_{i}2"),
             Check(f"leg{i}_closure_rate", "velocity", if_(eq(size, 0), 0, rate / size),
                   f"leg {i}: (P{i} - O_{i}2).(v_P{i} - l_{i}1 omega_{i}1 eta_{i}1), over "
                   f"l_{i}2 (|v_P{i}|_1 + l_{i}1 |omega_{i}1|)"),

@@ -237,12 +237,21 @@ def rates_mpmath(p, t_rad: np.ndarray, thetas: dict[int, np.ndarray]) -> np.ndar
 
 def solve(p: Mapping[str, float], t_deg: np.ndarray,
           options: Mapping[str, object]) -> dict[str, np.ndarray]:
+    """Every Table column at the path parameters ``t_deg``."""
+    g = _Geometry(p, np)
+    t = np.radians(np.asarray(t_deg, dtype=float))
+    out, thetas = positions(p, g.pose(t), options)
+    _add_rates(out, p, t, float(p["omega_t"]), thetas)
+    return out
+
+
+def positions(p: Mapping[str, float], pose, options: Mapping[str, object]):
+    """Every position column at the poses ``pose`` = (alpha, psi, vartheta, phi) in
+    radians (arrays), and the drive angles as solved (rad, NaN out of reach)."""
     branch = str(options.get("branch", "++++"))
     balance = bool(options.get("balance", False))
     g = _Geometry(p, np)
-    t = np.radians(np.asarray(t_deg, dtype=float))
-    w = float(p["omega_t"])
-    pose = g.pose(t)
+    t = pose[0]
     out: dict[str, np.ndarray] = {}
     for name, angle in zip(("alpha", "psi", "vartheta", "phi"), pose):
         out[name] = np.degrees(angle)
@@ -291,8 +300,7 @@ def solve(p: Mapping[str, float], t_deg: np.ndarray,
         for stem, _, r in masses:
             out[f"{axis}_{stem}"] = r[k]
         out[f"{axis}_S"] = sum(m * r[k] for _, m, r in masses) / total
-    _add_rates(out, p, t, w, thetas)
-    return out
+    return out, thetas
 
 
 def _add_rates(out, p, t, w, thetas) -> None:
