@@ -75,14 +75,39 @@ def _generate(args: argparse.Namespace) -> int:
 
 
 def _audit(args: argparse.Namespace) -> int:
+    from pathlib import Path
+    if len(args.paths) > 1 or Path(args.paths[0]).is_dir():
+        return _audit_many(args)
     from .auditor import audit
     from .auditor.report import format_report
-    report = audit(args.file, engine=args.engine)
+    report = audit(args.paths[0], engine=args.engine)
     if args.json:
-        print(json.dumps(report.to_json(), indent=2, allow_nan=False))
+        print(json.dumps(report.to_json(), allow_nan=False))
     else:
         print(format_report(report, verbose=args.verbose))
     return 0 if report.ok else 1
+
+
+def _audit_many(args: argparse.Namespace) -> int:
+    """Several files or folders: one line (or one JSON object) per file, then a total."""
+    from .auditor.many import audit_many, expand, total_line
+    from .errors import WorkbookReadError
+    from .progress import Progress
+    if args.jobs is not None and args.jobs < 1:
+        raise WorkbookReadError(f"--jobs {args.jobs}: give a number of processes >= 1")
+    count = len(expand(args.paths))
+    results, worst = [], 0
+    with Progress(total=count, desc="audit", unit="file") as bar:
+        for result in audit_many(args.paths, jobs=args.jobs, engine=args.engine,
+                                 progress=bar):
+            results.append(result)
+            worst = max(worst, result.code)
+            text = (json.dumps(result.json(), allow_nan=False) if args.json
+                    else result.line())
+            bar.write(text)
+    if not args.json:
+        print(total_line(results))
+    return worst
 
 
 def _tradeoff(args: argparse.Namespace) -> int:
@@ -135,8 +160,12 @@ def parser() -> argparse.ArgumentParser:
     p.set_defaults(run=_generate)
 
     p = sub.add_parser("audit", help="recompute and check every formula cell of a workbook")
-    p.add_argument("file", metavar="FILE")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("paths", nargs="+", metavar="PATH",
+                   help="workbooks, or folders to search for *.xlsx and *.xlsm")
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object per file, one per line (JSON Lines)")
+    p.add_argument("--jobs", type=int, metavar="N",
+                   help="audit several files in N worker processes (default: all cores)")
     p.add_argument("--engine", choices=["libreoffice"],
                    help="also recalculate the file in LibreOffice headless and compare")
     p.add_argument("--verbose", action="store_true",

@@ -65,6 +65,14 @@ class Progress:
                 self._bar.set_postfix_str(label[:40], refresh=False)
             self._bar.update(n)
 
+    def write(self, text: str, file: TextIO | None = None) -> None:
+        """Print a line (to stdout by default) without breaking the bar."""
+        file = file if file is not None else sys.stdout
+        if self._bar is not None:
+            self._bar.write(text, file=file)
+        else:
+            print(text, file=file, flush=True)
+
     def close(self) -> None:
         if self._bar is not None:
             self._bar.close()

@@ -241,7 +241,8 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
         mismatches=mismatches, not_checked=not_checked, columns=[columns[k] for k in sorted(columns)],
         max_abs_error=max_abs, max_rel_error=max_rel, findings=findings, mechanics=mechanics,
         libreoffice_semantics=explained, vector_cells=evaluation.groups.vector_cells,
-        seconds=time.perf_counter() - started, engine=engine_result, timings=timings)
+        seconds=time.perf_counter() - started, engine=engine_result, timings=timings,
+        macros=inputs.book.vba_project)
 
 
 def _engine(path, engine: str, inputs: AuditInputs, value_of, scales,

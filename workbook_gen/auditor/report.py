@@ -51,6 +51,7 @@ class AuditReport:
     timings: dict[str, float] = field(default_factory=dict)
     # formula cells that could not be recomputed, or read one: cell -> reason
     not_checked: dict[str, str] = field(default_factory=dict)
+    macros: str | None = None  # the VBA project's part: macros the audit does not check
 
     @property
     def ok(self) -> bool:
@@ -108,6 +109,7 @@ class AuditReport:
             "reference": self.reference,
             "findings": [{"cell": f.cell, "kind": f.kind, "message": f.message}
                          for f in self.findings],
+            "macros": self.macros,
             "libreoffice_semantics": self.libreoffice_semantics,
             "vectorized_cells": self.vector_cells,
             "seconds": self.seconds,
@@ -195,6 +197,9 @@ def format_report(report: AuditReport, verbose: bool = False) -> str:
         lines.append("  findings: " + ", ".join(f"{k} {n}" for k, n in sorted(kinds.items())))
         for f in report.findings[:None if verbose else 3]:
             lines.append(f"    {f.kind}: {f.cell}: {f.message}")
+    if report.macros:
+        lines.append(f"  macros: the file holds a VBA project ({report.macros}); "
+                     "the audit does not check macros")
     if report.mechanics is not None:
         lines += _mechanics_lines(report.mechanics) if verbose else _mechanics_line(report.mechanics)
     if report.engine is not None:

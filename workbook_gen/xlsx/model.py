@@ -119,6 +119,7 @@ class Workbook:
     external_links: list[ExternalLink]
     other_sheets: list[tuple[str, str]]  # (name, kind) of chartsheets, dialog sheets, ...
     date1904: bool = False
+    vba_project: str | None = None  # the part holding macros (xl/vbaProject.bin), never run
 
     @property
     def sheet_names(self) -> list[str]:

@@ -88,6 +88,8 @@ def _read(pkg: Package, path: str, max_cells: int) -> Workbook:
         for n, el in enumerate(_children(_child(root, "externalReferences"), "externalReference")):
             part = rels.get(_rid(el), (None, None))[1]
             book.external_links.append(_external_link(pkg, n + 1, part))
+        book.vba_project = next((p for k, p in rels.values() if k == "vbaProject" and p
+                                 and not p.startswith("external:")), None)
         sst_part = next((p for k, p in rels.values() if k == "sharedStrings" and p
                         and not p.startswith("external:")), None)
         strings = _shared_strings(pkg, sst_part, max_cells) if sst_part else []
