@@ -255,8 +255,8 @@ def charts() -> tuple[Chart, ...]:
     rates = tuple(f"omega_{i}1" for i in LEGS)
     return (
         Chart("Drive angles", "t", drives, "theta_i1 [deg]"),
+        Chart("Total centre of mass", "t", ("x_S", "y_S", "z_S"), "x_S, y_S, z_S [m]"),
         Chart("Drive rates", "t", rates, "omega_i1 [rad/s]"),
-        Chart("Total centre of mass", "t", ("x_S", "y_S", "z_S"), "S [m]"),
         Chart("Platform pose", "t", ("alpha", "psi", "vartheta", "phi"), "angle [deg]"),
         *(Chart(f"Path of P{i}", f"x_P{i}", (f"y_P{i}",), f"y_P{i} [m]", path=True)
           for i in LEGS),
