@@ -147,7 +147,7 @@ def _residuals(book, value_of) -> tuple[dict[str, float], float | None]:
     out = {}
     for cell in checks.row(7)[1:]:
         if cell.value in ("cannot assemble", "flagged"):
-            continue
+            break  # the residuals end here: the flags, then the terms they share
         value = value_of("Checks", 4, cell.col)
         out[str(cell.value)] = float(value) if isinstance(value, (int, float)) else value
     return out, float(tolerance) if isinstance(tolerance, (int, float)) else None

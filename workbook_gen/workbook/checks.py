@@ -1,10 +1,14 @@
 """The Checks sheet: closure residuals per row, their maxima, PASS/FAIL.
 
 Each residual cell is the template's check tree guarded by the row's status,
-``IF(Table!status="ok", residual, "")``, built and printed as one tree.
+``IF(Table!status="ok", residual, "n/a")``, built and printed as one tree.  The
+subtrees several residuals share are terms (``terms.py``): columns right of the
+flags, guarded the same way, that the residuals refer to.
 """
 
 from __future__ import annotations
+
+from functools import lru_cache
 
 import numpy as np
 from xlsxwriter.utility import xl_col_to_name
@@ -12,12 +16,16 @@ from xlsxwriter.utility import xl_col_to_name
 from .. import xlmath as xm
 from ..compute import Evaluated
 from ..expr import Node, Var, eq, if_
+from ..expr.excel import to_excel
 from ..expr.numeric import compile_numpy
 from .conditions import write_conditions
 from ..xlerror import ExcelError
 from .layout import CHECK_FIRST_ROW, CHECKS, STATUS, TableLayout, add_sheet
 from .rows import Column
 from .table import cached_values
+from .terms import Term, common_terms
+
+compiled = lru_cache(maxsize=1024)(compile_numpy)  # trees are hashable: compiled once
 
 TOLERANCE = 1e-9
 TOLERANCE_NAME = "check_tol"
@@ -47,13 +55,28 @@ def is_flagged(status: str) -> bool:
     return status not in ("ok", "cannot assemble")
 
 
-def residuals(result: Evaluated) -> dict[str, xm.XArray]:
-    """Each check's guarded residual per row, as the cells hold it."""
+def plan(model) -> tuple[tuple[Term, ...], tuple[Node, ...]]:
+    """The terms and each check's tree over Table columns and terms."""
+    return common_terms(tuple(c.expr for c in model.checks))
+
+
+def residuals(result: Evaluated) -> tuple[dict[str, xm.XArray], dict[str, xm.XArray]]:
+    """Each check's guarded residual per row, and each term's, as the cells hold them."""
+    terms, trees = plan(result.model)
     columns = dict(result.columns)
-    columns[STATUS] = xm.XArray(result.status, np.zeros(result.rows, np.uint8))
-    return {c.name: compile_numpy(guarded(c.expr))(columns, result.params,
-                                                   result.rows)
-            for c in result.model.checks}
+    status = xm.XArray(result.status, np.zeros(result.rows, np.uint8))
+    columns[STATUS] = status
+    ok = xm.compare("=", status, xm.const("ok", result.rows))
+    skipped = xm.const(SKIPPED, result.rows)
+    held = {}
+    for term in terms:
+        # The residuals read a term in their "ok" branch only, where the cell holds
+        # the unguarded value: evaluate them over that.
+        columns[term.name] = compiled(term.expr)(columns, result.params, result.rows)
+        held[term.name] = xm.where(ok, columns[term.name], skipped)
+    values = {c.name: xm.where(ok, compiled(tree)(columns, result.params, result.rows), skipped)
+              for c, tree in zip(result.model.checks, trees)}
+    return values, held
 
 
 def _max_abs(column: xm.XArray) -> float | str:
@@ -76,8 +99,10 @@ def write_checks(workbook, formats, result: Evaluated, layout: TableLayout,
                  progress=None) -> None:
     sheet = add_sheet(workbook, CHECKS)
     checks = result.model.checks
-    values = residuals(result)
+    values, held = residuals(result)
+    terms, trees = plan(result.model)
     flag_col = len(checks) + 1
+    local = tuple((t.name, xl_col_to_name(flag_col + 2 + i)) for i, t in enumerate(terms))
     maxima = {name: _max_abs(column) for name, column in values.items()}
     spec = result.scene.template.input
 
@@ -95,12 +120,17 @@ def write_checks(workbook, formats, result: Evaluated, layout: TableLayout,
     sheet.freeze_panes(CHECK_FIRST_ROW - 1, 1)
     sheet.set_column(0, 0, 11, formats["input"])
     sheet.set_column(1, len(checks), 14, formats["residual"])
+    if terms:
+        sheet.set_column(flag_col + 2, flag_col + 1 + len(terms), 14, formats["value"])
     sheet.set_row(2, 45)
     # constant_memory: each row is written whole, top to bottom
     first, last = CHECK_FIRST_ROW, CHECK_FIRST_ROW + result.rows - 1
     named = [(c, xl_col_to_name(c), check) for c, check in enumerate(checks, start=1)]
     for c, col, check in named:
         sheet.write_string(2, c, check.description, formats["wrap"])
+    for i, term in enumerate(terms, start=flag_col + 2):
+        sheet.write_string(2, i, "shared by the residuals: " + to_excel(term.expr, str)[1:],
+                           formats["wrap"])
     sheet.write_string(3, 0, "max |r|", formats["label"])
     for c, col, check in named:
         sheet.write_formula(3, c, f"=MAX(MAX({col}{first}:{col}{last}),-MIN({col}{first}:{col}{last}))",
@@ -112,20 +142,27 @@ def write_checks(workbook, formats, result: Evaluated, layout: TableLayout,
     sheet.write_string(5, 0, "level", formats["label"])
     for c, col, check in named:
         sheet.write_string(5, c, check.level)
+    for i, term in enumerate(terms, start=flag_col + 2):
+        sheet.write_string(5, i, "term")
     sheet.write_string(6, 0, f"{spec.name} [{spec.unit}]", formats["header"])
     for c, col, check in named:
         sheet.write_string(6, c, check.name, formats["header"])
     sheet.write_string(6, flag_col, "cannot assemble", formats["header"])
     sheet.write_string(6, flag_col + 1, "flagged", formats["header"])
+    for i, term in enumerate(terms, start=flag_col + 2):
+        sheet.write_string(6, i, term.name, formats["aux_header"])
 
     texts = result.status.tolist()
     columns = [Column(0, result.inputs.tolist(), layout.formula(Var(spec.name), True))]
-    columns += [Column(c, cached_values(values[check.name]), layout.formula(guarded(check.expr),
-                                                                             True))
-                for c, col, check in named]
+    columns += [Column(c, cached_values(values[check.name]),
+                       layout.formula(guarded(tree), True, local))
+                for (c, col, check), tree in zip(named, trees)]
     columns.append(Column(flag_col, [1 if t == "cannot assemble" else 0 for t in texts],
                           layout.formula(cannot_assemble_flag(), True)))
     columns.append(Column(flag_col + 1, [1 if is_flagged(t) else 0 for t in texts],
                           layout.formula(flagged_flag(), True)))
+    columns += [Column(i, cached_values(held[term.name]),
+                       layout.formula(guarded(term.expr), True, local))
+                for i, term in enumerate(terms, start=flag_col + 2)]
     sheet.write_rows(CHECK_FIRST_ROW - 1, columns, progress)
     write_conditions(sheet, formats, result, last - 1, TOLERANCE)
