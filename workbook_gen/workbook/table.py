@@ -41,5 +41,5 @@ def write_table(workbook, formats, result: Evaluated, layout: TableLayout,
     columns += [Column(c, cached_values(result.columns[q.name]), layout.formula(q.expr))
                 for c, q in enumerate(model.columns, start=1)]
     columns.append(Column(status_col, result.status.tolist(),
-                          layout.formula(model.template.status)))
+                          layout.formula(model.status)))
     sheet.write_rows(FIRST_ROW - 1, columns, progress)
