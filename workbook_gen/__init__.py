@@ -23,10 +23,17 @@ def __getattr__(name):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
+def batch(scene, vary=None, design=None, out="outputs", jobs=None, client=None,
+          summary_only=False, **options):
+    """Design variants of ``scene``: one workbook each and a summary (a DataFrame)."""
+    from .batching import batch as _batch
+    return _batch(scene, vary, design, out, jobs, client, summary_only, **options)
+
+
 def audit(path, **options):
     """Recompute and check every formula cell of the workbook at ``path``."""
     from .auditor import audit as _audit
     return _audit(path, **options)
 
 
-__all__ = ["audit", "compute", "load_scene", "write_workbook", "WorkbookGenError", "__version__"]
+__all__ = ["audit", "batch", "compute", "load_scene", "write_workbook", "WorkbookGenError", "__version__"]

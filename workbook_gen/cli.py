@@ -1,4 +1,4 @@
-"""The command line: ``workbook-gen list | generate | audit | tradeoff``.
+"""The command line: ``workbook-gen list | generate | audit | tradeoff | batch``.
 
 User errors print one line to stderr and exit 2; no tracebacks.
 """
@@ -133,6 +133,20 @@ def _tradeoff(args: argparse.Namespace) -> int:
     return 0
 
 
+def _batch(args: argparse.Namespace) -> int:
+    from .batching import batch
+    frame = batch(args.scene, args.vary, args.design, args.out, args.jobs,
+                  summary_only=args.summary_only, sets=_overrides(args.scene, args.set),
+                  step=args.step, samples=args.samples, seed=args.seed, audit=args.audit,
+                  force=args.force, scheduler=args.scheduler,
+                  progress=False if args.quiet else None)
+    failed = frame.attrs["failed"]
+    if not args.quiet:
+        print(f"{frame.attrs['folder']}: {len(frame)} variants, {len(frame) - failed} ok"
+              + (f", {failed} not ok (see summary.csv)" if failed else ""))
+    return 1 if failed else 0
+
+
 def parser() -> argparse.ArgumentParser:
     top = argparse.ArgumentParser(
         prog="workbook-gen",
@@ -180,6 +194,31 @@ def parser() -> argparse.ArgumentParser:
                    help="also write DIR/<name>_tradeoff.xlsx (table and charts)")
     p.add_argument("--force", action="store_true", help="overwrite an existing workbook")
     p.set_defaults(run=_tradeoff)
+
+    p = sub.add_parser("batch", help="design variants: one workbook per variant and a summary")
+    p.add_argument("scene", metavar="SCENE", help="a scene file (TOML)")
+    p.add_argument("--vary", action="append", default=[], metavar="NAME=SPEC",
+                   help="START:STOP:STEP (grid), V1,V2,... (list), normal:MEAN:SD or "
+                        "uniform:LO:HI (with --samples); repeatable: full factorial, last fastest")
+    p.add_argument("--design", metavar="FILE", help="CSV or xlsx: a header of parameter "
+                                                    "names (and 'variant'), one row per variant")
+    p.add_argument("--samples", type=int, metavar="N", help="random variants to draw")
+    p.add_argument("--seed", type=int, metavar="S", help="seed of the draw (numpy default_rng)")
+    p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                   help="override a parameter for every variant (repeatable)")
+    p.add_argument("--step", type=float, metavar="X", help="override the sweep step")
+    p.add_argument("--out", default="outputs", metavar="DIR",
+                   help="writes DIR/<name>-batch/ (default: outputs)")
+    p.add_argument("--jobs", type=int, metavar="N", help="worker processes (default: all cores)")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run on a Dask cluster, e.g. tcp://host:8786")
+    p.add_argument("--summary-only", action="store_true",
+                   help="only the summaries, all variants evaluated at once")
+    p.add_argument("--audit", action="store_true", help="audit each workbook where it is made")
+    p.add_argument("--force", action="store_true",
+                   help="replace a batch folder made by another command")
+    p.add_argument("--quiet", action="store_true", help="no progress bar, no closing line")
+    p.set_defaults(run=_batch)
     return top
 
 

@@ -1,0 +1,193 @@
+"""``batch()``: design variants of a scene, one workbook each and a summary.
+
+Everything a user can get wrong (the scene, --set, --vary, --design, the output
+folder) is checked before anything is written.  Then the variants still to make go
+to a runner; this process writes each workbook as it arrives (atomically) and notes
+it in the folder's journal; the summaries are written last.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import math
+import sys
+from pathlib import Path
+from typing import Mapping, Sequence
+
+from ..errors import SceneError
+from ..scene import Scene, parse_scene
+from ..files import write_bytes_atomically
+from ..model import select
+from ..version import VERSION
+from . import runners
+from .folder import Folder, digest
+from .job import JobSpec, run_chunk
+from .summary import write_csv, write_xlsx
+from .summary_only import block_size, summary_block
+from .table import Table
+from .variants import Design, from_design, from_specs
+
+log = logging.getLogger(__name__)
+
+
+def _read(scene: str | Path | Scene) -> tuple[str, str, dict, float | None]:
+    """(text, source, --set, --step) of a scene path or a loaded Scene."""
+    if isinstance(scene, Scene):
+        given = getattr(scene, "cli", None) or {}
+        sets = dict(given.get("overrides", {})) if given else {
+            k: float(v) for k, _, v in (o.partition("=") for o in scene.overrides)}
+        return scene.text, scene.source, sets, scene.sweep.step
+    source = str(scene)
+    try:
+        text = Path(scene).read_text(encoding="utf-8")
+    except OSError as exc:
+        raise SceneError(f"{source}: cannot read: {exc.strerror}") from None
+    except UnicodeDecodeError:
+        raise SceneError(f"{source}: not UTF-8 text") from None
+    return text, source, {}, None
+
+
+def _design(base: Scene, vary, design, sets, samples, seed) -> Design:
+    names = [p.name for p in base.template.parameters]
+    if design is not None:
+        if vary:
+            raise SceneError("--design and --vary: give one of them (put every varied "
+                             "parameter in the design file)")
+        if samples is not None or seed is not None:
+            raise SceneError("--samples and --seed go with a random --vary, not --design")
+        return from_design(design, names, list(sets))
+    return from_specs(list(vary or ()), names, list(sets), samples, seed)
+
+
+def _command(source, vary, design, sets, step, samples, seed, summary_only, audit) -> str:
+    parts = ["workbook-gen batch", source]
+    parts += [f"--vary {v}" for v in vary or ()]
+    parts += [f"--design {design}"] if design is not None else []
+    parts += [f"--samples {samples}"] if samples is not None else []
+    parts += [f"--seed {seed}"] if seed is not None else []
+    parts += [f"--set {k}={v}" for k, v in sets.items()]
+    parts += [f"--step {step:g}"] if step is not None else []
+    parts += ["--summary-only"] if summary_only else []
+    parts += ["--audit"] if audit else []
+    return " ".join(parts)
+
+
+def _progress(total: int, initial: int, enabled: bool | None):
+    if enabled is None:
+        enabled = sys.stderr.isatty()
+    if not enabled:
+        return None
+    from tqdm import tqdm
+    return tqdm(total=total, initial=initial, unit="variant", file=sys.stderr,
+                dynamic_ncols=True, smoothing=0.1)
+
+
+def batch(scene: str | Path | Scene, vary: Sequence[str] | None = None,
+          design: str | Path | None = None, out: str | Path = "outputs",
+          jobs: int | None = None, client=None, summary_only: bool = False, *,
+          sets: Mapping[str, object] | None = None, step: float | None = None,
+          samples: int | None = None, seed: int | None = None, audit: bool = False,
+          force: bool = False, scheduler: str | None = None,
+          progress: bool | None = None):
+    """Make ``out/<name>-batch/<name>-0001.xlsx`` ... and ``summary.csv``/``summary.xlsx``;
+    return the summary as a pandas DataFrame (``frame.attrs["folder"]``: the folder).
+
+    ``vary``: ``["l_BC=95:105:0.5", "l_AB=30,32,34"]`` (full factorial, last fastest) or
+    random specs (``"l_AB=normal:32:0.05"``) with ``samples`` and ``seed``; ``design``: a
+    CSV or xlsx table.  ``jobs``: local worker processes (default: all cores);
+    ``client`` (a Dask ``Client``) or ``scheduler`` (its address) runs the variants on
+    a Dask cluster.  ``summary_only``: the summary without the workbooks, evaluated over
+    all variants at once.  Raises SceneError (bad input) before writing anything."""
+    text, source, given_sets, given_step = _read(scene)
+    sets = {**given_sets, **dict(sets or {})}
+    step = step if step is not None else given_step
+    if summary_only and audit:
+        raise SceneError("--audit checks workbooks; --summary-only makes none")
+    if jobs is not None and jobs < 1:
+        raise SceneError(f"--jobs must be >= 1, got {jobs}")
+    base = parse_scene(text, source, sets or None, step)
+    plan = _design(base, vary, design, sets, samples, seed)
+    folder_path = Path(out) / f"{base.name}-batch"
+    width = max(4, len(str(len(plan))))
+    spec = JobSpec(text, source, tuple(sets.items()), step, str(folder_path), base.name,
+                   width, audit)
+    identity = {"version": VERSION, "scene": source, "text": text, "sets": sorted(
+        (k, repr(v)) for k, v in sets.items()), "step": step, "summary_only": summary_only,
+        "audit": audit, "names": list(plan.names), "count": len(plan),
+        "variants": digest(json.dumps([[v.label, [[k, repr(x)] for k, x in v.values]]
+                                       for v in plan.variants]).encode())}
+    folder = Folder(folder_path, base.name, identity)
+    resume = folder.check(force)
+    if scheduler is not None and client is None:
+        client = runners.connect(scheduler)
+    command = _command(source, vary, design, sets, step, samples, seed, summary_only, audit)
+    folder_path.mkdir(parents=True, exist_ok=True)
+    folder.start(resume, command)
+    table = Table(plan, select(base.template, base.outputs), base.parameters)
+    runner = runners.pick(jobs, client)
+    if summary_only:
+        _summaries_only(spec, plan, table, runner, progress)
+    else:
+        _workbooks(spec, plan, table, runner, folder, resume, progress)
+    about = [("command", command), ("scene file", source), ("generator", f"workbook-gen {VERSION}"),
+             ("variants", f"{len(plan)} ({plan.kind}); varied: {', '.join(plan.names)}"),
+             ("statuses", _counts(table)), ("workbooks", "none (--summary-only)" if summary_only
+                                            else f"{base.name}-{'0' * (width - 1)}1.xlsx ..."),
+             ("scene as given", text)]
+    write_csv(table, folder_path / "summary.csv")
+    write_xlsx(table, folder_path / "summary.xlsx", about)
+    frame = table.frame()
+    frame.attrs["folder"] = str(folder_path)
+    frame.attrs["failed"] = sum(table.failed())
+    return frame
+
+
+def _counts(table: Table) -> str:
+    statuses = table.statuses()
+    refused = sum(s.startswith("refused") for s in statuses)
+    fails = sum(a == "fail" for a in table.data["audit"])
+    return (f"ok {statuses.count('ok')}, partial {statuses.count('partial')}, refused "
+            f"{refused}" + (f", audit failed {fails}" if fails else ""))
+
+
+def _summaries_only(spec: JobSpec, plan: Design, table: Table, runner, progress) -> None:
+    bar = _progress(len(plan), 0, progress)
+    try:
+        parts = runners.chunks(plan.variants, block_size(spec))
+        for part, block in runner.run(summary_block, spec, parts):
+            table.put_block(part, block)
+            if bar is not None:
+                bar.update(len(part))
+    finally:
+        if bar is not None:
+            bar.close()
+
+
+def _workbooks(spec: JobSpec, plan: Design, table: Table, runner, folder: Folder,
+               resume: bool, progress) -> None:
+    done = folder.finished() if resume else {}
+    for variant in plan.variants:
+        if variant.index in done:
+            table.put(variant, done[variant.index])
+    todo = [v for v in plan.variants if v.index not in done]
+    log.info("%d variants, %d complete, %d to make", len(plan), len(done), len(todo))
+    bar = _progress(len(plan), len(done), progress)
+    journal = folder.journal()
+    jobs = getattr(runner, "jobs", 1)
+    size = max(1, min(8, math.ceil(len(todo) / (4 * jobs)))) if todo else 1
+    by_index = {v.index: v for v in todo}
+    try:
+        for _, outcomes in runner.run(run_chunk, spec, runners.chunks(todo, size)):
+            for outcome in outcomes:
+                if outcome.data is not None:
+                    write_bytes_atomically(folder.path / outcome.row["file"], outcome.data,
+                                           force=True)
+                journal.add(outcome.index, outcome.data, outcome.row)
+                table.put(by_index[outcome.index], outcome.row)
+            if bar is not None:
+                bar.update(len(outcomes))
+    finally:
+        journal.close()
+        if bar is not None:
+            bar.close()

@@ -1,0 +1,127 @@
+"""The summary's figures for a block of variants: one code path for the per-variant
+job (a block of one) and for ``--summary-only`` (blocks of thousands).
+
+Columns arrive flattened, variant after variant (``V * n`` rows, ``n`` rows per
+variant); extremes are taken over the rows where the column holds a number (a row
+that cannot be assembled holds ``#NUM!`` in the workbook and is left out), the
+``_at`` value is the input of the first row where the extreme occurs (what
+``INDEX(..., MATCH(extreme, ..., 0))`` finds).
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Mapping
+
+import numpy as np
+
+from .. import xlmath as xm
+from ..expr import Bin, Call, Neg, Node, Param, Var
+from ..expr.numeric import compile_numpy
+from ..model import Model
+
+CANNOT_ASSEMBLE = "cannot assemble"
+_PARAM = "\x00param:"  # Var names for parameters: no quantity can be named so
+
+
+def as_columns(node: Node) -> Node:
+    """The tree with every parameter read from a column (one value per row) instead of
+    one number: the same tree evaluated for many variants at once."""
+    if isinstance(node, Param):
+        return Var(_PARAM + node.name)
+    if isinstance(node, Neg):
+        return Neg(as_columns(node.operand))
+    if isinstance(node, Bin):
+        return Bin(node.op, as_columns(node.left), as_columns(node.right))
+    if isinstance(node, Call):
+        return Call(node.fn, tuple(as_columns(a) for a in node.args))
+    return node
+
+
+def param_columns(values: Mapping[str, np.ndarray], repeat: int) -> dict[str, xm.XArray]:
+    """Parameter columns for ``as_columns`` trees: each variant's value ``repeat`` times
+    (NaN, a derived value in error, behaves as the number NaN does in ``compile_numpy``)."""
+    columns = {}
+    for name, per_variant in values.items():
+        val = np.repeat(np.asarray(per_variant, dtype=float), repeat)
+        columns[_PARAM + name] = xm.XArray(val, np.zeros(val.shape, np.uint8))
+    return columns
+
+
+def snake(label: str) -> str:
+    """A summary column name for a template's figure label: ``needle stroke, exact`` ->
+    ``needle_stroke_exact``."""
+    return re.sub(r"[^0-9a-z]+", "_", label.lower()).strip("_")
+
+
+def figure_columns(model: Model) -> list[str]:
+    """The classification columns: the spans (max - min over the sweep), then the
+    figures computed from the parameters."""
+    return [snake(s.label) for s in model.spans] + [snake(f.label) for f in model.figures]
+
+
+def value_columns(model: Model) -> list[str]:
+    """Every summary column a variant's evaluation fills, in order."""
+    names = []
+    for q in model.outputs():
+        names += [f"{q.name}_min", f"{q.name}_min_at", f"{q.name}_max", f"{q.name}_max_at"]
+    return names + figure_columns(model) + ["rows_not_assembled"]
+
+
+def _extremes(column: xm.XArray, inputs: np.ndarray, variants: int):
+    n = len(inputs)
+    val = column.val.reshape(variants, n)
+    ok = column.err.reshape(variants, n) == 0
+    anyok = ok.any(axis=1)
+    rows = np.arange(variants)
+    lo_val = np.where(ok, val, np.inf)
+    hi_val = np.where(ok, val, -np.inf)
+    i_lo = np.argmin(lo_val, axis=1)
+    i_hi = np.argmax(hi_val, axis=1)
+    nan = np.full(variants, np.nan)
+    return (np.where(anyok, lo_val[rows, i_lo], nan), np.where(anyok, inputs[i_lo], nan),
+            np.where(anyok, hi_val[rows, i_hi], nan), np.where(anyok, inputs[i_hi], nan))
+
+
+def figure_values(model: Model, params: Mapping[str, np.ndarray], variants: int
+                  ) -> dict[str, list[object]]:
+    """The template's figures from the parameters: a number, a text (Grashof class) or
+    NaN where the formula gives an error."""
+    columns = param_columns(params, 1)
+    out = {}
+    for figure in model.figures:
+        value = compile_numpy(as_columns(figure.expr))(columns, {}, variants)
+        out[snake(figure.label)] = [
+            None if e else (v if isinstance(v, str) else float(v))
+            for v, e in zip(value.val.tolist(), value.err.tolist())]
+    return out
+
+
+def summarise(model: Model, inputs: np.ndarray, columns: Mapping[str, xm.XArray],
+              status: np.ndarray, figures: Mapping[str, list[object]],
+              variants: int) -> dict[str, list[object]]:
+    """For each of ``value_columns(model)`` and ``status`` (``ok`` or ``partial``), a list
+    with one entry per variant (NaN or None: no number)."""
+    table: dict[str, np.ndarray | list] = {}
+    extremes = {}
+    for q in model.outputs():
+        lo, lo_at, hi, hi_at = _extremes(columns[q.name], inputs, variants)
+        extremes[q.name] = (lo, hi)
+        table[f"{q.name}_min"], table[f"{q.name}_min_at"] = lo, lo_at
+        table[f"{q.name}_max"], table[f"{q.name}_max_at"] = hi, hi_at
+    for span in model.spans:  # a span's quantity is always an output (model.select)
+        lo, hi = extremes[span.quantity]
+        table[snake(span.label)] = hi - lo
+    table.update(figures)
+    missing = (np.asarray(status, dtype=object).reshape(variants, len(inputs))
+               == CANNOT_ASSEMBLE).sum(axis=1)
+    table["rows_not_assembled"] = missing
+    out = {name: (table[name].tolist() if isinstance(table[name], np.ndarray)
+                  else list(table[name])) for name in value_columns(model)}
+    out["status"] = ["partial" if m else "ok" for m in out["rows_not_assembled"]]
+    return out
+
+
+def status_texts(status: xm.XArray) -> np.ndarray:
+    """The Table's status column as texts, as ``compute.evaluate`` reads it."""
+    return np.where(status.err != 0, CANNOT_ASSEMBLE, status.val).astype(object)

@@ -1,0 +1,107 @@
+"""``--summary-only``: the summary rows of every variant without their workbooks.
+
+The scene's expression trees are evaluated once per block of variants over a
+variants x rows array (held flattened, variant after variant): each parameter is a
+column holding its variant's value on every row of that variant, so one numpy call
+per tree node serves thousands of variants.  The numeric code is the one that makes
+the workbooks' cached values (``compile_numpy``, ``xlmath``), and the figures come
+from ``rows.summarise`` as in the per-variant job, so the extremes are the same
+numbers.  Blocks keep memory bounded whatever the number of variants.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from typing import Iterator, Sequence
+
+import numpy as np
+
+from ..errors import SceneError
+from ..scene import Scene, parse_scene
+from .broadcast import Plan
+from .job import JobSpec, refused_reason, unassembled_reason, variant_scene
+from .rows import figure_values, status_texts, summarise, value_columns
+from .variants import Variant
+
+# Elements (variants x rows) per block: ~2 MB per float column.
+BLOCK_ELEMENTS = 1 << 18
+
+
+def _screen(base: Scene, spec: JobSpec, variants: Sequence[Variant],
+            values: dict[str, np.ndarray]) -> dict[int, str]:
+    """Variants the scene's rules refuse (a non-positive length, the template's own
+    rule), by position, with the reason ``generate`` would give."""
+    template = base.template
+    suspect = np.zeros(len(variants), dtype=bool)
+    for p in template.parameters:
+        if p.positive:
+            suspect |= values[p.name] <= 0
+    names = list(values)
+    columns = [values[n].tolist() for n in names]
+    for i, row in enumerate(zip(*columns)):
+        if not suspect[i] and template.validate(dict(zip(names, row))):
+            suspect[i] = True
+    refused = {}
+    for i in np.flatnonzero(suspect):
+        try:
+            variant_scene(spec, variants[i])
+        except SceneError as exc:
+            refused[int(i)] = f"refused: {refused_reason(spec, exc)}"
+    return refused
+
+
+def _block(base: Scene, plan: Plan, spec: JobSpec, variants: Sequence[Variant]
+           ) -> dict[str, list[object]]:
+    """The summary columns of a block of variants (refused ones hold no numbers)."""
+    names = value_columns(plan.model)
+    size = len(variants)
+    out: dict[str, list[object]] = {name: [math.nan] * size for name in names}
+    out["status"] = [""] * size
+    values = {name: np.full(size, value) for name, value in base.parameters.items()}
+    for i, variant in enumerate(variants):
+        for name, value in variant.values:
+            values[name][i] = value
+    refused = _screen(base, spec, variants, values)
+    keep = np.array([i not in refused for i in range(size)], dtype=bool)
+    count = int(keep.sum())
+    if count:
+        params = plan.parameters_of({k: v[keep] for k, v in values.items()}, count)
+        inputs = np.array(base.sweep.values())
+        columns, status = plan.evaluate(params, inputs, count)
+        figures = figure_values(plan.model, params, count)
+        made = summarise(plan.model, inputs, columns, status_texts(status), figures, count)
+        for j, i in enumerate(np.flatnonzero(keep).tolist()):
+            for name in names:
+                out[name][i] = made[name][j]
+            out["status"][i] = made["status"][j]
+            if made["rows_not_assembled"][j] == len(inputs):
+                point = {name: float(values[name][i]) for name in base.parameters}
+                refused[i] = f"refused: {unassembled_reason(base, point)}"
+    for i, status in refused.items():
+        for name in names:
+            out[name][i] = None if name == "rows_not_assembled" else math.nan
+        out["status"][i] = status
+    out["file"] = [""] * size
+    out["audit"] = [""] * size
+    return out
+
+
+@functools.lru_cache(maxsize=4)
+def _prepared(spec: JobSpec) -> tuple[Scene, Plan]:
+    """The scene with the command's --set and --step, and its trees compiled: once per
+    process, whatever the number of blocks it runs."""
+    base = parse_scene(spec.text, spec.source, dict(spec.sets) or None, spec.step)
+    return base, Plan(base)
+
+
+def summary_block(spec: JobSpec, variants: Sequence[Variant]) -> dict[str, list[object]]:
+    """The summary columns of ``variants``: what a runner runs for ``--summary-only``."""
+    base, plan = _prepared(spec)
+    return _block(base, plan, spec, variants)
+
+
+def block_size(spec: JobSpec) -> int:
+    """Variants per block: about BLOCK_ELEMENTS rows in all."""
+    base, _ = _prepared(spec)
+    return max(1, BLOCK_ELEMENTS // max(1, base.sweep.rows))

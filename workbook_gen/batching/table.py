@@ -1,0 +1,88 @@
+"""The summary table: one row per variant, the columns SPEC section 11 lists.
+
+``variant``, ``file``, ``status``, the varied parameters, then for each output
+``<q>_min``, ``<q>_min_at``, ``<q>_max``, ``<q>_max_at``, the template's
+classification (spans over the sweep, figures from the parameters),
+``rows_not_assembled`` and ``audit``.  Numbers are floats, NaN or None where there
+is none (a refused variant, a figure whose formula is an error).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Mapping, Sequence
+
+from ..model import Model
+from .rows import value_columns
+from .variants import Design, Variant
+
+
+@dataclass
+class Table:
+    design: Design
+    model: Model
+    defaults: Mapping[str, float]     # the scene's parameters (with --set)
+    data: dict[str, list[object]] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        size = len(self.design)
+        self.columns = (["variant", "file", "status"] + list(self.design.names)
+                        + value_columns(self.model) + ["audit"])
+        self.data = {name: [None] * size for name in self.columns}
+        self.data["variant"] = [v.label for v in self.design.variants]
+        for name in self.design.names:
+            column = self.data[name]
+            for i, variant in enumerate(self.design.variants):
+                column[i] = dict(variant.values).get(name, self.defaults[name])
+        self._filled = [False] * size
+
+    def put(self, variant: Variant, row: Mapping[str, object]) -> None:
+        i = variant.index - 1
+        for name in self.columns[3 + len(self.design.names):] + ["file", "status"]:
+            self.data[name][i] = row.get(name)
+        self._filled[i] = True
+
+    def put_block(self, variants: Sequence[Variant], block: Mapping[str, list[object]]) -> None:
+        for name, values in block.items():
+            column = self.data[name]
+            for variant, value in zip(variants, values):
+                column[variant.index - 1] = value
+        for variant in variants:
+            self._filled[variant.index - 1] = True
+
+    @property
+    def complete(self) -> bool:
+        return all(self._filled)
+
+    def statuses(self) -> list[str]:
+        return [s or "" for s in self.data["status"]]
+
+    def failed(self) -> list[bool]:
+        """Rows that make the exit code 1: not ok, or a failing audit."""
+        return [s != "ok" or a == "fail" for s, a in zip(self.statuses(), self.data["audit"])]
+
+    def frame(self):
+        import pandas as pd
+        out = {}
+        for name in self.columns:
+            values = self.data[name]
+            if name in ("variant", "file", "status", "audit"):
+                out[name] = ["" if v is None else str(v) for v in values]
+            elif all(v is None or isinstance(v, (int, float)) for v in values):
+                out[name] = [math.nan if v is None else v for v in values]
+            else:
+                out[name] = values
+        frame = pd.DataFrame(out, columns=self.columns)
+        if "rows_not_assembled" in frame:
+            frame["rows_not_assembled"] = frame["rows_not_assembled"].astype("Int64")
+        return frame
+
+
+def cell_text(value: object) -> str:
+    """A CSV cell: floats as Python's shortest round-trip text, no number as empty."""
+    if value is None:
+        return ""
+    if isinstance(value, float):
+        return "" if math.isnan(value) else repr(value)
+    return str(value)
