@@ -9,11 +9,10 @@ It is pure: the same spec and variant give the same bytes and row anywhere.
 
 from __future__ import annotations
 
-import inspect
 import logging
 import os
 import tempfile
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Mapping, Sequence
 
@@ -25,10 +24,6 @@ from .rows import figure_values, summarise
 from .variants import Variant
 
 log = logging.getLogger(__name__)
-
-# The --name option of generate (the file stem of a variant) reaches parse_scene as
-# ``name``; until it does, the stem is set on the parsed scene.
-_PARSE_NAMES = "name" in inspect.signature(parse_scene).parameters
 
 
 @dataclass(frozen=True)
@@ -65,11 +60,8 @@ class Outcome:
 
 def variant_scene(spec: JobSpec, variant: Variant) -> Scene:
     """The variant's scene, exactly as ``generate`` would load it (SceneError if refused)."""
-    stem = spec.file_stem(variant)
-    if _PARSE_NAMES:
-        return parse_scene(spec.text, spec.source, spec.overrides(variant), spec.step, name=stem)
-    return replace(parse_scene(spec.text, spec.source, spec.overrides(variant), spec.step),
-                   name=stem)
+    return parse_scene(spec.text, spec.source, spec.overrides(variant), spec.step,
+                       name=spec.file_stem(variant))
 
 
 def refused_reason(spec: JobSpec, exc: SceneError) -> str:
