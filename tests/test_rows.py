@@ -86,3 +86,23 @@ def test_no_tree_function_is_one_xlsxwriter_rewrites():
         prepared = xlsxwriter.Workbook(io.BytesIO()).add_worksheet()._prepare_formula(
             formula, expand_future_functions=True)
         assert prepared == formula, name
+
+
+def test_packaging_in_memory_or_through_files_gives_the_same_parts():
+    """Small workbooks are packaged in memory, very large ones through XlsxWriter's
+    temporary files (package.py): every part must be the same either way."""
+    from workbook_gen.compute import evaluate
+    from workbook_gen.scene import load_scene
+    from workbook_gen.workbook import writer
+
+    result = evaluate(load_scene("templates/slider_crank.toml", step=15.0))
+    assert writer.in_memory(result)
+    parts = []
+    for memory in (True, False):
+        stream = io.BytesIO()
+        writer._build(stream, result, "x.xlsx", memory=memory)
+        with zipfile.ZipFile(stream) as z:
+            parts.append({name: z.read(name) for name in z.namelist()})
+    assert parts[0].keys() == parts[1].keys() and len(parts[0]) > 10
+    for name in parts[0]:
+        assert parts[0][name] == parts[1][name], name

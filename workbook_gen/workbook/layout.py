@@ -91,4 +91,6 @@ def _printed(node: Node, letters: tuple[tuple[str, str], ...], on_checks: bool,
 
 
 def add_sheet(workbook, name: str) -> Sheet:
-    return workbook.add_worksheet(name, worksheet_class=Sheet)
+    """A sheet of ``workbook``: a package.Book makes it (in memory or not), else a Sheet."""
+    make = getattr(workbook, "sheet", None)
+    return make(name) if make else workbook.add_worksheet(name, worksheet_class=Sheet)

@@ -6,15 +6,14 @@ import datetime as dt
 import io
 from pathlib import Path
 
-import xlsxwriter
-
 from ..compute import Evaluated, evaluate
 from ..files import refuse_existing, write_bytes_atomically
 from ..scene import Scene
 from ..version import VERSION
 from .charts import write_charts
-from .checks import write_checks
+from .checks import plan, write_checks
 from .layout import FORMATS, TableLayout
+from .package import IN_MEMORY_CELLS, Book
 from .sheets import write_about, write_parameters
 from .summary import write_summary
 from .table import write_table
@@ -23,8 +22,16 @@ from .table import write_table
 DOCUMENT_DATE = dt.datetime(2024, 1, 1)
 
 
-def _build(stream: io.BytesIO, result: Evaluated, filename: str) -> None:
-    workbook = xlsxwriter.Workbook(stream, {"constant_memory": True})
+def in_memory(result: Evaluated) -> bool:
+    """Package in memory (package.py): the Table and Checks cells, terms included, are few."""
+    terms, _ = plan(result.model)
+    cells = result.rows * (len(result.model.names) + 3 + len(result.model.checks) + len(terms))
+    return cells <= IN_MEMORY_CELLS
+
+
+def _build(stream: io.BytesIO, result: Evaluated, filename: str,
+           memory: bool | None = None) -> None:
+    workbook = Book(stream, in_memory=in_memory(result) if memory is None else memory)
     workbook.set_properties({
         "title": result.scene.title,
         "subject": f"{result.scene.template.id} kinematics",

@@ -1,0 +1,67 @@
+"""How the xlsx is packaged: in memory for ordinary workbooks, through temporary
+files for very large ones.
+
+XlsxWriter in ``constant_memory`` mode streams each sheet's rows to a temporary
+file and writes every part of the package (sheets, styles, charts ...) to one
+more before zipping them: about 30 files made and removed per workbook, which
+cost more than writing a 10-degree workbook's cells on a slow file system.
+A ``Book`` of up to ``IN_MEMORY_CELLS`` Table and Checks cells keeps the row data
+and the parts in memory instead (``MemorySheet``); a larger one (a 0.01-degree
+sweep, hundreds of megabytes of XML) keeps XlsxWriter's temporary files so that
+memory stays bounded.  Both give the same cells; the choice depends on the
+scene alone, so the same scene still gives the same bytes.
+"""
+
+from __future__ import annotations
+
+import io
+
+import xlsxwriter
+
+from .rows import Sheet
+
+#: Table + Checks cells up to which a workbook is packaged in memory (a 0.1-degree
+#: sewing-machine workbook has about 200,000, some 25 MB of XML).
+IN_MEMORY_CELLS = 600_000
+
+
+class Book(xlsxwriter.Workbook):
+    """A constant-memory workbook, its package built in memory when ``in_memory``."""
+
+    def __init__(self, stream, in_memory: bool):
+        super().__init__(stream, {"constant_memory": True})
+        # Set after __init__, which would turn constant_memory off: the sheets still
+        # write their rows as they go (MemorySheet keeps them in memory).
+        self.in_memory = in_memory
+
+    def sheet(self, name: str) -> Sheet:
+        return self.add_worksheet(name, worksheet_class=MemorySheet if self.in_memory
+                                  else Sheet)
+
+
+class MemorySheet(Sheet):
+    """A Sheet whose constant_memory row data is a string buffer, not a temporary file."""
+
+    def _initialize(self, init_data) -> None:
+        super()._initialize({**init_data, "constant_memory": False})
+        self.constant_memory = init_data["constant_memory"]
+        if self.constant_memory:
+            self.row_data_fh = io.StringIO()
+            self.row_data_filename = None
+            self.row_data_fh_closed = False
+            self.fh = self.row_data_fh
+
+    def _opt_close(self) -> None:
+        pass  # nothing to close: the rows stay in the buffer until the sheet is packaged
+
+    def _opt_reopen(self) -> None:
+        self.fh = self.row_data_fh
+
+    def _write_optimized_sheet_data(self) -> None:
+        data, self.row_data_fh = self.row_data_fh.getvalue(), io.StringIO()
+        if self.dim_rowmin is None:
+            self._xml_empty_tag("sheetData")
+            return
+        self._xml_start_tag("sheetData")
+        self.fh.write(data)
+        self._xml_end_tag("sheetData")
