@@ -80,11 +80,18 @@ def _audit(args: argparse.Namespace) -> int:
         return _audit_many(args)
     from .auditor import audit
     from .auditor.report import format_report
+    if args.annotate:
+        from .auditor.annotate import check_target
+        check_target(args.paths[0], args.annotate, force=args.force)  # before the work
     report = audit(args.paths[0], engine=args.engine)
     if args.json:
         print(json.dumps(report.to_json(), allow_nan=False))
     else:
         print(format_report(report, verbose=args.verbose))
+    if args.annotate:
+        from .auditor.annotate import annotate
+        done = annotate(args.paths[0], report, args.annotate, force=args.force)
+        print(f"annotated copy: {done}", file=sys.stderr if args.json else sys.stdout)
     return 0 if report.ok else 1
 
 
@@ -93,6 +100,8 @@ def _audit_many(args: argparse.Namespace) -> int:
     from .auditor.many import audit_many, expand, total_line
     from .errors import WorkbookReadError
     from .progress import Progress
+    if args.annotate:
+        raise WorkbookReadError("--annotate takes a single workbook, not several or a folder")
     if args.jobs is not None and args.jobs < 1:
         raise WorkbookReadError(f"--jobs {args.jobs}: give a number of processes >= 1")
     count = len(expand(args.paths))
@@ -180,6 +189,10 @@ def parser() -> argparse.ArgumentParser:
                    help="print one JSON object per file, one per line (JSON Lines)")
     p.add_argument("--jobs", type=int, metavar="N",
                    help="audit several files in N worker processes (default: all cores)")
+    p.add_argument("--annotate", metavar="OUT.xlsx",
+                   help="write a copy with every disagreement and finding highlighted and "
+                        "explained in a cell comment (formulas and cached values untouched)")
+    p.add_argument("--force", action="store_true", help="overwrite the --annotate file")
     p.add_argument("--engine", choices=["libreoffice"],
                    help="also recalculate the file in LibreOffice headless and compare")
     p.add_argument("--verbose", action="store_true",
