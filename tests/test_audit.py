@@ -176,24 +176,24 @@ def test_range_size_functions_make_no_cycle(tmp_path):
 
 def test_unsupported_function_is_reported_by_cell(tmp_path):
     import xlsxwriter
-    path = tmp_path / "vlookup.xlsx"
+    path = tmp_path / "webservice.xlsx"
     book = xlsxwriter.Workbook(path)
     sheet = book.add_worksheet()
     sheet.write_number("A1", 1)
-    sheet.write_formula("B1", "=VLOOKUP(A1,A1:A1,1,FALSE)", None, 1)
+    sheet.write_formula("B1", '=WEBSERVICE("http://example.com/"&A1)', None, 1)
     sheet.write_formula("C1", "=B1*2", None, 2)       # depends on it: not checked
     sheet.write_formula("D1", "=A1+1", None, 2)       # independent: checked
     book.close()
     report = audit(path)
     assert report.ok  # a cell not checked never fails the audit on its own
-    assert report.not_checked["Sheet1!B1"] == "unsupported function VLOOKUP"
+    assert report.not_checked["Sheet1!B1"] == "unsupported function WEBSERVICE"
     assert report.not_checked["Sheet1!C1"].startswith("depends on Sheet1!B1")
     assert (report.cells_agree, report.cells_disagree, report.cells_not_checked) == (1, 0, 2)
     assert any(f.kind == "unsupported_function" and f.cell == "Sheet1!B1"
-               and "VLOOKUP" in f.message for f in report.findings)
+               and "WEBSERVICE" in f.message for f in report.findings)
     result = run_cli("audit", str(path))
     assert result.returncode == 0 and len(result.stdout.splitlines()) <= 8, result.stdout
-    assert "1 unsupported function VLOOKUP" in result.stdout
+    assert "1 unsupported function WEBSERVICE" in result.stdout
     verbose = run_cli("audit", str(path), "--verbose").stdout
     assert "Sheet1!C1: depends on Sheet1!B1" in verbose
 

@@ -14,8 +14,10 @@ Documented choices:
   through others), is in ``not_checked`` with the reason (:mod:`taint`);
 - a formula that does not parse gets ``#NAME?`` and its message in ``syntax_errors``;
 - an external reference (``[1]Sheet!A1``) gives ``#REF!`` and the cell is in ``external``;
-- an unsupported function gives ``#NAME?`` where it is evaluated; volatile functions
-  (NOW, RAND, OFFSET, ...) are unsupported, so also ``#NAME?``, and listed in ``volatile``;
+- an unsupported function gives ``#NAME?`` where it is evaluated; a volatile function
+  (NOW, RAND, OFFSET, INDIRECT, ...) is evaluated and its cells listed in ``volatile``;
+- ``dialect`` is the semantics of the engine that saved the file ("excel" or
+  "libreoffice": see ``formula.functions.dialect``);
 - a reference to a sheet that has no cells reads empty cells.
 """
 
@@ -35,6 +37,7 @@ from workbook_gen.evaluator.ops import Const
 from workbook_gen.evaluator.store import Names, Num, Obj, SheetResolver, Store, value_scale
 from workbook_gen.evaluator.vector import Env, NotVectorizable, compile_block
 from workbook_gen.formula import ast
+from workbook_gen.formula import functions as fx
 from workbook_gen.formula.parser import parse
 from workbook_gen.formula.scalar import Evaluator, evaluate, unsupported_functions
 from workbook_gen.xlerror import ExcelError
@@ -42,8 +45,8 @@ from workbook_gen.xlerror import ExcelError
 log = logging.getLogger(__name__)
 
 Cell = tuple[str, int, int]
-VOLATILE = frozenset({"NOW", "TODAY", "RAND", "RANDBETWEEN", "RANDARRAY", "OFFSET",
-                      "INDIRECT"})
+VOLATILE = fx.VOLATILE | {"NOW", "TODAY", "RAND", "RANDBETWEEN", "RANDARRAY", "OFFSET",
+                          "INDIRECT"}
 # volatile and not reproducible: the cached value is from another moment or another draw
 CHANGING = frozenset({"NOW", "TODAY", "RAND", "RANDBETWEEN", "RANDARRAY"})
 # functions that use a reference's position or size, never its cells' values
@@ -112,11 +115,14 @@ class _Unit:
 
 def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object],
                    names: Mapping[str, str], *, vectorize: bool = True,
-                   uncheckable: Mapping[Cell, str] | None = None) -> Evaluation:
+                   uncheckable: Mapping[Cell, str] | None = None,
+                   dialect: str = "excel") -> Evaluation:
     """Recompute every formula (texts without '=') of a workbook; see the module doc.
 
     ``uncheckable``: cells among ``constants`` that are formulas the caller could not
     hand over (with the reason): their readers are not checked either."""
+    if dialect not in fx.registry.DIALECTS:
+        raise ValueError(f"unknown dialect {dialect!r}")
     sheets = {k[0] for k in formulas} | {k[0] for k in constants}
     store = Store(sheets)
     store.put_constants(constants)
@@ -175,7 +181,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
             if taint or shapes[u][1] or head in result.unsupported or head in result.volatile:
                 _spread(units[u], shapes[u], taint, result)
             clock = time.perf_counter()
-            _evaluate(units[u], store, name_table)
+            _evaluate(units[u], store, name_table, dialect)
             spent["vector" if units[u].block is not None else "scalar"] += (
                 time.perf_counter() - clock)
     result.seconds.update(spent)
@@ -346,15 +352,22 @@ def _rects(unit: _Unit, shaped: tuple) -> list[graph.Rect]:
             for s in shaped[0]]
 
 
-def _evaluate(unit: _Unit, store: Store, names: Names) -> None:
+def _evaluate(unit: _Unit, store: Store, names: Names, dialect: str = "excel") -> None:
     resolver = SheetResolver(store, names, unit.sheet)
+    cell = (unit.sheet, unit.first, unit.col)
     if unit.block is None:
-        value = evaluate(unit.node, resolver)
+        value = evaluate(unit.node, resolver, dialect=dialect, cell=cell)
         store.put(unit.sheet, unit.first, unit.col, value, cell_scale(unit.node, resolver))
         return
-    reference = Evaluator(resolver, "excel", None)
-    env = Env(unit.last - unit.first + 1, store.block, reference.arg)
-    value = unit.block.run(env)
+    reference = Evaluator(resolver, dialect, None, cell)
+    reference.ctx.intersect = False  # a part computed once must not depend on the row
+    env = Env(unit.last - unit.first + 1, store.block, reference.arg, dialect)
+    try:
+        value = unit.block.run(env)
+    except fx.RowDependent:  # implicit intersection after all: cell by cell
+        for single in _singles(unit):
+            _evaluate(single, store, names, dialect)
+        return
     scale = unit.block.scale(env)
     if isinstance(value, Const):
         value = Obj([0.0 if value.value is None else value.value] * env.n)

@@ -18,16 +18,17 @@ from workbook_gen.xlmath import kernels as k
 from workbook_gen.evaluator.store import Num, Obj, to_items
 from workbook_gen.formula import functions as fx
 from workbook_gen.formula import values as xv
+from workbook_gen.formula.functions import coerce
+from workbook_gen.formula.functions.registry import arity_ok
 from workbook_gen.formula.scalar import Evaluator  # Excel's binary operators, the reference
 from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
 
-_APPLY = Evaluator(None, "excel", None).apply
+_APPLY = {d: Evaluator(None, d, None).apply for d in ("excel", "libreoffice")}
+_CONTEXT = {d: fx.Context(d) for d in ("excel", "libreoffice")}
 _ARITH = frozenset("+-*/^")
 _COMPARE = {"=": np.equal, "<>": np.not_equal, "<": np.less, ">": np.greater,
             "<=": np.less_equal, ">=": np.greater_equal}
-_MATH2 = {"ATAN2": lambda x, ex, y, ey: k.atan2(x, ex, y, ey), "MOD": k.mod,
-          "POWER": lambda x, ex, y, ey: k.power(x, y, k.first_error(ex, ey))}
 
 
 @dataclass(slots=True)
@@ -37,10 +38,11 @@ class Const:
     value: object
 
 
-def cell_call(name: str, args: list):
+def cell_call(name: str, args: list, dialect: str = "excel", cell=None):
     """``fx.call`` with its result cleaned as the scalar evaluator cleans it (overflow in
     MOD and SUM is #NUM! inside the functions themselves, for both paths)."""
-    return clean(fx.call(name, args))
+    ctx = _CONTEXT[dialect] if cell is None else fx.Context(dialect, cell)
+    return clean(fx.call(name, args, ctx))
 
 
 def clean(v):
@@ -50,10 +52,31 @@ def clean(v):
     return v
 
 
+@dataclass(slots=True)
+class RefObj:
+    """Per-row function results of which some are references (INDEX(A:A,0)): used as one
+    value, row i intersects its reference with cell ``(sheet, first + i, col)``."""
+
+    items: list
+    origin: tuple[str, int, int]
+
+
 def scalar(v, n: int):
-    """A value used where one value is expected: a Range keeps its single cell."""
+    """A value used where one value is expected: a Range keeps its single cell, a
+    reference of a row's result is intersected with that row."""
     if isinstance(v, Const) and isinstance(v.value, Range):
-        return Const(xv.scalar_of(v.value))
+        rng = v.value
+        if rng.ref is not None and rng.shape != (1, 1):
+            raise fx.RowDependent(rng.ref)  # implicit intersection: a value per row
+        return Const(xv.scalar_of(rng))
+    if isinstance(v, RefObj):
+        sheet, first, col = v.origin
+        out = []
+        for i, x in enumerate(v.items):
+            if isinstance(x, Range):
+                x = fx.Context(cell=(sheet, first + i, col)).scalar(x)
+            out.append(x)
+        return Obj(out)
     return v
 
 
@@ -91,6 +114,8 @@ def items(v, n: int, as_ref: bool = False) -> list:
     """Per-row Python values; ``as_ref`` wraps each in a 1x1 Range (a cell reference)."""
     if isinstance(v, Const):
         return [v.value] * n
+    if isinstance(v, RefObj):
+        return v.items
     out = to_items(v) if isinstance(v, Num) else v.items
     return [Range(((x,),)) for x in out] if as_ref else out
 
@@ -101,12 +126,15 @@ def _obj(values: list) -> Obj:
 
 # -- operators --------------------------------------------------------------------------
 
-def binary(op: str, a, b, n: int):
+def binary(op: str, a, b, n: int, dialect: str = "excel"):
+    apply = _APPLY[dialect]
     if isinstance(a, Const) and isinstance(b, Const):
-        return Const(_APPLY(op, a.value, b.value))
+        return Const(apply(op, a.value, b.value))
     if op != "&":
         x, y = as_num(a, n), as_num(b, n)
-        if x is not None and y is not None:
+        exact = dialect == "excel" or not (op == "^" or x is None or y is None
+                                           or x.boolean or y.boolean)
+        if x is not None and y is not None and exact:  # else LibreOffice's ^ and booleans
             if op in _ARITH:
                 return Num(*k.arith(op, x.val, x.err, y.val, y.err))
             return _compare(op, x, y, n)
@@ -116,10 +144,10 @@ def binary(op: str, a, b, n: int):
         for p, q in zip(items(a, n), items(b, n)):
             key = (type(p), p, type(q), q)
             if key not in memo:
-                memo[key] = _APPLY(op, p, q)
+                memo[key] = apply(op, p, q)
             out.append(memo[key])
         return _obj(out)
-    return _obj([_APPLY(op, p, q) for p, q in zip(items(a, n), items(b, n))])
+    return _obj([apply(op, p, q) for p, q in zip(items(a, n), items(b, n))])
 
 
 def _compare(op: str, x: Num, y: Num, n: int) -> Num:
@@ -160,74 +188,60 @@ def unary(op: str, a, n: int):
 
 def _range_reduce(name: str, rng: Range):
     """A constant range argument of MIN/MAX: None (no numbers), its extreme, or an error."""
-    xs = fx._aggregate_numbers([rng])
+    xs = coerce.numbers([rng])
     if isinstance(xs, ExcelError):
         return xs
     return (min(xs) if name == "MIN" else max(xs)) if xs else None
 
 
-def _fast_args(name: str, args: list, refs: list, n: int) -> list[Num] | None:
+def _fast_args(entry, args: list, refs: list, n: int, dialect: str) -> list[Num] | None:
     """The arguments as Num blocks when the fast path is exact for them, else None."""
     out = []
+    skip_booleans = entry.range_numbers and dialect == "excel"
     for a, is_ref in zip(args, refs):
         if isinstance(a, Const) and isinstance(a.value, Range):
             rng = a.value
             if rng.shape == (1, 1) and isinstance(rng.rows[0][0], (float, ExcelError)):
                 a = Const(rng.rows[0][0])
-            elif name in ("MIN", "MAX") and rng.shape != (1, 1):
-                reduced = _range_reduce(name, rng)
+            elif entry.name in ("MIN", "MAX") and rng.shape != (1, 1):
+                reduced = _range_reduce(entry.name, rng)
                 if reduced is None:
                     continue
                 a = Const(reduced)
             else:
                 return None
         x = as_num(a, n)
-        if x is None or (x.boolean and is_ref and name in ("MIN", "MAX", "SUM")):
+        if x is None or (x.boolean and is_ref and skip_booleans):
             return None
         out.append(x)
     return out
 
 
-def call(name: str, args: list, refs: list, n: int):
-    """The eager function ``name`` on block arguments (``refs``: which are references)."""
-    xs = _fast_args(name, args, refs, n)
-    if xs is not None:
-        result = _fast_call(name, xs, len(args), n)
-        if result is not None:
-            return result
+def call(name: str, args: list, refs: list, n: int, dialect: str = "excel",
+         origin: tuple[str, int, int] | None = None):
+    """The eager function ``name`` on block arguments (``refs``: which are references):
+    the registry's vectorised form where it is exact, else the scalar form per row."""
+    entry = fx.REGISTRY[name]
+    if entry.vector is not None and arity_ok(entry, len(args)) and (
+            dialect == "excel" or name not in fx.dialect.NUMERIC_DEVIATIONS):
+        xs = _fast_args(entry, args, refs, n, dialect)
+        if xs is not None:
+            if not xs:  # every argument a constant range without numbers
+                return Const(cell_call(name, [a.value for a in args], dialect))
+            val, err, boolean = entry.vector([(x.val, x.err) for x in xs], n)
+            return Num(val, err, boolean)
     if not args:
-        return Const(cell_call(name, []))
+        return Const(cell_call(name, [], dialect))
     columns = [items(a, n, as_ref=(r is True)) for a, r in zip(args, refs)]
-    return _obj([cell_call(name, list(row)) for row in zip(*columns)])
-
-
-def _fast_call(name: str, xs: list[Num], nargs: int, n: int):
-    if name in k.UNARY and nargs == 1 == len(xs):
-        return Num(*k.unary(name, xs[0].val, xs[0].err))
-    if name in _MATH2 and nargs == 2 == len(xs):
-        (a, b) = xs
-        return Num(*_MATH2[name](a.val, a.err, b.val, b.err))
-    if name == "NOT" and nargs == 1:
-        x = xs[0]
-        return Num(np.where(x.err != 0, np.nan, (x.val == 0).astype(float)), x.err, True)
-    if name == "ISERROR" and nargs == 1:
-        return Num((xs[0].err != 0).astype(float), np.zeros(n, np.uint8), True)
-    if name in ("AND", "OR") and xs and len(xs) == nargs:
-        err = k.first_error(*(x.err for x in xs))
-        truth = np.array([x.val != 0 for x in xs])
-        val = truth.all(axis=0) if name == "AND" else truth.any(axis=0)
-        return Num(np.where(err != 0, np.nan, val.astype(float)), err, True)
-    if name in ("MIN", "MAX", "SUM") and nargs:
-        if not xs:
-            return Const(0.0)
-        err = k.first_error(*(x.err for x in xs))
-        vals = [x.val for x in xs]
-        if name == "SUM":
-            val = k.fsum_rows(vals, err)
-        else:
-            val = (np.minimum if name == "MIN" else np.maximum).reduce(np.array(vals), axis=0)
-        return Num(*k.finish(val, err))
-    return None
+    if origin is None:
+        out = [cell_call(name, list(row), dialect) for row in zip(*columns)]
+    else:
+        sheet, first, col = origin
+        out = [cell_call(name, list(row), dialect, (sheet, first + i, col))
+               for i, row in enumerate(zip(*columns))]
+    if origin is not None and any(isinstance(x, Range) for x in out):
+        return RefObj(out, origin)
+    return _obj(out)
 
 
 def to_bool_mask(cond, n: int) -> tuple[np.ndarray, np.ndarray]:

@@ -23,7 +23,7 @@ import numpy as np
 from workbook_gen.evaluator.ops import (
     Const, Num, binary, call, choose, is_num, scalar, to_bool_mask, unary,
 )
-from workbook_gen.evaluator.store import value_scale
+from workbook_gen.evaluator.store import Num, value_scale
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
 from workbook_gen.formula.values import to_bool
@@ -33,8 +33,10 @@ class NotVectorizable(Exception):
     """This formula must be evaluated cell by cell."""
 
 
-# Functions whose reference arguments behave unlike values (ranges skip text/booleans).
-REF_SENSITIVE = frozenset({"MIN", "MAX", "SUM", "AND", "OR"})
+def _ref_sensitive(name: str) -> bool:
+    """Does the function treat a reference argument unlike its value (SUM skips text)?"""
+    entry = fx.REGISTRY.get(name)
+    return entry is not None and any(k in ("range", "ref") for k in entry.kinds)
 
 
 @dataclass
@@ -44,6 +46,7 @@ class Env:
     n: int
     block: Callable
     const: Callable
+    dialect: str = "excel"
 
 
 @dataclass
@@ -57,18 +60,45 @@ class Block:
 
 
 def row_invariant(node: ast.Node) -> bool:
-    """True when every reference in ``node`` has an absolute row."""
+    """True when every reference in ``node`` has an absolute row and nothing reads the
+    row of the calling cell (ROW())."""
     for n in ast.walk(node):
         if isinstance(n, ast.CellRef) and not n.row_abs:
             return False
         if isinstance(n, ast.RangeRef) and not (n.first.row_abs and n.last.row_abs):
             return False
+        if isinstance(n, ast.Func) and n.name == "ROW" and not n.args:
+            return False
     return True
+
+
+def _multi_row(node: ast.Node) -> bool:
+    return isinstance(node, ast.RangeRef) and node.first.row != node.last.row
+
+
+def intersects(node: ast.Node) -> bool:
+    """Does a multi-row range stand where one value is expected (implicit intersection:
+    its value depends on the row of the calling cell)?"""
+    if _multi_row(node):
+        return True
+    for n in ast.walk(node):
+        if isinstance(n, (ast.Unary, ast.Percent, ast.Binary, ast.Paren)):
+            if any(_multi_row(ch) for ch in ast.children(n)):
+                return True
+        elif isinstance(n, ast.Func):
+            entry = fx.REGISTRY.get(n.name)
+            if entry is not None and any(
+                    _multi_row(a) and entry.kind(i) in ("scalar", "lazy")
+                    for i, a in enumerate(n.args)):
+                return True
+    return False
 
 
 def compile_block(node: ast.Node, sheet: str, col: int, first: int, last: int,
                   sheet_of: Callable[[str], str] = lambda s: s) -> Block:
     """Compile ``node`` (the formula of row ``first``) for rows ``first..last`` of a column."""
+    if intersects(node):
+        raise NotVectorizable("implicit intersection")
     c = _Compiler(sheet, col, first, last, sheet_of)
     fn, _ = c.compile(node)
 
@@ -127,22 +157,43 @@ class _Compiler:
         def run(env):
             acc = scalar(left(env), env.n)
             for op, right in steps:
-                acc = binary(op, acc, scalar(right(env), env.n), env.n)
+                acc = binary(op, acc, scalar(right(env), env.n), env.n, env.dialect)
             return acc
         return run
 
     def _func(self, node: ast.Func):
         name = node.name
+        entry = fx.REGISTRY.get(name)
+        if entry is None:
+            return (lambda env: Const(fx.ExcelError.NAME)), False
         if name in ("IF", "IFERROR"):
             return self._lazy(node)
-        if name not in fx.EAGER:
-            return (lambda env: Const(fx.ExcelError.NAME)), False
+        if entry.lazy:
+            raise NotVectorizable(f"{name} is evaluated lazily, cell by cell")
+        if name in ("ROW", "COLUMN") and len(node.args) <= 1:
+            return self._position(node)
+        if any(entry.kind(i) == "ref" and not row_invariant(a) for i, a in enumerate(node.args)):
+            raise NotVectorizable(f"{name} reads a reference that moves with the row")
         args = [self.compile(a) for a in node.args]
         refs = [r for _, r in args]
-        if name in REF_SENSITIVE and "maybe" in refs:
+        if _ref_sensitive(name) and "maybe" in refs:
             raise NotVectorizable(f"{name} of a conditional reference")
         fns = [f for f, _ in args]
-        return (lambda env: call(name, [f(env) for f in fns], refs, env.n)), False
+        origin = (self.sheet, self.first, self.col)
+        return (lambda env: call(name, [f(env) for f in fns], refs, env.n, env.dialect,
+                                 origin)), False
+
+    def _position(self, node: ast.Func):
+        """ROW() / COLUMN() of the calling cell or of a row-relative cell reference."""
+        if node.args and not isinstance(node.args[0], ast.CellRef):
+            raise NotVectorizable(f"{node.name} of a range")
+        ref = node.args[0] if node.args else None
+        if node.name == "COLUMN":
+            value = float(self.col if ref is None else ref.col)
+            return (lambda env: Const(value)), False
+        top = self.first if ref is None else ref.row
+        return (lambda env: Num(np.arange(top, top + env.n, dtype=float),
+                                np.zeros(env.n, np.uint8))), False
 
     def _lazy(self, node: ast.Func):
         args = [self.compile(a) for a in node.args]

@@ -16,7 +16,7 @@ from typing import Callable, Protocol
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
 from workbook_gen.formula import values as xv
-from workbook_gen.formula.values import Range, Value
+from workbook_gen.formula.values import Range, Ref, Value
 from workbook_gen.formula.tokenizer import CELL_PARTS, column_number, split_sheet
 from workbook_gen.xlerror import ExcelError
 
@@ -76,15 +76,19 @@ def unsupported_functions(node: ast.Node) -> set[str]:
 
 
 def evaluate(node: ast.Node, resolver: Resolver, *, dialect: str = "excel",
-             on_unsupported: Callable[[str], None] | None = None) -> Value:
+             on_unsupported: Callable[[str], None] | None = None,
+             cell: tuple[str, int, int] | None = None) -> Value:
     """The value of the formula ``node`` (an empty result counts as 0, as in Excel).
 
     ``dialect="libreoffice"`` applies LibreOffice's known deviations.
     ``on_unsupported(name)`` is called for each call of an unsupported function.
+    ``cell`` is the formula's own ``(sheet, row, col)``: ROW(), COLUMN() and implicit
+    intersection need it.
     """
     if dialect not in ("excel", "libreoffice"):
         raise ValueError(f"unknown dialect {dialect!r}")
-    result = xv.scalar_of(Evaluator(resolver, dialect, on_unsupported).arg(node))
+    ev = Evaluator(resolver, dialect, on_unsupported, cell)
+    result = ev.ctx.scalar(ev.arg(node))
     return 0.0 if result is None else result
 
 
@@ -100,10 +104,36 @@ class Evaluator:
     """Excel's semantics for one formula AST: ``arg`` keeps references as Ranges,
     ``value`` gives a scalar, ``apply`` is a binary operator on two values."""
 
-    def __init__(self, resolver: Resolver, dialect: str, on_unsupported):
+    def __init__(self, resolver: Resolver, dialect: str, on_unsupported,
+                 cell: tuple[str, int, int] | None = None):
         self.resolver = resolver
         self.dialect = dialect
         self.on_unsupported = on_unsupported
+        self.ctx = fx.Context(dialect, cell, resolver, self.parse_ref)
+
+    def parse_ref(self, text: str) -> Ref | Range | ExcelError | None:
+        """INDIRECT's text as a reference (A1 style, sheet-qualified, or a defined name)."""
+        from workbook_gen.errors import FormulaSyntaxError
+        from workbook_gen.formula.parser import parse
+
+        try:
+            node = parse(text.strip())
+        except FormulaSyntaxError:
+            return None
+        if isinstance(node, (ast.CellRef, ast.RangeRef)):
+            return self.reference(node)
+        if isinstance(node, ast.Name):
+            value = self.arg(node)
+            return value if isinstance(value, Range) and value.ref is not None else None
+        return None
+
+    @staticmethod
+    def reference(node: ast.CellRef | ast.RangeRef) -> Ref:
+        if isinstance(node, ast.CellRef):
+            return Ref(node.sheet, node.row, node.col, node.row, node.col)
+        r1, r2 = sorted((node.first.row, node.last.row))
+        c1, c2 = sorted((node.first.col, node.last.col))
+        return Ref(node.sheet, r1, c1, r2, c2)
 
     def arg(self, node: ast.Node) -> Value | Range:
         """Value of ``node``; references stay Ranges (functions need to know)."""
@@ -111,12 +141,11 @@ class Evaluator:
             value = self.resolver.cell(node.sheet, node.row, node.col)
             if type(value) is float:
                 value += 0.0  # a cell never holds -0 in Excel (a file may say "-0")
-            return Range.of([[value]])
+            return Range.of([[value]], self.reference(node))
         if isinstance(node, ast.RangeRef):
-            r1, r2 = sorted((node.first.row, node.last.row))
-            c1, c2 = sorted((node.first.col, node.last.col))
-            value = self.resolver.range(node.sheet, r1, c1, r2, c2)
-            return value if isinstance(value, Range) else Range.of(value)
+            ref = self.reference(node)
+            value = self.resolver.range(node.sheet, ref.row1, ref.col1, ref.row2, ref.col2)
+            return (value if isinstance(value, Range) else Range.of(value)).with_ref(ref)
         if isinstance(node, ast.Name):
             value = self.resolver.name(node.name, node.sheet)
             return Range.of(value) if isinstance(value, list) else value
@@ -136,17 +165,17 @@ class Evaluator:
         if isinstance(node, ast.Paren):
             return self.arg(node.inner)
         if isinstance(node, ast.Unary):
-            v = xv.scalar_of(self.arg(node.operand))
+            v = self.ctx.scalar(self.arg(node.operand))
             if node.op == "+":
                 return v
             x = xv.to_number(v)
             return x if isinstance(x, ExcelError) else _clean(-x)
         if isinstance(node, ast.Percent):
-            x = xv.to_number(xv.scalar_of(self.arg(node.operand)))
+            x = xv.to_number(self.ctx.scalar(self.arg(node.operand)))
             return x if isinstance(x, ExcelError) else _clean(x / 100.0)
         if isinstance(node, ast.Binary):
             return self.binary(node)
-        return xv.scalar_of(self.arg(node))
+        return self.ctx.scalar(self.arg(node))
 
     def binary(self, node: ast.Binary) -> Value:
         # Walk the left spine without recursion: A1+A2+...+A2000 is a left-deep tree.
@@ -154,13 +183,16 @@ class Evaluator:
         while isinstance(node, ast.Binary):
             spine.append(node)
             node = node.left
-        acc = xv.scalar_of(self.arg(node))
+        acc = self.ctx.scalar(self.arg(node))
         for step in reversed(spine):
-            acc = self.apply(step.op, acc, xv.scalar_of(self.arg(step.right)))
+            acc = self.apply(step.op, acc, self.ctx.scalar(self.arg(step.right)))
         return acc
 
     def apply(self, op: str, left: Value, right: Value) -> Value:
         """Excel's binary operator ``op`` on two evaluated operands."""
+        if self.dialect == "libreoffice":  # no boolean type: TRUE is the number 1
+            left = float(left) if isinstance(left, bool) else left
+            right = float(right) if isinstance(right, bool) else right
         if op in _COMPARISONS:
             c = xv.compare(left, right)
             return c if isinstance(c, ExcelError) else _COMPARISONS[op](c)
@@ -191,12 +223,14 @@ class Evaluator:
         return _clean(fx.power(a, b))
 
     def func(self, node: ast.Func) -> Value | Range:
-        if node.name in fx.LAZY:
-            thunks = [lambda a=a: self.arg(a) for a in node.args]
-            return fx.LAZY[node.name](thunks)
-        if node.name not in fx.EAGER:
+        entry = fx.REGISTRY.get(node.name)
+        if entry is None:
             if self.on_unsupported is not None:
                 self.on_unsupported(node.name)
             return ExcelError.NAME
-        result = fx.call(node.name, [self.arg(a) for a in node.args], self.dialect)
+        if entry.lazy:
+            args = [lambda a=a: self.arg(a) for a in node.args]
+        else:
+            args = [self.arg(a) for a in node.args]
+        result = fx.call(node.name, args, self.ctx)
         return _clean(result) if isinstance(result, float) else result

@@ -9,22 +9,54 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 from workbook_gen.xlerror import ExcelError
 
 Value = float | str | bool | None | ExcelError
 
 
+class Ref(NamedTuple):
+    """Where a Range came from: a rectangle of a sheet (1-based, inclusive corners).
+
+    ``sheet`` is None for the sheet of the formula being evaluated. Functions that
+    need the reference itself (ROW, COLUMN, ROWS, COLUMNS, OFFSET, implicit
+    intersection) read it from :attr:`Range.ref`.
+    """
+
+    sheet: str | None
+    row1: int
+    col1: int
+    row2: int
+    col2: int
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return self.row2 - self.row1 + 1, self.col2 - self.col1 + 1
+
+
 @dataclass(frozen=True, slots=True)
 class Range:
-    """The values of a reference, row by row (a single cell reference is 1x1)."""
+    """The values of a reference, row by row (a single cell reference is 1x1), or of an
+    array (``array=True``: a function's or an array constant's result, no ``ref``)."""
 
     rows: tuple[tuple[Value, ...], ...]
     _numbers: object = field(default=False, compare=False, repr=False)  # cache of numbers()
+    ref: Ref | None = field(default=None, compare=False)
+    array: bool = field(default=False, compare=False)
 
     @classmethod
-    def of(cls, rows) -> "Range":
-        return cls(tuple(map(tuple, rows)))
+    def of(cls, rows, ref: Ref | None = None) -> "Range":
+        return cls(tuple(map(tuple, rows)), ref=ref)
+
+    @classmethod
+    def array_of(cls, rows) -> "Range":
+        """An array value (not a reference): used as one value it gives its first item."""
+        return cls(tuple(map(tuple, rows)), array=True)
+
+    def with_ref(self, ref: Ref) -> "Range":
+        """The same values, known to come from ``ref`` (the numbers cache is shared)."""
+        return Range(self.rows, self._numbers, ref, False)
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -150,7 +182,10 @@ def compare(a: Value, b: Value) -> int | ExcelError:
 
 
 def scalar_of(v) -> Value:
-    """A Range used where one value is expected: its single cell, else #VALUE!."""
+    """A Range used where one value is expected: its single cell (an array: its first
+    item), else #VALUE!."""
     if isinstance(v, Range):
-        return v.rows[0][0] if v.shape == (1, 1) else ExcelError.VALUE
+        if v.shape == (1, 1) or (v.array and v.rows and v.rows[0]):
+            return v.rows[0][0]
+        return ExcelError.VALUE
     return v

@@ -1,0 +1,49 @@
+"""Excel's worksheet functions, by family, in one registry.
+
+    from workbook_gen.formula import functions as fx
+    fx.REGISTRY["VLOOKUP"]          # Function(name, family, fn, min_args, max_args, kinds, ...)
+    fx.call("ROUND", [2.675, 2.0])  # 2.68
+    fx.SUPPORTED                    # every registered name
+
+Families: :mod:`.math`, :mod:`.logical`, :mod:`.lookup`, :mod:`.stats`, :mod:`.text`,
+:mod:`.info`, :mod:`.date`, :mod:`.finance`, :mod:`.eng`. Coercion rules live in
+:mod:`.coerce`; the table and the calling convention in :mod:`.registry`; LibreOffice's
+deviations in :mod:`.dialect`. Nothing raises on bad data: Excel errors are returned
+and propagate.
+"""
+
+from __future__ import annotations
+
+from workbook_gen.formula.functions import (  # noqa: F401  (each module registers its family)
+    info, logical, lookup, math, stats,
+)
+from workbook_gen.formula.functions.dialect import (
+    LIBREOFFICE_DIFFERENCES, Difference, libreoffice_result, numeric_deviation,
+)
+from workbook_gen.formula.functions.math import power
+from workbook_gen.formula.functions.registry import (
+    REGISTRY, Context, Function, RowDependent, register,
+)
+from workbook_gen.formula.functions import registry as _registry
+from workbook_gen.xlerror import ExcelError
+
+SUPPORTED = frozenset(REGISTRY)
+VOLATILE = frozenset(n for n, f in REGISTRY.items() if f.volatile)
+LAZY = frozenset(n for n, f in REGISTRY.items() if f.lazy)
+
+__all__ = ["REGISTRY", "SUPPORTED", "VOLATILE", "LAZY", "Context", "Function", "RowDependent",
+           "register",
+           "call", "power", "LIBREOFFICE_DIFFERENCES", "Difference", "libreoffice_result",
+           "ExcelError"]
+
+
+def call(name: str, args: list, ctx: Context | str | None = None):
+    """Apply the registered function ``name`` to evaluated arguments (thunks for a lazy
+    function). ``ctx`` is a :class:`Context` or a dialect name."""
+    if not isinstance(ctx, Context):
+        ctx = Context(dialect=ctx or "excel")
+    if ctx.dialect == "libreoffice":
+        deviation = numeric_deviation(name, args)
+        if deviation is not None:
+            return deviation
+    return _registry.call(name, args, ctx)

@@ -1,0 +1,77 @@
+"""LibreOffice 7.4's measured deviations from Excel (xlsx recalculated and saved).
+
+The evaluator follows Excel unless the workbook was saved by LibreOffice; then
+``Context(dialect="libreoffice")`` applies these, and the coercion rules of
+:mod:`coerce` that differ (a boolean in a range is a number; a text argument of an
+aggregate is #VALUE!), and the operators' (``TRUE>1`` is FALSE, ``"x"&TRUE`` is "x1").
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+from workbook_gen.formula.functions import coerce as c
+from workbook_gen.formula.values import Value
+from workbook_gen.xlerror import ExcelError
+
+
+class Difference(NamedTuple):
+    situation: str
+    example: str
+    excel: Value
+    libreoffice: Value
+
+
+LIBREOFFICE_DIFFERENCES: tuple[Difference, ...] = (
+    Difference("SQRT of a negative number", "SQRT(-1)", ExcelError.NUM, ExcelError.VALUE),
+    Difference("ATAN2 of two zeros", "ATAN2(0,0)", ExcelError.DIV0, 0.0),
+    Difference("zero to the power zero (^ and POWER)", "0^0", ExcelError.NUM, 1.0),
+    Difference("negative base, exponent 1/odd integer", "(-8)^(1/3)", ExcelError.NUM, -2.0),
+    Difference("LN of zero", "LN(0)", ExcelError.NUM, ExcelError.VALUE),
+    Difference("a boolean in a range is a number", "SUM(A1:A2) with A1=TRUE, A2=2", 2.0, 3.0),
+    Difference("text argument of an aggregate", 'SUM("3",4)', 7.0, ExcelError.VALUE),
+    Difference("a boolean compared with a number", "TRUE>1", True, False),
+    Difference("a boolean joined to text", '"x"&TRUE', "xTRUE", "x1"),
+)
+
+
+def _odd_root(x: float, y: float) -> float | None:
+    """LibreOffice's real odd root of a negative base, or None."""
+    n = 1.0 / y
+    k = round(n)
+    if k % 2 == 1 and abs(n - k) <= 1e-12 * abs(n):
+        return -math.pow(-x, y)
+    return None
+
+
+NUMERIC_DEVIATIONS = frozenset({"SQRT", "ATAN2", "POWER", "LN"})
+
+
+def libreoffice_result(func: str, args) -> Value | None:
+    """LibreOffice's result of ``func`` (a function name, or ``"^"``) on numeric
+    ``args`` where it differs from Excel's; None where the two agree."""
+    name = "POWER" if func == "^" else func.upper()
+    if name == "SQRT" and len(args) == 1 and args[0] < 0:
+        return ExcelError.VALUE
+    if name == "ATAN2" and len(args) == 2 and args[0] == 0 and args[1] == 0:
+        return 0.0
+    if name == "LN" and len(args) == 1 and args[0] == 0:
+        return ExcelError.VALUE
+    if name == "POWER" and len(args) == 2:
+        x, y = args
+        if x == 0 and y == 0:
+            return 1.0
+        if x < 0 and y != math.floor(y):
+            return _odd_root(x, y)
+    return None
+
+
+def numeric_deviation(name: str, args: list) -> Value | None:
+    """The deviation for a call of ``name`` on (not yet coerced) arguments, or None."""
+    if name not in NUMERIC_DEVIATIONS:
+        return None
+    xs = [c.number(a) for a in args]
+    if any(isinstance(x, ExcelError) for x in xs):
+        return None
+    return libreoffice_result(name, xs)

@@ -1,0 +1,87 @@
+"""Information functions: IS* tests, NA, N, T, TYPE, ERROR.TYPE."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from workbook_gen.formula.functions import coerce as c
+from workbook_gen.formula.functions.registry import register
+from workbook_gen.formula.values import Range
+from workbook_gen.xlerror import ExcelError
+
+
+def _value(ctx, v):
+    """IS* functions look at one value: a multi-cell reference is intersected."""
+    return ctx.scalar(v) if isinstance(v, Range) else v
+
+
+def _is(name, test, vector=None):
+    register(name, "info", 1, 1, "range", vector=vector)(lambda ctx, v: test(_value(ctx, v)))
+
+
+def _iserror_vector(xs, n):
+    (_, e), = xs
+    return (e != 0).astype(float), np.zeros(n, np.uint8), True
+
+
+_is("ISERROR", lambda v: isinstance(v, ExcelError), _iserror_vector)
+_is("ISERR", lambda v: isinstance(v, ExcelError) and v is not ExcelError.NA)
+_is("ISNA", lambda v: v is ExcelError.NA)
+_is("ISNUMBER", c.is_number)
+_is("ISTEXT", lambda v: isinstance(v, str))
+_is("ISNONTEXT", lambda v: not isinstance(v, str))
+_is("ISLOGICAL", lambda v: isinstance(v, bool))
+_is("ISBLANK", lambda v: v is None)
+
+
+@register("ISREF", "info", 1, 1, "ref")
+def _isref(ctx, v):
+    return isinstance(v, Range) and v.ref is not None
+
+
+def _parity(ctx, v, odd):
+    x = c.integer(v)
+    if isinstance(x, ExcelError):
+        return x
+    return (x % 2 == 1) == odd
+
+
+register("ISEVEN", "info", 1, 1)(lambda ctx, v: _parity(ctx, v, False))
+register("ISODD", "info", 1, 1)(lambda ctx, v: _parity(ctx, v, True))
+register("NA", "info", 0, 0)(lambda ctx: ExcelError.NA)
+
+
+@register("N", "info", 1, 1)
+def _n(ctx, v):
+    if isinstance(v, ExcelError):
+        return v
+    if isinstance(v, bool):
+        return float(v)
+    return float(v) if c.is_number(v) else 0.0
+
+
+@register("T", "info", 1, 1)
+def _t(ctx, v):
+    return v if isinstance(v, (str, ExcelError)) else ""
+
+
+@register("TYPE", "info", 1, 1, "range")
+def _type(ctx, v):
+    if isinstance(v, Range) and v.shape != (1, 1):
+        return 64.0
+    v = c.scalar_of(v)
+    if isinstance(v, ExcelError):
+        return 16.0
+    if isinstance(v, bool):
+        return 4.0
+    return 2.0 if isinstance(v, str) else 1.0
+
+
+_ERROR_TYPES = {ExcelError.NULL: 1.0, ExcelError.DIV0: 2.0, ExcelError.VALUE: 3.0,
+                ExcelError.REF: 4.0, ExcelError.NAME: 5.0, ExcelError.NUM: 6.0,
+                ExcelError.NA: 7.0, ExcelError.GETTING_DATA: 8.0}
+
+
+@register("ERROR.TYPE", "info", 1, 1)
+def _error_type(ctx, v):
+    return _ERROR_TYPES.get(v, ExcelError.NA) if isinstance(v, ExcelError) else ExcelError.NA

@@ -1,0 +1,344 @@
+"""Math and trigonometry: SIN .. POWER (section 4), rounding, logarithms, products."""
+
+from __future__ import annotations
+
+import math
+import random
+from decimal import ROUND_CEILING, ROUND_DOWN, ROUND_FLOOR, ROUND_HALF_UP, ROUND_UP, Decimal
+
+from workbook_gen.formula.functions import coerce as c
+from workbook_gen.formula.functions.registry import register
+from workbook_gen.xlerror import ExcelError
+from workbook_gen.xlmath import kernels as k
+
+TRIG_LIMIT = 2.0 ** 27  # Excel's SIN, COS, TAN give #NUM! from here on
+
+
+def power(x: float, y: float) -> float | ExcelError:
+    """Excel's ``x^y`` and POWER: 0^0 #NUM!, 0^-n #DIV/0!, (-x)^fraction #NUM!."""
+    if x == 0:
+        if y == 0:
+            return ExcelError.NUM
+        return ExcelError.DIV0 if y < 0 else 0.0
+    if x < 0 and y != math.floor(y):
+        return ExcelError.NUM
+    try:
+        return c.checked(math.pow(x, y))
+    except OverflowError:
+        return ExcelError.NUM
+
+
+def _numeric(*xs):
+    """The first error among already-coerced numbers, else None."""
+    return next((x for x in xs if isinstance(x, ExcelError)), None)
+
+
+def _math1(name, fn, vector=None, **kw):
+    def scalar(ctx, a):
+        x = c.to_number(a)
+        return x if isinstance(x, ExcelError) else c.result(fn(x))
+    register(name, "math", 1, 1, vector=vector, **kw)(scalar)
+
+
+def _math2(name, fn, vector=None, min_args=2):
+    def scalar(ctx, a, b=None):
+        x = c.to_number(a)
+        y = c.to_number(b)
+        bad = _numeric(x, y)
+        return bad if bad is not None else c.result(fn(x, y))
+    register(name, "math", min_args, 2, vector=vector)(scalar)
+
+
+def _unary_vector(name):
+    def vector(xs, n):
+        (x, ex), = xs
+        return (*k.unary(name, x, ex), False)
+    return vector
+
+
+def _trig(fn):
+    return lambda x: ExcelError.NUM if abs(x) >= TRIG_LIMIT else fn(x)
+
+
+def _domain(fn, lo, hi, open_lo=False):
+    return lambda x: fn(x) if (lo < x if open_lo else lo <= x) and x <= hi else ExcelError.NUM
+
+
+def _atan2(x: float, y: float):
+    """Excel's ATAN2(x, y): x first; (0, 0) is #DIV/0!."""
+    return ExcelError.DIV0 if x == 0 and y == 0 else math.atan2(y, x)
+
+
+def _mod(n: float, d: float):
+    """MOD(n, d) = n - d*INT(n/d); the result takes the sign of d; #NUM! if n/d overflows."""
+    if d == 0:
+        return ExcelError.DIV0
+    q = n / d
+    return n - d * math.floor(q) if math.isfinite(q) else ExcelError.NUM
+
+
+def _sign(x: float) -> float:
+    return float((x > 0) - (x < 0))
+
+
+for _name, _fn in (("SIN", _trig(math.sin)), ("COS", _trig(math.cos)), ("TAN", _trig(math.tan)),
+                   ("ASIN", _domain(math.asin, -1.0, 1.0)),
+                   ("ACOS", _domain(math.acos, -1.0, 1.0)), ("ATAN", math.atan),
+                   ("SQRT", _domain(math.sqrt, 0.0, math.inf)), ("ABS", abs), ("SIGN", _sign),
+                   ("RADIANS", math.radians), ("DEGREES", math.degrees)):
+    _math1(_name, _fn, _unary_vector(_name))
+
+
+def _hyper(fn):
+    def call(x):
+        try:
+            return fn(x)
+        except (OverflowError, ValueError):
+            return ExcelError.NUM
+    return call
+
+
+for _name, _fn in (("SINH", math.sinh), ("COSH", math.cosh), ("TANH", math.tanh),
+                   ("ASINH", math.asinh), ("EXP", math.exp)):
+    _math1(_name, _hyper(_fn))
+_math1("ACOSH", _domain(math.acosh, 1.0, math.inf))
+_math1("ATANH", _domain(math.atanh, -1.0, 1.0, open_lo=True))
+_math1("LN", _domain(math.log, 0.0, math.inf, open_lo=True))
+_math1("LOG10", _domain(math.log10, 0.0, math.inf, open_lo=True))
+_math1("SQRTPI", _domain(lambda x: math.sqrt(x * math.pi), 0.0, math.inf))
+_math1("INT", lambda x: float(math.floor(x)))
+_math1("EVEN", lambda x: math.copysign(2 * math.ceil(abs(x) / 2), x))
+_math1("ODD", lambda x: math.copysign(max(1, 2 * math.ceil((abs(x) + 1) / 2) - 1), x)
+       if x != 0 else 1.0)
+_math1("FACT", lambda x: float(math.factorial(int(x))) if 0 <= x < 171 else ExcelError.NUM)
+_math1("FACTDOUBLE", lambda x: float(math.prod(range(int(x), 0, -2))) if 0 <= x < 301
+       else ExcelError.NUM)
+
+
+def _vector2(kernel):
+    def vector(xs, n):
+        (x, ex), (y, ey) = xs
+        return (*kernel(x, ex, y, ey), False)
+    return vector
+
+
+_math2("ATAN2", _atan2, _vector2(k.atan2))
+_math2("MOD", _mod, _vector2(k.mod))
+_math2("POWER", power, _vector2(lambda x, ex, y, ey: k.power(x, y, k.first_error(ex, ey))))
+
+
+@register("PI", "math", 0, 0)
+def _pi(ctx):
+    return math.pi
+
+
+@register("LOG", "math", 1, 2)
+def _log(ctx, x, base=10.0):
+    x, b = c.to_number(x), c.to_number(base)
+    bad = _numeric(x, b)
+    if bad is not None:
+        return bad
+    if x <= 0 or b <= 0:
+        return ExcelError.NUM
+    if b == 1:
+        return ExcelError.DIV0
+    return c.result(math.log(x) / math.log(b))
+
+
+# -- rounding -------------------------------------------------------------------------
+
+def _decimal(x: float) -> Decimal:
+    """``x`` as Excel sees it for rounding: its 15 significant digits."""
+    return Decimal(f"{x:.15g}") if math.isfinite(x) else Decimal(0)
+
+
+def _round(x: float, digits: float, mode) -> float:
+    d = int(digits)
+    if d > 15:
+        return x
+    q = Decimal(1).scaleb(-d)
+    return float(_decimal(x).quantize(q, rounding=mode) if d >= 0 else
+                 (_decimal(x) / q).quantize(Decimal(1), rounding=mode) * q)
+
+
+def _rounder(name, mode):
+    def scalar(ctx, x, digits=0.0):
+        x, d = c.to_number(x), c.to_number(digits)
+        bad = _numeric(x, d)
+        return bad if bad is not None else c.result(_round(x, d, mode))
+    register(name, "math", 1 if name == "TRUNC" else 2, 2)(scalar)
+
+
+_rounder("ROUND", ROUND_HALF_UP)
+_rounder("ROUNDUP", ROUND_UP)
+_rounder("ROUNDDOWN", ROUND_DOWN)
+_rounder("TRUNC", ROUND_DOWN)
+
+
+def _multiple(x: float, m: float, mode) -> float:
+    if m == 0:
+        return 0.0
+    q = (_decimal(x) / _decimal(m)).quantize(Decimal(1), rounding=mode)
+    return float(q * _decimal(m))
+
+
+@register("MROUND", "math", 2, 2)
+def _mround(ctx, x, m):
+    x, m = c.to_number(x), c.to_number(m)
+    bad = _numeric(x, m)
+    if bad is not None:
+        return bad
+    if m != 0 and (x > 0) != (m > 0) and x != 0:
+        return ExcelError.NUM
+    return c.result(_multiple(x, m, ROUND_HALF_UP))
+
+
+@register("CEILING", "math", 2, 2)
+def _ceiling(ctx, x, sig):
+    x, s = c.to_number(x), c.to_number(sig)
+    bad = _numeric(x, s)
+    if bad is not None:
+        return bad
+    if x > 0 and s < 0:
+        return ExcelError.NUM
+    if s == 0:
+        return 0.0
+    mode = ROUND_UP if (x < 0 and s < 0) else ROUND_CEILING
+    return c.result(_multiple(x, s, mode if s > 0 else ROUND_UP))
+
+
+@register("FLOOR", "math", 2, 2)
+def _floor(ctx, x, sig):
+    x, s = c.to_number(x), c.to_number(sig)
+    bad = _numeric(x, s)
+    if bad is not None:
+        return bad
+    if x > 0 and s < 0:
+        return ExcelError.NUM
+    if s == 0:
+        return ExcelError.DIV0 if x != 0 else 0.0
+    return c.result(_multiple(x, s, ROUND_FLOOR if s > 0 else ROUND_DOWN))
+
+
+def _math_round(name, toward_up):
+    def scalar(ctx, x, sig=1.0, mode=0.0):
+        x, s, m = c.to_number(x), c.to_number(sig), c.to_number(mode)
+        bad = _numeric(x, s, m)
+        if bad is not None:
+            return bad
+        if s == 0:
+            return 0.0
+        s = abs(s)
+        if x < 0 and m != 0:  # away from zero (CEILING.MATH) / toward zero (FLOOR.MATH)
+            rounding = ROUND_UP if toward_up else ROUND_DOWN
+        else:
+            rounding = ROUND_CEILING if toward_up else ROUND_FLOOR
+        return c.result(_multiple(x, s, rounding))
+    return scalar
+
+
+register("CEILING.MATH", "math", 1, 3)(_math_round("CEILING.MATH", True))
+register("FLOOR.MATH", "math", 1, 3)(_math_round("FLOOR.MATH", False))
+register("CEILING.PRECISE", "math", 1, 2, aliases=("ISO.CEILING",))(
+    lambda ctx, x, s=1.0: _math_round("", True)(ctx, x, s, 0.0))
+register("FLOOR.PRECISE", "math", 1, 2)(lambda ctx, x, s=1.0: _math_round("", False)(ctx, x, s, 0.0))
+
+
+@register("QUOTIENT", "math", 2, 2)
+def _quotient(ctx, a, b):
+    x, y = c.to_number(a), c.to_number(b)
+    bad = _numeric(x, y)
+    if bad is not None:
+        return bad
+    return ExcelError.DIV0 if y == 0 else c.result(float(math.trunc(x / y)))
+
+
+# -- aggregates over numbers ---------------------------------------------------------------
+
+def fsum(xs: list[float]) -> float:
+    """Correctly rounded sum; NaN (so #NUM!) where it overflows."""
+    try:
+        return math.fsum(xs)
+    except (OverflowError, ValueError):  # fsum raises instead of returning inf
+        return math.nan
+
+
+def _sum_vector(xs, n):
+    err = k.first_error(*(e for _, e in xs))
+    return (*k.finish(k.fsum_rows([v for v, _ in xs], err), err), False)
+
+
+@register("SUM", "math", 1, -1, "range", vector=_sum_vector, range_numbers=True)
+def _sum(ctx, *args):
+    xs = c.numbers(args, ctx)
+    return xs if isinstance(xs, ExcelError) else c.result(fsum(xs))
+
+
+@register("PRODUCT", "math", 1, -1, "range")
+def _product(ctx, *args):
+    xs = c.numbers(args, ctx)
+    if isinstance(xs, ExcelError):
+        return xs
+    return c.result(math.prod(xs)) if xs else 0.0
+
+
+@register("SUMSQ", "math", 1, -1, "range")
+def _sumsq(ctx, *args):
+    xs = c.numbers(args, ctx)
+    return xs if isinstance(xs, ExcelError) else c.result(fsum([x * x for x in xs]))
+
+
+def _gcd_args(args):
+    xs = c.numbers(args)
+    if isinstance(xs, ExcelError):
+        return xs
+    if any(x < 0 or x >= 2 ** 53 for x in xs):
+        return ExcelError.NUM
+    return [int(x) for x in xs]
+
+
+@register("GCD", "math", 1, -1, "range")
+def _gcd(ctx, *args):
+    xs = _gcd_args(args)
+    return xs if isinstance(xs, ExcelError) else float(math.gcd(*xs))
+
+
+@register("LCM", "math", 1, -1, "range")
+def _lcm(ctx, *args):
+    xs = _gcd_args(args)
+    return xs if isinstance(xs, ExcelError) else c.result(float(math.lcm(*xs)))
+
+
+@register("COMBIN", "math", 2, 2)
+def _combin(ctx, n, r):
+    n, r = c.integer(n), c.integer(r)
+    bad = _numeric(n, r)
+    if bad is not None:
+        return bad
+    return ExcelError.NUM if n < 0 or r < 0 or r > n else c.result(float(math.comb(n, r)))
+
+
+@register("PERMUT", "math", 2, 2)
+def _permut(ctx, n, r):
+    n, r = c.integer(n), c.integer(r)
+    bad = _numeric(n, r)
+    if bad is not None:
+        return bad
+    return ExcelError.NUM if n < 0 or r < 0 or r > n else c.result(float(math.perm(n, r)))
+
+
+# -- volatile ------------------------------------------------------------------------------
+
+@register("RAND", "math", 0, 0, volatile=True)
+def _rand(ctx):
+    return random.random()
+
+
+@register("RANDBETWEEN", "math", 2, 2, volatile=True)
+def _randbetween(ctx, lo, hi):
+    a, b = c.to_number(lo), c.to_number(hi)
+    bad = _numeric(a, b)
+    if bad is not None:
+        return bad
+    a, b = math.ceil(a), math.floor(b)
+    return ExcelError.NUM if a > b else float(random.randint(a, b))

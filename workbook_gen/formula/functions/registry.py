@@ -1,0 +1,140 @@
+"""The table of worksheet functions: one :class:`Function` entry per name.
+
+An entry says how many arguments the function takes, what kind each is, and gives the
+scalar form (and, where the column evaluator has one, the vectorised form):
+
+* ``scalar``: the argument arrives as one value (a 1x1 reference is its cell; a larger
+  reference is implicitly intersected with the formula's row or column, else #VALUE!);
+* ``range``: a :class:`~workbook_gen.formula.values.Range` (with ``.ref`` when it is a
+  reference) or a single value: SUM, COUNTIF, VLOOKUP tables;
+* ``ref``: as ``range``, but the function reads the reference itself (ROW, OFFSET),
+  not only its values;
+* ``lazy``: a thunk, called only if needed (IF, IFERROR, CHOOSE).
+
+``kinds`` gives one kind per position; the last repeats for further arguments. A call
+with too few or too many arguments is #VALUE! (Excel refuses to enter it).
+
+``fn(ctx, *args)`` receives a :class:`Context`: the dialect, the calling cell and a way
+to read other references (OFFSET, INDIRECT). The vectorised form ``vector(xs, n)``
+takes ``[(val, err), ...]`` float/uint8 arrays and returns ``(val, err, boolean)`` or
+None where it cannot be exact (the caller then goes cell by cell).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+from workbook_gen.formula.values import Range, Ref, Value, scalar_of
+from workbook_gen.xlerror import ExcelError
+
+KINDS = frozenset({"scalar", "range", "ref", "lazy"})
+DIALECTS = ("excel", "libreoffice")
+
+
+class RowDependent(Exception):
+    """Raised (only when ``Context.intersect`` is False) where a value would need implicit
+    intersection with the calling cell: a column evaluator computing a part of a formula
+    once for all rows learns that the part depends on the row after all."""
+
+
+@dataclass
+class Context:
+    """What a function may know about its call.
+
+    ``cell`` is ``(sheet, row, col)`` of the formula (None when unknown); ``resolver``
+    reads cells and ranges (the scalar evaluator's Resolver); ``dialect`` is "excel" or
+    "libreoffice"; ``parse_ref`` turns text into a Ref or None (INDIRECT).
+    """
+
+    dialect: str = "excel"
+    cell: tuple[str, int, int] | None = None
+    resolver: object = None
+    parse_ref: Callable[[str], Ref | None] | None = None
+    intersect: bool = True
+
+    def read(self, ref: Ref) -> Range | ExcelError:
+        """The values of ``ref`` (a Range carrying ``ref``), or #REF! if unreadable."""
+        if self.resolver is None:
+            return ExcelError.REF
+        if not (1 <= ref.row1 <= ref.row2 <= 1_048_576 and 1 <= ref.col1 <= ref.col2 <= 16_384):
+            return ExcelError.REF
+        rows = self.resolver.range(ref.sheet, ref.row1, ref.col1, ref.row2, ref.col2)
+        rng = rows if isinstance(rows, Range) else Range.of(rows)
+        return rng.with_ref(ref)
+
+    def scalar(self, v) -> Value:
+        """One value for a scalar argument: implicit intersection of a reference with the
+        calling cell's row (a one-column range) or column (a one-row range)."""
+        if isinstance(v, Range) and v.shape != (1, 1) and v.ref is not None and self.cell:
+            if not self.intersect:
+                raise RowDependent(v.ref)
+            ref, (_, row, col) = v.ref, self.cell
+            same_sheet = ref.sheet is None or ref.sheet == self.cell[0]
+            if same_sheet and ref.col1 == ref.col2 and ref.row1 <= row <= ref.row2:
+                return v.rows[row - ref.row1][0]
+            if same_sheet and ref.row1 == ref.row2 and ref.col1 <= col <= ref.col2:
+                return v.rows[0][col - ref.col1]
+            return ExcelError.VALUE
+        return scalar_of(v)
+
+
+@dataclass(frozen=True)
+class Function:
+    name: str
+    family: str
+    fn: Callable
+    min_args: int
+    max_args: int | None          # None: any number (Excel's limit is 255)
+    kinds: tuple[str, ...]
+    volatile: bool = False
+    vector: Callable | None = None
+    position: bool = False        # reads the calling cell's position (ROW(), COLUMN())
+    range_numbers: bool = False   # its ranges keep only numbers (SUM): booleans skipped
+
+    def kind(self, i: int) -> str:
+        return self.kinds[min(i, len(self.kinds) - 1)] if self.kinds else "scalar"
+
+    @property
+    def lazy(self) -> bool:
+        return "lazy" in self.kinds
+
+
+REGISTRY: dict[str, Function] = {}
+
+
+def register(name: str, family: str, min_args: int, max_args: int | None = None,
+             kinds: tuple[str, ...] | str = "scalar", *, volatile: bool = False,
+             vector: Callable | None = None, position: bool = False,
+             range_numbers: bool = False, aliases=()):
+    """Decorator: add ``fn`` to the registry under ``name`` (and ``aliases``)."""
+    if isinstance(kinds, str):
+        kinds = (kinds,)
+    assert set(kinds) <= KINDS, kinds
+    max_args = min_args if max_args is None else max_args
+    if max_args == -1:
+        max_args = None
+
+    def deco(fn):
+        for n in (name, *aliases):
+            REGISTRY[n] = Function(n, family, fn, min_args, max_args, kinds, volatile,
+                                   vector, position, range_numbers)
+        return fn
+    return deco
+
+
+def arity_ok(entry: Function, n: int) -> bool:
+    return n >= entry.min_args and (entry.max_args is None or n <= entry.max_args)
+
+
+def call(name: str, args: list, ctx: Context | None = None) -> Value | Range:
+    """Apply the function ``name`` (registered; upper-case, no prefix) to its arguments:
+    values or Ranges, or thunks for lazy kinds. Scalar-kind arguments are reduced to one
+    value here (implicit intersection)."""
+    entry = REGISTRY[name]
+    ctx = ctx or Context()
+    if not arity_ok(entry, len(args)):
+        return ExcelError.VALUE
+    if not entry.lazy:
+        args = [ctx.scalar(a) if entry.kind(i) == "scalar" else a for i, a in enumerate(args)]
+    return entry.fn(ctx, *args)

@@ -1,0 +1,293 @@
+"""Statistics: MIN, MAX, AVERAGE(A), COUNT(A/BLANK), the *IF(S) family with criteria,
+SUMPRODUCT, MEDIAN, MODE, STDEV/VAR (sample and population), LARGE, SMALL, RANK."""
+
+from __future__ import annotations
+
+import math
+import statistics
+
+import numpy as np
+
+from workbook_gen.formula.functions import coerce as c
+from workbook_gen.formula.functions.math import fsum
+from workbook_gen.formula.functions.registry import register
+from workbook_gen.formula.values import Range
+from workbook_gen.xlerror import ExcelError
+from workbook_gen.xlmath import kernels as k
+
+
+def _minmax_vector(reduce):
+    def vector(xs, n):
+        err = k.first_error(*(e for _, e in xs))
+        val = reduce.reduce(np.array([v for v, _ in xs]), axis=0)
+        return (*k.finish(val, err), False)
+    return vector
+
+
+def _agg(name, fn, empty=0.0, vector=None, family="stats"):
+    numeric = vector is not None
+    def scalar(ctx, *args):
+        xs = c.numbers(args, ctx)
+        if isinstance(xs, ExcelError):
+            return xs
+        return c.result(fn(xs)) if xs else empty
+    register(name, family, 1, -1, "range", vector=vector, range_numbers=numeric)(scalar)
+
+
+_agg("MIN", min, vector=_minmax_vector(np.minimum))
+_agg("MAX", max, vector=_minmax_vector(np.maximum))
+_agg("AVERAGE", lambda xs: fsum(xs) / len(xs), ExcelError.DIV0)
+_agg("MEDIAN", statistics.median, ExcelError.NUM)
+
+
+def _variance(xs, sample: bool):
+    n = len(xs)
+    if n - sample <= 0:
+        return ExcelError.DIV0
+    mean = fsum(xs) / n
+    return fsum([(x - mean) ** 2 for x in xs]) / (n - sample)
+
+
+def _sqrt(v):
+    return v if isinstance(v, ExcelError) else math.sqrt(v)
+
+
+for _names, _fn in ((("STDEV", "STDEV.S"), lambda xs: _sqrt(_variance(xs, True))),
+                    (("STDEVP", "STDEV.P"), lambda xs: _sqrt(_variance(xs, False))),
+                    (("VAR", "VAR.S"), lambda xs: _variance(xs, True)),
+                    (("VARP", "VAR.P"), lambda xs: _variance(xs, False))):
+    for _name in _names:
+        _agg(_name, _fn, ExcelError.DIV0)
+
+
+@register("MODE", "stats", 1, -1, "range", aliases=("MODE.SNGL",))
+def _mode(ctx, *args):
+    xs = c.numbers(args, ctx)
+    if isinstance(xs, ExcelError):
+        return xs
+    counts: dict[float, int] = {}
+    for x in xs:
+        counts[x] = counts.get(x, 0) + 1
+    best = max(counts.values(), default=0)
+    if best < 2:
+        return ExcelError.NA
+    return next(x for x in xs if counts[x] == best)
+
+
+def _values_a(args, ctx):
+    """AVERAGEA-style: in ranges text is 0 and booleans 1/0; empties skipped."""
+    out = []
+    for a in args:
+        if isinstance(a, Range):
+            for v in a.flat():
+                if isinstance(v, ExcelError):
+                    return v
+                if v is None:
+                    continue
+                out.append(float(v) if not isinstance(v, str) else 0.0)
+            continue
+        x = c.to_number(a)
+        if isinstance(x, ExcelError):
+            return x
+        out.append(x)
+    return out
+
+
+def _agg_a(name, fn, empty):
+    def scalar(ctx, *args):
+        xs = _values_a(args, ctx)
+        if isinstance(xs, ExcelError):
+            return xs
+        return c.result(fn(xs)) if xs else empty
+    register(name, "stats", 1, -1, "range")(scalar)
+
+
+_agg_a("AVERAGEA", lambda xs: fsum(xs) / len(xs), ExcelError.DIV0)
+_agg_a("MINA", min, 0.0)
+_agg_a("MAXA", max, 0.0)
+
+
+@register("COUNT", "stats", 1, -1, "range")
+def _count(ctx, *args):
+    lo = ctx.dialect == "libreoffice"
+    n = 0
+    for a in args:
+        if isinstance(a, Range):
+            n += sum(1 for v in a.flat() if c.is_number(v) or (lo and isinstance(v, bool)))
+        elif not isinstance(a, ExcelError) and not isinstance(c.to_number(a), ExcelError):
+            n += 1
+    return float(n)
+
+
+@register("COUNTA", "stats", 1, -1, "range")
+def _counta(ctx, *args):
+    n = 0
+    for a in args:
+        n += sum(1 for v in c.flat(a) if v is not None) if isinstance(a, Range) else 1
+    return float(n)
+
+
+@register("COUNTBLANK", "stats", 1, 1, "range")
+def _countblank(ctx, a):
+    return float(sum(1 for v in c.flat(a) if v is None or v == ""))
+
+
+# -- conditional aggregates ------------------------------------------------------------
+
+def _matches(pairs) -> list[bool] | ExcelError:
+    """Per cell of the first range, whether every (range, criterion) pair holds."""
+    shape = None
+    mask = None
+    for rng, crit in pairs:
+        area = c.as_area(rng)
+        if shape is None:
+            shape = area.shape
+        elif area.shape != shape:
+            return ExcelError.VALUE
+        pred = c.criterion(c.scalar_of(crit))
+        if isinstance(pred, ExcelError):
+            return pred
+        hits = [pred(v) for v in area.flat()]
+        mask = hits if mask is None else [a and b for a, b in zip(mask, hits)]
+    return mask
+
+
+def _resized(area: Range, shape, ctx) -> list:
+    """SUMIF's sum range takes the criteria range's shape from its top-left cell."""
+    if area.shape == shape or area.ref is None:
+        return list(area.flat())
+    ref = area.ref
+    from workbook_gen.formula.values import Ref
+    grown = ctx.read(Ref(ref.sheet, ref.row1, ref.col1, ref.row1 + shape[0] - 1,
+                         ref.col1 + shape[1] - 1))
+    return list(area.flat()) if isinstance(grown, ExcelError) else list(grown.flat())
+
+
+def _picked(ctx, target, pairs):
+    mask = _matches(pairs)
+    if isinstance(mask, ExcelError):
+        return mask
+    area = c.as_area(target)
+    values = _resized(area, c.as_area(pairs[0][0]).shape, ctx)
+    out = []
+    for v, hit in zip(values, mask):
+        if not hit:
+            continue
+        if isinstance(v, ExcelError):
+            return v
+        if c.is_number(v) or (ctx.dialect == "libreoffice" and isinstance(v, bool)):
+            out.append(float(v))
+    return out
+
+
+def _ifs_pairs(args):
+    if len(args) % 2:
+        return ExcelError.VALUE
+    return [(args[i], args[i + 1]) for i in range(0, len(args), 2)]
+
+
+@register("SUMIF", "stats", 2, 3, ("range", "scalar", "range"))
+def _sumif(ctx, rng, crit, target=None):
+    xs = _picked(ctx, rng if target is None else target, [(rng, crit)])
+    return xs if isinstance(xs, ExcelError) else c.result(fsum(xs))
+
+
+@register("AVERAGEIF", "stats", 2, 3, ("range", "scalar", "range"))
+def _averageif(ctx, rng, crit, target=None):
+    xs = _picked(ctx, rng if target is None else target, [(rng, crit)])
+    if isinstance(xs, ExcelError):
+        return xs
+    return c.result(fsum(xs) / len(xs)) if xs else ExcelError.DIV0
+
+
+@register("COUNTIF", "stats", 2, 2, ("range", "scalar"))
+def _countif(ctx, rng, crit):
+    mask = _matches([(rng, crit)])
+    return mask if isinstance(mask, ExcelError) else float(sum(mask))
+
+
+@register("COUNTIFS", "stats", 2, -1, ("range", "scalar"))
+def _countifs(ctx, *args):
+    pairs = _ifs_pairs(args)
+    if isinstance(pairs, ExcelError):
+        return pairs
+    mask = _matches(pairs)
+    return mask if isinstance(mask, ExcelError) else float(sum(mask))
+
+
+def _xifs(name, fn, empty):
+    def scalar(ctx, target, *args):
+        pairs = _ifs_pairs(args)
+        if isinstance(pairs, ExcelError):
+            return pairs
+        if c.as_area(target).shape != c.as_area(pairs[0][0]).shape:
+            return ExcelError.VALUE
+        xs = _picked(ctx, target, pairs)
+        if isinstance(xs, ExcelError):
+            return xs
+        return c.result(fn(xs)) if xs else empty
+    register(name, "stats", 3, -1, ("range", "range", "scalar"))(scalar)
+
+
+_xifs("SUMIFS", fsum, 0.0)
+_xifs("AVERAGEIFS", lambda xs: fsum(xs) / len(xs), ExcelError.DIV0)
+_xifs("MAXIFS", max, 0.0)
+_xifs("MINIFS", min, 0.0)
+
+
+@register("SUMPRODUCT", "stats", 1, -1, "range")
+def _sumproduct(ctx, *args):
+    areas = [c.as_area(a) for a in args]
+    shape = areas[0].shape
+    if any(a.shape != shape for a in areas):
+        return ExcelError.VALUE
+    columns = [list(a.flat()) for a in areas]
+    total = []
+    for row in zip(*columns):
+        err = c.first_error(row)
+        if err is not None:
+            return err
+        total.append(math.prod(float(v) if c.is_number(v) else 0.0 for v in row))
+    return c.result(fsum(total))
+
+
+def _kth(ctx, area, kth, largest: bool):
+    xs = c.numbers([c.as_area(area)], ctx)
+    if isinstance(xs, ExcelError):
+        return xs
+    kk = c.to_number(kth)
+    if isinstance(kk, ExcelError):
+        return kk
+    kk = math.ceil(kk)
+    if not 1 <= kk <= len(xs):
+        return ExcelError.NUM
+    return sorted(xs, reverse=largest)[kk - 1]
+
+
+register("LARGE", "stats", 2, 2, ("range", "scalar"))(
+    lambda ctx, a, kk: _kth(ctx, a, kk, True))
+register("SMALL", "stats", 2, 2, ("range", "scalar"))(
+    lambda ctx, a, kk: _kth(ctx, a, kk, False))
+
+
+def _rank(ctx, x, ref, order=0.0, average=False):
+    x, o = c.to_number(x), c.to_number(order)
+    for v in (x, o):
+        if isinstance(v, ExcelError):
+            return v
+    xs = c.numbers([c.as_area(ref)], ctx)
+    if isinstance(xs, ExcelError):
+        return xs
+    if x not in xs:
+        return ExcelError.NA
+    before = sum(1 for v in xs if (v > x if o == 0 else v < x))
+    if not average:
+        return float(before + 1)
+    ties = xs.count(x)
+    return before + (ties + 1) / 2.0
+
+
+register("RANK", "stats", 2, 3, ("scalar", "range", "scalar"), aliases=("RANK.EQ",))(
+    lambda ctx, x, ref, order=0.0: _rank(ctx, x, ref, order))
+register("RANK.AVG", "stats", 2, 3, ("scalar", "range", "scalar"))(
+    lambda ctx, x, ref, order=0.0: _rank(ctx, x, ref, order, True))
