@@ -30,7 +30,7 @@ BALANCED = "templates/parallel_4dof_balanced.toml"
 TOLERANCE = 1e-9      # of the column's magnitude
 STILL = 1e-12         # spread of a balanced centre of mass, over l_5
 LEGS = (1, 2, 3, 4)
-OUT_OF_REACH = {"l_12": 0.27}   # l_11 + l_12 = 0.57 m: P1 is 0.517..0.586 m from O_11
+OUT_OF_REACH = {"l_12": 0.27}   # leg 1 reaches P1 over part of the path only
 COM = ("x_S", "y_S", "z_S")
 
 
@@ -287,3 +287,20 @@ def test_audit_checks_every_column_against_the_reference(books, name, scene_path
     assert report.ok and not report.mismatches
     columns = len(select(load_scene(scene_path).template, load_scene(scene_path).outputs).columns)
     assert len(report.reference) == columns
+
+
+def test_a_leg_at_the_edge_of_its_reach_is_flagged_not_ok():
+    """l_12 chosen (from the reference's A and B) so that P1 is at the edge of leg 1's reach
+    at t = 0: that row is 'singular' (its rate's denominator vanishes), or 'cannot assemble'
+    a hair beyond, never 'ok'; a little inside the edge it is 'ok' again."""
+    p = load_scene(BARE).parameters
+    r = solve("parallel_4dof", {}, np.array([0.0]), {})
+    d2 = sum((r[f"{a}_P1"][0] - p[f"{a}_10"]) ** 2 for a in "xyz")
+    edge = math.sqrt(d2 + p["l_11"] ** 2 - 2 * p["l_11"] * math.hypot(r["A_1"][0], r["B_1"][0]))
+    for nudge, expected in ((1e-15, "singular"), (-1e-15, "cannot assemble"), (0.0, None),
+                            (1e-5, "ok")):
+        table = compute(load_scene(BARE, overrides={"l_12": edge + nudge}))
+        status = table["status"].iloc[0]
+        assert status != "ok" if expected is None else status == expected, nudge
+        if status == "singular":
+            assert math.isfinite(table["theta_11 [deg]"].iloc[0])

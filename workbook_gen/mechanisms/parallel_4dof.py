@@ -28,7 +28,7 @@ import dataclasses
 from itertools import product
 from typing import Mapping
 
-from ..expr import (Node, Param, Var, abs_, atan2, cos, degrees, eq, if_, iserror, or_,
+from ..expr import (Node, Param, Var, abs_, atan2, cos, degrees, eq, if_, iserror, le, or_,
                     radians, root, sin, wrap)
 from ..expr.vec import (Vec3, add, combine, cross, dot, mat_mul, mat_vec, matrix_of, norm,
                         rot_x, rot_y, rot_z, sub, total, vec)
@@ -242,12 +242,22 @@ def checks() -> tuple[Check, ...]:
     return tuple(out)
 
 
+#: A leg whose platform joint is within this fraction of l_i1 + l_i2 of the edge of its
+#: reach (A^2 + B^2 - C^2 = 0, links i1 and i2 in the plane of d and the hinge axis) is
+#: "singular": its rate's denominator B cos theta - A sin theta vanishes there.
+EDGE_FRACTION = 1e-6
+
+
 def status_for(keep: frozenset[str]) -> Node:
-    """'cannot assemble' where a kept leg's drive angle is an error (out of reach)."""
-    angles = [_v(f"theta_{i}1") for i in LEGS if f"theta_{i}1" in keep]
-    if not angles:
+    """'cannot assemble' where a kept leg's drive angle is an error (out of reach),
+    'singular' where a kept leg is at the edge of its reach, else 'ok'."""
+    legs = [i for i in LEGS if f"theta_{i}1" in keep]
+    if not legs:
         return wrap("ok")
-    return if_(or_(*[iserror(a) for a in angles]), "cannot assemble", "ok")
+    edge = [le(_v(f"A_{i}") ** 2 + _v(f"B_{i}") ** 2 - _v(f"C_{i}") ** 2,
+               (EDGE_FRACTION * (_p(f"l_{i}1") + _p(f"l_{i}2"))) ** 2) for i in legs]
+    return if_(or_(*[iserror(_v(f"theta_{i}1")) for i in legs]), "cannot assemble",
+               if_(or_(*edge), "singular", "ok"))
 
 
 def charts() -> tuple[Chart, ...]:
