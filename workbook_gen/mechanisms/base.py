@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, Mapping
 
-from ..expr import Node, Param, Var, variables
+from ..expr import Node, Param, Var, eq, if_, variables
 from ..expr import parameters as params_of
 
 
@@ -241,3 +241,9 @@ def symbols(names: str, kind: type = Param) -> tuple[Node, ...]:
 
 def quantity_vars(names: str) -> tuple[Var, ...]:
     return symbols(names, Var)  # type: ignore[return-value]
+
+
+def speed_scale(omega: Node) -> Node:
+    """The input speed as the scale of a rate residual, 1 where it is 0: at zero speed
+    every rate is 0 and the residual is measured per unit speed instead of as 0/0."""
+    return if_(eq(omega, 0), 1, omega)

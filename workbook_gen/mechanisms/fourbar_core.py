@@ -37,7 +37,8 @@ from __future__ import annotations
 from ..expr import (Node, abs_, atan2, cos, degrees, eq, if_, iserror, le, lt, max_,
                     min_, pi, radians, root, sin, sqrt, wrap)
 from .angles import cos_deg, cos_half_squared, reduced_input, sin_deg, sin_half_squared
-from .base import Chart, Check, Figure, Link, ParamSpec, Quantity, quantity_vars, symbols
+from .base import (Chart, Check, Figure, Link, ParamSpec, Quantity, quantity_vars, speed_scale,
+                   symbols)
 
 BRANCHES = ("open", "crossed")
 
@@ -205,6 +206,7 @@ def checks() -> tuple[Check, ...]:
               -w2 * l_O1A * s2 + l_AB * (alpha_3 * c3 - omega_3 ** 2 * s3)
               - l_O2B * (alpha_4 * c4 - omega_4 ** 2 * s4))
     reach = l_O1A + l_AC
+    ws = speed_scale(omega_2)  # 1 at zero speed, where every rate is 0
     point = (x_C - l_O1A * c2 - l_AC * cc, y_C - l_O1A * s2 - l_AC * sc)
     point_v = (vx_C + omega_2 * l_O1A * s2 + omega_3 * l_AC * sc,
                vy_C - omega_2 * l_O1A * c2 - omega_3 * l_AC * cc)
@@ -213,15 +215,15 @@ def checks() -> tuple[Check, ...]:
     return (
         Check("loop_position", "position", _norm(*loop) / l_O1O2,
               "|O1A + AB - O1O2 - O2B|, over l_O1O2"),
-        Check("loop_velocity", "velocity", _norm(*loop_v) / (omega_2 * l_O1A),
+        Check("loop_velocity", "velocity", _norm(*loop_v) / (ws * l_O1A),
               "its rate, over omega_2 l_O1A"),
-        Check("loop_acceleration", "acceleration", _norm(*loop_a) / (w2 * l_O1A),
+        Check("loop_acceleration", "acceleration", _norm(*loop_a) / (ws ** 2 * l_O1A),
               "its second rate, over omega_2^2 l_O1A"),
         Check("coupler_point_position", "position", _norm(*point) / reach,
               "|C - A - l_AC e(theta_3 + delta_C)|, over l_O1A + l_AC"),
-        Check("coupler_point_velocity", "velocity", _norm(*point_v) / (omega_2 * reach),
+        Check("coupler_point_velocity", "velocity", _norm(*point_v) / (ws * reach),
               "its rate, over omega_2 (l_O1A + l_AC)"),
-        Check("coupler_point_acceleration", "acceleration", _norm(*point_a) / (w2 * reach),
+        Check("coupler_point_acceleration", "acceleration", _norm(*point_a) / (ws ** 2 * reach),
               "its second rate, over omega_2^2 (l_O1A + l_AC)"),
     )
 

@@ -26,7 +26,7 @@ from ..expr import (Node, atan2, cos, degrees, eq, if_, iserror, pi, radians, ro
                     sin, sqrt)
 from .angles import cos_deg, cos_half_squared, reduced_input, sin_deg, sin_half_squared
 from .base import (Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span,
-                   Template, quantity_vars, symbols)
+                   Template, quantity_vars, speed_scale, symbols)
 
 l_AB, l_BC, l_BE, beta_E, x_F, y_F, l_FG, omega_1 = symbols(
     "l_AB l_BC l_BE beta_E x_F y_F l_FG omega_1")
@@ -137,8 +137,9 @@ def _rod_point_checks() -> tuple[Check, ...]:
     def dot(a, b=(c5, s5)) -> Node:
         return a[0] * b[0] + a[1] * b[1]
 
-    pos, vel, acc = l_BC, omega_1 * l_AB * l_BC, w2 * l_AB * l_BC
-    lever_v, lever_a = omega_1 * l_FG, w2 * l_FG
+    ws = speed_scale(omega_1)  # 1 at zero speed, where every rate is 0
+    pos, vel, acc = l_BC, ws * l_AB * l_BC, ws ** 2 * l_AB * l_BC
+    lever_v, lever_a = ws * l_FG, ws ** 2 * l_FG
     gx, gy = x_G - x_F, y_G - y_F
     return (
         Check("rod_length", "position", (sqrt(r[0] ** 2 + r[1] ** 2) - l_BC) / pos,

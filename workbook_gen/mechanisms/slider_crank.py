@@ -20,7 +20,7 @@ from __future__ import annotations
 from ..expr import Node, asin, atan2, cos, degrees, eq, if_, iserror, radians, root, sin, sqrt
 from .angles import cos_deg, reduced_input, sin_deg, sin_half_squared
 from .base import Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span, Template
-from .base import quantity_vars, symbols
+from .base import quantity_vars, speed_scale, symbols
 
 l_AB, l_BC, e, phi_slide, omega_1 = symbols("l_AB l_BC e phi_slide omega_1")
 (theta_1, u_B, n_B, h_BC, dh_BC, ddh_BC, s_C, v_C, a_C, theta_2, omega_2,
@@ -74,7 +74,8 @@ def _checks() -> tuple[Check, ...]:
     ra = (a_C - uba, -nba)
     rel = radians(theta_2 - phi_slide)
     c2, s2 = cos(rel), sin(rel)
-    pos, vel, acc = l_BC, omega_1 * l_AB * l_BC, w2 * l_AB * l_BC
+    ws = speed_scale(omega_1)  # 1 at zero speed, where every rate is 0
+    pos, vel, acc = l_BC, ws * l_AB * l_BC, ws ** 2 * l_AB * l_BC
     return (
         Check("rod_length", "position", (sqrt(r[0] ** 2 + r[1] ** 2) - l_BC) / pos,
               "|C - B| - l_BC, over l_BC"),
@@ -86,12 +87,12 @@ def _checks() -> tuple[Check, ...]:
         Check("rod_angle", "position", (r[0] * s2 - r[1] * c2) / l_BC,
               "(C - B) x e_2, over l_BC"),
         Check("rod_angular_velocity", "velocity",
-              (rv[0] * s2 - rv[1] * c2 + (r[0] * c2 + r[1] * s2) * omega_2) / (omega_1 * l_BC),
+              (rv[0] * s2 - rv[1] * c2 + (r[0] * c2 + r[1] * s2) * omega_2) / (ws * l_BC),
               "rate of (C - B) x e_2, over omega_1 l_BC"),
         Check("rod_angular_acceleration", "acceleration",
               (ra[0] * s2 - ra[1] * c2 + 2 * (rv[0] * c2 + rv[1] * s2) * omega_2
                - (r[0] * s2 - r[1] * c2) * omega_2 ** 2 + (r[0] * c2 + r[1] * s2) * alpha_2)
-              / (w2 * l_BC), "second rate of (C - B) x e_2, over omega_1^2 l_BC"),
+              / (ws ** 2 * l_BC), "second rate of (C - B) x e_2, over omega_1^2 l_BC"),
     )
 
 
