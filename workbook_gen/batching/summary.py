@@ -1,8 +1,8 @@
 """summary.csv and summary.xlsx of a batch (written last, atomically, same bytes for
 the same command).
 
-summary.xlsx: a Variants sheet (frozen header, autofilter, the file column a link to
-each workbook, rows not ``ok`` marked by conditional formats), a Charts sheet (each
+summary.xlsx: a Variants sheet (frozen header, autofilter, the file column a
+HYPERLINK to each workbook (a formula: no limit of 65,530 links per sheet), rows not ``ok`` marked by conditional formats), a Charts sheet (each
 output's extremes and the template's spans against the varied parameter: one series
 per value of the second parameter when a grid varies two), and an About sheet.
 """
@@ -12,6 +12,7 @@ from __future__ import annotations
 import csv
 import datetime as dt
 import io
+import math
 from pathlib import Path
 from typing import Sequence
 
@@ -21,10 +22,10 @@ from xlsxwriter.utility import xl_col_to_name
 from ..files import write_bytes_atomically
 from ..version import VERSION
 from .rows import figure_columns, snake
-from .table import Table, cell_text
+from .table import Table, number_texts
 
 DOCUMENT_DATE = dt.datetime(2024, 1, 1)
-MAX_LINKS = 65_530          # Excel's limit of hyperlinks per worksheet
+_ROWS_PER_WRITE = 2000
 MAX_SERIES_VALUES = 8       # a second grid parameter with more values: one scatter
 _CHART_COLUMNS = 2
 
@@ -33,7 +34,7 @@ def write_csv(table: Table, path: Path) -> Path:
     text = io.StringIO()
     writer = csv.writer(text, lineterminator="\n")
     writer.writerow(table.columns)
-    columns = [[cell_text(v) for v in table.data[name]] for name in table.columns]
+    columns = [table.csv_column(name) for name in table.columns]
     writer.writerows(zip(*columns))
     return write_bytes_atomically(path, text.getvalue().encode("utf-8"), force=True)
 
@@ -52,12 +53,46 @@ def write_xlsx(table: Table, path: Path, about: Sequence[tuple[str, str]]) -> Pa
     return write_bytes_atomically(path, stream.getvalue(), force=True)
 
 
+def _escape(text: str) -> str:
+    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+
+
+def _text_cell(ref: str, text: str) -> str:
+    space = ' xml:space="preserve"' if text != text.strip() else ""
+    return f'<c r="{ref}" t="inlineStr"><is><t{space}>{_escape(text)}</t></is></c>'
+
+
+def _cells(table: Table, name: str, col: int, lo: int, rows: range) -> list[str]:
+    """The XML of one column's cells (as XlsxWriter writes them in constant_memory
+    mode); an empty string where there is nothing (None, NaN, empty text)."""
+    letter = xl_col_to_name(col)
+    values = table.data[name][lo:lo + len(rows)]
+    if table.kind(name) == "number":  # the full round-trip digits (XlsxWriter: 16)
+        return [f'<c r="{letter}{r}"><v>{t}</v></c>' if t else ""
+                for r, t in zip(rows, number_texts(values))]
+    out = []
+    for r, value in zip(rows, values):
+        ref = f"{letter}{r}"
+        if value is None or value == "" or (isinstance(value, float) and value != value):
+            out.append("")
+        elif name == "file":
+            target = _escape(str(value).replace('"', '""'))
+            out.append(f'<c r="{ref}" t="str"><f>HYPERLINK("{target}","{target}")</f>'
+                       f"<v>{_escape(str(value))}</v></c>")
+        elif isinstance(value, str):
+            out.append(_text_cell(ref, value))
+        elif isinstance(value, bool) or not math.isfinite(value):
+            out.append(_text_cell(ref, str(value)))
+        else:
+            out.append(f'<c r="{ref}"><v>{value:.16G}</v></c>')
+    return out
+
+
 def _variants_sheet(book, table: Table) -> None:
     sheet = book.add_worksheet("Variants")
     header = book.add_format({"bold": True, "bottom": 1, "text_wrap": True, "valign": "top"})
-    link = book.add_format({"font_color": "blue", "underline": 1})
     sheet.freeze_panes(1, 0)
-    sheet.set_row(0, 30)
+    sheet.set_row(0, 30, header)
     sheet.set_column(0, 0, 9)
     sheet.set_column(1, 1, 24)
     sheet.set_column(2, 2, 14)
@@ -74,25 +109,19 @@ def _variants_sheet(book, table: Table) -> None:
             "format": book.add_format({"bg_color": colour})})
     sheet.autofilter(0, 0, max(1, size), last_col)
     sheet.write_row(0, 0, table.columns, header)
-    kinds = []
-    for name in table.columns:
-        values = table.data[name]
-        text = name in ("variant", "file", "status", "audit") or any(
-            isinstance(v, str) for v in values)
-        kinds.append(text)
-    columns = [table.data[name] for name in table.columns]
-    for r in range(size):
-        row = r + 1
-        for c, values in enumerate(columns):
-            value = values[r]
-            if value is None or value == "" or (isinstance(value, float) and value != value):
-                continue
-            if c == 1 and value and r < MAX_LINKS:
-                sheet.write_url(row, c, f"external:{value}", link, string=str(value))
-            elif kinds[c]:
-                sheet.write_string(row, c, str(value))
-            else:
-                sheet.write_number(row, c, value)
+    if not size:
+        return
+    # The data rows are written whole (XlsxWriter takes microseconds per cell, and a
+    # summary may have 100,000 rows x 70 columns): the XML it writes for the same cells.
+    sheet._check_dimensions(size, last_col)
+    sheet._write_single_row(1)
+    for lo in range(0, size, _ROWS_PER_WRITE):
+        rows = range(lo + 2, min(size, lo + _ROWS_PER_WRITE) + 2)
+        columns = [_cells(table, name, c, lo, rows) for c, name in enumerate(table.columns)]
+        sheet.fh.write("".join(f'<row r="{r}">' + "".join(cells) + "</row>"
+                               for r, cells in zip(rows, zip(*columns))))
+    sheet.previous_row = size + 1
+    sheet.table.clear()
 
 
 def _plotted(table: Table) -> list[tuple[str, list[str]]]:

@@ -71,13 +71,18 @@ def _block(base: Scene, plan: Plan, spec: JobSpec, variants: Sequence[Variant]
         columns, status = plan.evaluate(params, inputs, count)
         figures = figure_values(plan.model, params, count)
         made = summarise(plan.model, inputs, columns, status_texts(status), figures, count)
-        for j, i in enumerate(np.flatnonzero(keep).tolist()):
-            for name in names:
-                out[name][i] = made[name][j]
-            out["status"][i] = made["status"][j]
-            if made["rows_not_assembled"][j] == len(inputs):
-                point = {name: float(values[name][i]) for name in base.parameters}
-                refused[i] = f"refused: {unassembled_reason(base, point)}"
+        if count == size:
+            out.update({name: made[name] for name in names + ["status"]})
+        else:
+            where = np.flatnonzero(keep)
+            for name in names + ["status"]:
+                column = np.array(out[name], dtype=object)
+                column[where] = np.array(made[name], dtype=object)
+                out[name] = column.tolist()
+        for j in np.flatnonzero(np.array(made["rows_not_assembled"]) == len(inputs)).tolist():
+            i = int(np.flatnonzero(keep)[j])
+            point = {name: float(values[name][i]) for name in base.parameters}
+            refused[i] = f"refused: {unassembled_reason(base, point)}"
     for i, status in refused.items():
         for name in names:
             out[name][i] = None if name == "rows_not_assembled" else math.nan

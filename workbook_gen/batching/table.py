@@ -11,10 +11,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+
+import numpy as np
 from typing import Mapping, Sequence
 
 from ..model import Model
-from .rows import value_columns
+from .rows import figure_columns, snake, value_columns
 from .variants import Design, Variant
 
 
@@ -36,6 +38,7 @@ class Table:
             for i, variant in enumerate(self.design.variants):
                 column[i] = dict(variant.values).get(name, self.defaults[name])
         self._filled = [False] * size
+        self._figures = set(figure_columns(self.model)) - {snake(s.label) for s in self.model.spans}
 
     def put(self, variant: Variant, row: Mapping[str, object]) -> None:
         i = variant.index - 1
@@ -44,12 +47,29 @@ class Table:
         self._filled[i] = True
 
     def put_block(self, variants: Sequence[Variant], block: Mapping[str, list[object]]) -> None:
+        first = variants[0].index - 1
+        contiguous = variants[-1].index - variants[0].index == len(variants) - 1
         for name, values in block.items():
             column = self.data[name]
-            for variant, value in zip(variants, values):
-                column[variant.index - 1] = value
+            if contiguous:
+                column[first:first + len(variants)] = values
+            else:
+                for variant, value in zip(variants, values):
+                    column[variant.index - 1] = value
         for variant in variants:
             self._filled[variant.index - 1] = True
+
+    def kind(self, name: str) -> str:
+        """``text``, ``number`` (floats, NaN or None for none) or ``mixed`` (a figure
+        that is a number for some variants and a text for others)."""
+        if name in ("variant", "file", "status", "audit"):
+            return "text"
+        if name in self.design.names or name not in self._figures:
+            return "number"
+        values = self.data[name]
+        if all(v is None or isinstance(v, (int, float)) for v in values):
+            return "number"
+        return "text" if all(v is None or isinstance(v, str) for v in values) else "mixed"
 
     @property
     def complete(self) -> bool:
@@ -67,16 +87,31 @@ class Table:
         out = {}
         for name in self.columns:
             values = self.data[name]
-            if name in ("variant", "file", "status", "audit"):
+            kind = self.kind(name)
+            if kind == "text":
                 out[name] = ["" if v is None else str(v) for v in values]
-            elif all(v is None or isinstance(v, (int, float)) for v in values):
-                out[name] = [math.nan if v is None else v for v in values]
+            elif kind == "number" and name != "rows_not_assembled":
+                out[name] = np.array(values, dtype=float)  # None -> NaN
             else:
                 out[name] = values
         frame = pd.DataFrame(out, columns=self.columns)
         if "rows_not_assembled" in frame:
             frame["rows_not_assembled"] = frame["rows_not_assembled"].astype("Int64")
         return frame
+
+    def csv_column(self, name: str) -> list[str]:
+        """The column's CSV cells: floats as Python's shortest round-trip text (``repr``),
+        no number as empty."""
+        if self.kind(name) == "number":
+            return number_texts(self.data[name])
+        return [cell_text(v) for v in self.data[name]]
+
+
+def number_texts(values: list) -> list[str]:
+    """``repr`` of each number ('' for None and NaN), formatted in C: ``repr`` of a list
+    formats its floats as ``repr`` of each does."""
+    texts = repr(values)[1:-1].split(", ") if values else []
+    return ["" if t in ("nan", "None") else t for t in texts]
 
 
 def cell_text(value: object) -> str:

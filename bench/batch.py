@@ -1,0 +1,114 @@
+"""Batch speed, as ratios within one run (SPEC 11, issue 9):
+
+1. 1,000 sewing-machine variants at 10 deg with ``--jobs 2`` against a loop of
+   ``write_workbook`` in one process;
+2. ``--summary-only`` over 100,000 variants (seconds, variants/s against the file batch,
+   peak memory of each process);
+3. Dask, a LocalCluster of 2 single-threaded worker processes, against ``--jobs 2``.
+
+    python bench/batch.py                 # the figures the README quotes
+    python bench/batch.py --variants 200 --summary 20000   # a quicker look
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import resource
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+SCENE = str(ROOT / "templates" / "sewing_machine.toml")
+
+
+def grid(count: int) -> list[str]:
+    """``count`` variants (a multiple of 10): l_BC in 0.1 mm steps x 10 values of l_AB."""
+    rows = count // 10
+    return [f"l_BC=95:{95 + (rows - 1) * 0.1:.1f}:0.1", "l_AB=30:31.8:0.2"]
+
+
+def file_batch(out: Path, count: int, jobs: int | None = None, client=None) -> float:
+    from workbook_gen import batch
+    start = time.perf_counter()
+    frame = batch(SCENE, vary=grid(count), out=out, jobs=jobs, client=client, progress=False)
+    seconds = time.perf_counter() - start
+    assert len(frame) == count and frame.attrs["failed"] == 0
+    return seconds
+
+
+def loop(out: Path, count: int) -> float:
+    """The peer: a loop of load_scene + write_workbook in this process."""
+    from workbook_gen import load_scene, write_workbook
+    from workbook_gen.batching.variants import from_specs
+    params = ["l_AB", "l_BC"]
+    design = from_specs(grid(count), params + ["l_BE", "beta_E", "x_F", "y_F", "l_FG",
+                                                "omega_1"])
+    start = time.perf_counter()
+    for variant in design.variants:
+        scene = load_scene(SCENE, overrides=dict(variant.values),
+                           name=f"sewing_machine-{variant.index:04d}")
+        write_workbook(scene, out)
+    return time.perf_counter() - start
+
+
+def summary_only(out: Path, count: int, jobs: int) -> tuple[float, float, float]:
+    """(seconds, peak MB of the command's process, peak MB of any worker) of
+    ``workbook-gen batch --summary-only`` in a child process."""
+    rows = count // 100
+    vary = [f"l_BC=95:{95 + (rows - 1) * 0.01:.2f}:0.01", "l_AB=30:31.98:0.02"]
+    code = ("import resource, sys, time; from workbook_gen import batch; t = time.perf_counter(); "
+            f"f = batch({SCENE!r}, vary={vary!r}, out={str(out)!r}, jobs={jobs}, "
+            "summary_only=True, progress=False); s = time.perf_counter() - t; "
+            f"assert len(f) == {count}; "
+            "print(s, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, "
+            "resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024)")
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]))
+    result = subprocess.run([sys.executable, "-c", code], env=env, check=True,
+                            capture_output=True, text=True)
+    seconds, parent, workers = (float(x) for x in result.stdout.split())
+    return seconds, parent, workers
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--variants", type=int, default=1000, help="file batch size (x10)")
+    parser.add_argument("--summary", type=int, default=100_000, help="summary-only size (x100)")
+    parser.add_argument("--jobs", type=int, default=2)
+    args = parser.parse_args()
+    print(f"machine: {platform.machine()}, {os.cpu_count()} cores, Python "
+          f"{platform.python_version()}, {platform.system()} {platform.release()}")
+    n = args.variants
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        pool = file_batch(tmp / "pool", n, jobs=args.jobs)
+        print(f"1. {n:,} variants at 10 deg, --jobs {args.jobs}: {pool:.1f} s "
+              f"({n / pool:.1f} variants/s)")
+        single = loop(tmp / "loop", n)
+        print(f"   loop of write_workbook in one process: {single:.1f} s "
+              f"({n / single:.1f} variants/s); --jobs {args.jobs} is {single / pool:.2f}x faster")
+        shutil.rmtree(tmp / "loop")
+        seconds, parent, workers = summary_only(tmp / "summary", args.summary, args.jobs)
+        rate = args.summary / seconds
+        print(f"2. --summary-only, {args.summary:,} variants, --jobs {args.jobs}: {seconds:.1f} s "
+              f"({rate:,.0f} variants/s, {rate / (n / pool):.0f}x the file batch's); peak "
+              f"memory {parent:.0f} MB (command), {workers:.0f} MB (largest worker)")
+        from distributed import Client, LocalCluster
+        os.environ["PYTHONPATH"] = os.pathsep.join(
+            [str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])
+        with LocalCluster(n_workers=2, processes=True, threads_per_worker=1,
+                          dashboard_address=None) as cluster, Client(cluster) as client:
+            dask = file_batch(tmp / "dask", n, client=client)
+        print(f"3. Dask LocalCluster, 2 worker processes: {dask:.1f} s for {n:,} variants, "
+              f"{dask / pool:.2f}x the time of --jobs {args.jobs} "
+              f"(overhead {(dask - pool) / n * 1000:+.1f} ms per variant)")
+
+
+if __name__ == "__main__":
+    main()
