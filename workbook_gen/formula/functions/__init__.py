@@ -15,7 +15,7 @@ and propagate.
 from __future__ import annotations
 
 from workbook_gen.formula.functions import (  # noqa: F401  (each module registers its family)
-    info, logical, lookup, math, stats,
+    date, eng, finance, info, logical, lookup, math, stats, text,
 )
 from workbook_gen.formula.functions.dialect import (
     LIBREOFFICE_DIFFERENCES, Difference, libreoffice_result, numeric_deviation,

@@ -1,0 +1,503 @@
+"""Dates and times as Excel's serial numbers (1900 system): DATE, YEAR, MONTH, DAY, TIME,
+HOUR, MINUTE, SECOND, TODAY/NOW (volatile), EDATE, EOMONTH, YEARFRAC, WEEKDAY, WEEKNUM,
+ISOWEEKNUM, DAYS, DAYS360, DATEDIF, DATEVALUE, TIMEVALUE, NETWORKDAYS, WORKDAY.
+
+Serial 1 is 1900-01-01 and serial 60 is the 29 February 1900 that never was (Lotus 1-2-3's
+leap-year bug, kept by Excel): from serial 61 on a serial counts days since 1899-12-30.
+"""
+
+from __future__ import annotations
+
+import calendar
+import datetime as dt
+import math
+import re
+
+from workbook_gen.formula.functions import coerce as c
+from workbook_gen.formula.functions.registry import register
+from workbook_gen.xlerror import ExcelError
+
+_EPOCH = dt.date(1899, 12, 30)
+MAX_SERIAL = 2958465  # 9999-12-31
+
+
+def to_serial(d: dt.date) -> float:
+    n = (d - _EPOCH).days
+    return float(n if n >= 61 else n - 1)
+
+
+def from_serial(x: float) -> tuple[int, int, int] | ExcelError:
+    """(year, month, day) of a serial; 0 is 1900-01-00 and 60 is 1900-02-29, as in Excel."""
+    if x < 0 or x > MAX_SERIAL + 1:
+        return ExcelError.NUM
+    n = int(math.floor(x))
+    if n == 0:
+        return (1900, 1, 0)
+    if n == 60:
+        return (1900, 2, 29)
+    d = _EPOCH + dt.timedelta(days=n if n > 60 else n + 1)
+    return (d.year, d.month, d.day)
+
+
+def _date(x) -> tuple[int, int, int] | ExcelError:
+    n = serial_arg(x)
+    return n if isinstance(n, ExcelError) else from_serial(n)
+
+
+def serial_arg(v) -> float | ExcelError:
+    """A date argument: a number, or text that reads as a date or a number."""
+    if isinstance(v, str):
+        x = c.text_to_number(v)
+        if isinstance(x, ExcelError):
+            x = parse_date_text(v)
+        return x
+    x = c.to_number(v)
+    if isinstance(x, ExcelError):
+        return x
+    return ExcelError.NUM if x < 0 else x
+
+
+_MONTHS = {m.lower(): i for i, m in enumerate(calendar.month_abbr) if m}
+_MONTHS.update({m.lower(): i for i, m in enumerate(calendar.month_name) if m})
+
+
+def _time_part(text: str) -> float | None:
+    m = re.fullmatch(r"(\d{1,2}):(\d{2})(?::(\d{2}(?:\.\d*)?))?\s*([AaPp][Mm])?", text.strip())
+    if m is None:
+        return None
+    h, mi, s = int(m.group(1)), int(m.group(2)), float(m.group(3) or 0)
+    if m.group(4):
+        h = h % 12 + (12 if m.group(4).lower() == "pm" else 0)
+    return (h * 3600 + mi * 60 + s) / 86400.0
+
+
+def parse_date_text(text: str) -> float | ExcelError:
+    """DATEVALUE-style reading: ISO ``2020-01-31``, US ``1/31/2020``, ``31-Jan-2020``,
+    ``Jan 31, 2020``, optionally followed by a time; a time alone is a fraction."""
+    t = text.strip()
+    frac = _time_part(t)
+    if frac is not None:
+        return frac
+    time = 0.0
+    m = re.fullmatch(r"(.*?)\s+(\d{1,2}:\d{2}(?::\d{2}(?:\.\d*)?)?\s*(?:[AaPp][Mm])?)", t)
+    if m:
+        t, time = m.group(1), _time_part(m.group(2)) or 0.0
+    parts = None
+    for pattern, order in ((r"(\d{4})-(\d{1,2})-(\d{1,2})", "ymd"),
+                           (r"(\d{4})/(\d{1,2})/(\d{1,2})", "ymd"),
+                           (r"(\d{1,2})/(\d{1,2})/(\d{2,4})", "mdy"),
+                           (r"(\d{1,2})[- ]([A-Za-z]+)[- ,]+(\d{2,4})", "dMy"),
+                           (r"([A-Za-z]+)[- ](\d{1,2}),?[- ](\d{2,4})", "Mdy")):
+        mm = re.fullmatch(pattern, t)
+        if mm:
+            parts = dict(zip(order, mm.groups()))
+            break
+    if parts is None:
+        return ExcelError.VALUE
+    month = parts.get("m") or _MONTHS.get(parts.get("M", "").lower())
+    if not month:
+        return ExcelError.VALUE
+    year = int(parts["y"])
+    if year < 100:
+        year += 2000 if year < 30 else 1900
+    try:
+        d = dt.date(year, int(month), int(parts["d"]))
+    except ValueError:
+        return ExcelError.VALUE
+    return to_serial(d) + time
+
+
+def _ints(*vs):
+    out = [c.to_number(v) for v in vs]
+    bad = next((x for x in out if isinstance(x, ExcelError)), None)
+    return bad if bad is not None else [int(math.floor(x)) if x >= 0 else int(x) for x in out]
+
+
+def make_date(y: int, m: int, d: int) -> float | ExcelError:
+    """DATE(y, m, d): years 0-1899 add 1900; months and days overflow into the next."""
+    if 0 <= y < 1900:
+        y += 1900
+    if not 1900 <= y <= 9999:
+        return ExcelError.NUM
+    y, m = y + (m - 1) // 12, (m - 1) % 12 + 1
+    base = dt.date(y, m, 1)
+    serial = to_serial(base) + d - 1  # day arithmetic in serial space: DATE(1900,3,0) is 60
+    return float(serial) if 0 <= serial <= MAX_SERIAL else ExcelError.NUM
+
+
+@register("DATE", "date", 3, 3)
+def _date_fn(ctx, y, m, d):
+    xs = _ints(y, m, d)
+    return xs if isinstance(xs, ExcelError) else make_date(*xs)
+
+
+def _part(i):
+    def fn(ctx, v):
+        ymd = _date(v)
+        return ymd if isinstance(ymd, ExcelError) else float(ymd[i])
+    return fn
+
+
+register("YEAR", "date", 1, 1)(_part(0))
+register("MONTH", "date", 1, 1)(_part(1))
+register("DAY", "date", 1, 1)(_part(2))
+
+
+def _seconds(v):
+    x = serial_arg(v)
+    if isinstance(x, ExcelError):
+        return x
+    return int(round((x - math.floor(x)) * 86400.0, 6) + 1e-9) % 86400
+
+
+register("HOUR", "date", 1, 1)(lambda ctx, v: c.result(_map(_seconds(v), lambda s: s // 3600)))
+register("MINUTE", "date", 1, 1)(lambda ctx, v: _map(_seconds(v), lambda s: s // 60 % 60))
+register("SECOND", "date", 1, 1)(lambda ctx, v: _map(_seconds(v), lambda s: s % 60))
+
+
+def _map(x, fn):
+    return x if isinstance(x, ExcelError) else float(fn(x))
+
+
+@register("TIME", "date", 3, 3)
+def _time(ctx, h, m, s):
+    xs = _ints(h, m, s)
+    if isinstance(xs, ExcelError):
+        return xs
+    total = xs[0] * 3600 + xs[1] * 60 + xs[2]
+    return ExcelError.NUM if total < 0 else (total % 86400) / 86400.0
+
+
+@register("TODAY", "date", 0, 0, volatile=True)
+def _today(ctx):
+    return to_serial(dt.date.today())
+
+
+@register("NOW", "date", 0, 0, volatile=True)
+def _now(ctx):
+    now = dt.datetime.now()
+    return to_serial(now.date()) + (now.hour * 3600 + now.minute * 60 + now.second) / 86400.0
+
+
+def _ymd_date(ymd) -> dt.date:
+    y, m, d = ymd
+    if d == 0 or (m == 2 and d == 29 and y == 1900):  # the serials 0 and 60
+        return dt.date(1900, 1, 1) if d == 0 else dt.date(1900, 2, 28)
+    return dt.date(y, m, d)
+
+
+def _add_months(v, months, end_of_month: bool):
+    ymd = _date(v)
+    k = c.to_number(months)
+    for x in (ymd, k):
+        if isinstance(x, ExcelError):
+            return x
+    y, m, d = ymd
+    total = y * 12 + (m - 1) + int(k)
+    y, m = divmod(total, 12)
+    m += 1
+    if not 1900 <= y <= 9999:
+        return ExcelError.NUM
+    last = calendar.monthrange(y, m)[1]
+    return to_serial(dt.date(y, m, last if end_of_month else min(max(d, 1), last)))
+
+
+register("EDATE", "date", 2, 2)(lambda ctx, v, k: _add_months(v, k, False))
+register("EOMONTH", "date", 2, 2)(lambda ctx, v, k: _add_months(v, k, True))
+
+
+def _two_dates(a, b):
+    x, y = serial_arg(a), serial_arg(b)
+    for v in (x, y):
+        if isinstance(v, ExcelError):
+            return v
+    return math.floor(x), math.floor(y)
+
+
+def _is_leap(y: int) -> bool:
+    return calendar.isleap(y)
+
+
+def _last_of_feb(d: dt.date) -> bool:
+    return d.month == 2 and d.day == calendar.monthrange(d.year, 2)[1]
+
+
+def yearfrac(s: float, e: float, basis: int) -> float | ExcelError:
+    if s > e:
+        s, e = e, s
+    d1, d2 = _ymd_date(from_serial(s)), _ymd_date(from_serial(e))
+    if basis in (0, 4):
+        y1, m1, t1 = d1.year, d1.month, d1.day
+        y2, m2, t2 = d2.year, d2.month, d2.day
+        if basis == 0:
+            if _last_of_feb(d1) and _last_of_feb(d2):
+                t2 = 30
+            if _last_of_feb(d1):
+                t1 = 30
+            if t2 == 31 and t1 >= 30:
+                t2 = 30
+            if t1 == 31:
+                t1 = 30
+        else:
+            t1, t2 = min(t1, 30), min(t2, 30)
+        return ((y2 - y1) * 360 + (m2 - m1) * 30 + (t2 - t1)) / 360.0
+    days = e - s
+    if basis == 2:
+        return days / 360.0
+    if basis == 3:
+        return days / 365.0
+    if d1.year == d2.year:
+        return days / (366.0 if _is_leap(d1.year) else 365.0)
+    if d2 <= dt.date(d1.year + 1, d1.month, min(d1.day, calendar.monthrange(d1.year + 1,
+                                                                            d1.month)[1])):
+        feb29 = ((_is_leap(d1.year) and d1 <= dt.date(d1.year, 2, 29))
+                 or (_is_leap(d2.year) and d2 >= dt.date(d2.year, 2, 29)))
+        return days / (366.0 if feb29 else 365.0)
+    years = range(d1.year, d2.year + 1)
+    average = sum(366 if _is_leap(y) else 365 for y in years) / len(years)
+    return days / average
+
+
+@register("YEARFRAC", "date", 2, 3)
+def _yearfrac(ctx, a, b, basis=0.0):
+    se = _two_dates(a, b)
+    k = c.to_number(basis)
+    for x in (se, k):
+        if isinstance(x, ExcelError):
+            return x
+    k = int(k)
+    if k not in (0, 1, 2, 3, 4):
+        return ExcelError.NUM
+    return c.result(yearfrac(se[0], se[1], k))
+
+
+@register("DAYS", "date", 2, 2)
+def _days(ctx, end, start):
+    se = _two_dates(start, end)
+    return se if isinstance(se, ExcelError) else float(se[1] - se[0])
+
+
+@register("DAYS360", "date", 2, 3)
+def _days360(ctx, a, b, european=False):
+    se = _two_dates(a, b)
+    eu = c.to_bool(european)
+    for x in (se, eu):
+        if isinstance(x, ExcelError):
+            return x
+    d1, d2 = _ymd_date(from_serial(se[0])), _ymd_date(from_serial(se[1]))
+    t1, t2 = d1.day, d2.day
+    if eu:
+        t1, t2 = min(t1, 30), min(t2, 30)
+    else:
+        if _last_of_feb(d1):
+            t1 = 30
+        if t1 == 31:
+            t1 = 30
+        if t2 == 31 and t1 >= 30:
+            t2 = 30
+    return float((d2.year - d1.year) * 360 + (d2.month - d1.month) * 30 + t2 - t1)
+
+
+@register("DATEDIF", "date", 3, 3)
+def _datedif(ctx, a, b, unit):
+    se = _two_dates(a, b)
+    u = c.to_text(unit)
+    for x in (se, u):
+        if isinstance(x, ExcelError):
+            return x
+    if se[0] > se[1]:
+        return ExcelError.NUM
+    d1, d2 = _ymd_date(from_serial(se[0])), _ymd_date(from_serial(se[1]))
+    months = (d2.year - d1.year) * 12 + d2.month - d1.month - (d2.day < d1.day)
+    u = u.upper()
+    if u == "D":
+        return float(se[1] - se[0])
+    if u == "M":
+        return float(months)
+    if u == "Y":
+        return float(months // 12)
+    if u == "YM":
+        return float(months % 12)
+    if u == "MD":
+        return float((d2 - d1).days if d2.day >= d1.day and months == 0 else
+                     (d2.day - d1.day) % calendar.monthrange(
+                         d2.year if d2.month > 1 else d2.year - 1, (d2.month - 2) % 12 + 1)[1])
+    if u == "YD":
+        start = dt.date(d2.year, d1.month, min(d1.day, calendar.monthrange(d2.year, d1.month)[1]))
+        if start > d2:
+            start = dt.date(d2.year - 1, d1.month,
+                            min(d1.day, calendar.monthrange(d2.year - 1, d1.month)[1]))
+        return float((d2 - start).days)
+    return ExcelError.NUM
+
+
+@register("WEEKDAY", "date", 1, 2)
+def _weekday(ctx, v, kind=1.0):
+    ymd = _date(v)
+    k = c.to_number(kind)
+    for x in (ymd, k):
+        if isinstance(x, ExcelError):
+            return x
+    wd = _ymd_date(ymd).weekday() if ymd[2] else 5  # Monday 0; serial 0 is a Saturday
+    k = int(k)
+    if k == 1 or k == 17:
+        return float((wd + 1) % 7 + 1)
+    if k == 2 or k == 11:
+        return float(wd + 1)
+    if k == 3:
+        return float(wd)
+    if 12 <= k <= 16:
+        return float((wd - (k - 11)) % 7 + 1)
+    return ExcelError.NUM
+
+
+@register("WEEKNUM", "date", 1, 2)
+def _weeknum(ctx, v, kind=1.0):
+    ymd = _date(v)
+    k = c.to_number(kind)
+    for x in (ymd, k):
+        if isinstance(x, ExcelError):
+            return x
+    d = _ymd_date(ymd)
+    if int(k) == 21:
+        return float(d.isocalendar()[1])
+    first = {1: 6, 17: 6, 2: 0, 11: 0, 12: 1, 13: 2, 14: 3, 15: 4, 16: 5}.get(int(k))
+    if first is None:
+        return ExcelError.NUM
+    jan1 = dt.date(d.year, 1, 1)
+    offset = (jan1.weekday() - first) % 7
+    return float((d.timetuple().tm_yday - 1 + offset) // 7 + 1)
+
+
+@register("ISOWEEKNUM", "date", 1, 1)
+def _isoweeknum(ctx, v):
+    ymd = _date(v)
+    return ymd if isinstance(ymd, ExcelError) else float(_ymd_date(ymd).isocalendar()[1])
+
+
+@register("DATEVALUE", "date", 1, 1)
+def _datevalue(ctx, v):
+    t = c.to_text(v)
+    if isinstance(t, ExcelError):
+        return t
+    x = parse_date_text(t)
+    return x if isinstance(x, ExcelError) else float(math.floor(x))
+
+
+@register("TIMEVALUE", "date", 1, 1)
+def _timevalue(ctx, v):
+    t = c.to_text(v)
+    if isinstance(t, ExcelError):
+        return t
+    x = parse_date_text(t)
+    return x if isinstance(x, ExcelError) else x - math.floor(x)
+
+
+def _holidays(h) -> set[int] | ExcelError:
+    out = set()
+    for v in (c.flat(h) if h is not None else []):
+        if v is None:
+            continue
+        x = serial_arg(v)
+        if isinstance(x, ExcelError):
+            return x
+        out.add(math.floor(x))
+    return out
+
+
+def _workday_ok(n: int, hol: set[int]) -> bool:
+    wd = _ymd_date(from_serial(n)).weekday() if n > 0 else 5
+    return wd < 5 and n not in hol
+
+
+@register("NETWORKDAYS", "date", 2, 3, ("scalar", "scalar", "range"))
+def _networkdays(ctx, a, b, holidays=None):
+    se = _two_dates(a, b)
+    hol = _holidays(holidays)
+    for x in (se, hol):
+        if isinstance(x, ExcelError):
+            return x
+    lo, hi = sorted(se)
+    n = sum(1 for d in range(lo, hi + 1) if _workday_ok(d, hol))
+    return float(n if se[0] <= se[1] else -n)
+
+
+@register("WORKDAY", "date", 2, 3, ("scalar", "scalar", "range"))
+def _workday(ctx, start, days, holidays=None):
+    s = serial_arg(start)
+    k = c.to_number(days)
+    hol = _holidays(holidays)
+    for x in (s, k, hol):
+        if isinstance(x, ExcelError):
+            return x
+    d, k = math.floor(s), int(k)
+    step = 1 if k > 0 else -1
+    while k:
+        d += step
+        if d < 1 or d > MAX_SERIAL:
+            return ExcelError.NUM
+        if _workday_ok(d, hol):
+            k -= step
+    return float(d)
+
+
+# -- TEXT's date formats ------------------------------------------------------------------
+
+_DATE_TOKENS = re.compile(r"yyyy|yy|mmmm|mmm|mm|m|dddd|ddd|dd|d|hh|h|ss|s|am/pm|a/p|\"[^\"]*\"|.",
+                          re.IGNORECASE)
+
+
+def format_date(x: float, fmt: str) -> str | ExcelError:
+    ymd = from_serial(x)
+    if isinstance(ymd, ExcelError):
+        return ymd
+    y, m, d = ymd
+    wd = _ymd_date(ymd).weekday()
+    secs = int(round((x - math.floor(x)) * 86400.0)) % 86400
+    hh, mi, ss = secs // 3600, secs // 60 % 60, secs % 60
+    tokens = _DATE_TOKENS.findall(fmt)
+    ampm = any(t.lower() in ("am/pm", "a/p") for t in tokens)
+    out = []
+    for i, tok in enumerate(tokens):
+        low = tok.lower()
+        prev = next((t.lower() for t in reversed(tokens[:i]) if t.isalpha()), "")
+        nxt = next((t.lower() for t in tokens[i + 1:] if t.isalpha()), "")
+        minute = low in ("m", "mm") and (prev.startswith("h") or nxt.startswith("s"))
+        if low == "yyyy":
+            out.append(f"{y:04d}")
+        elif low == "yy":
+            out.append(f"{y % 100:02d}")
+        elif minute:
+            out.append(f"{mi:02d}" if low == "mm" else str(mi))
+        elif low == "mmmm":
+            out.append(calendar.month_name[m])
+        elif low == "mmm":
+            out.append(calendar.month_abbr[m])
+        elif low == "mm":
+            out.append(f"{m:02d}")
+        elif low == "m":
+            out.append(str(m))
+        elif low == "dddd":
+            out.append(calendar.day_name[wd])
+        elif low == "ddd":
+            out.append(calendar.day_abbr[wd])
+        elif low == "dd":
+            out.append(f"{d:02d}")
+        elif low == "d":
+            out.append(str(d))
+        elif low in ("hh", "h"):
+            h = (hh % 12 or 12) if ampm else hh
+            out.append(f"{h:02d}" if low == "hh" else str(h))
+        elif low in ("ss", "s"):
+            out.append(f"{ss:02d}" if low == "ss" else str(ss))
+        elif low == "am/pm":
+            out.append("AM" if hh < 12 else "PM")
+        elif low == "a/p":
+            out.append("A" if hh < 12 else "P")
+        elif tok.startswith('"'):
+            out.append(tok[1:-1])
+        elif tok == "\\":
+            continue
+        else:
+            out.append(tok)
+    return "".join(out)

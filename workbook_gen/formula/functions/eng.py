@@ -1,0 +1,224 @@
+"""Engineering: CONVERT (Excel's unit table, SI and binary prefixes), DEC2BIN/OCT/HEX and
+back (10-digit two's complement), DELTA, GESTEP."""
+
+from __future__ import annotations
+
+from workbook_gen.formula.functions import coerce as c
+from workbook_gen.formula.functions.registry import register
+from workbook_gen.xlerror import ExcelError
+
+# unit -> (quantity, factor to the quantity's base unit, prefixes allowed)
+_UNITS: dict[str, tuple[str, float, bool]] = {}
+
+
+def _add(quantity: str, prefixed: bool, table: dict[str, float]) -> None:
+    for names, factor in table.items():
+        for name in names.split():
+            _UNITS[name] = (quantity, factor, prefixed)
+
+
+_IN = 0.0254
+_add("mass", True, {"g": 1.0, "u": 1.66053886e-24})
+_add("mass", False, {"sg": 14593.9029372064, "lbm": 453.59237, "ozm": 28.349523125,
+                     "grain": 0.06479891, "cwt shweight": 45359.237,
+                     "uk_cwt lcwt hweight": 50802.34544, "stone": 6350.29318,
+                     "ton": 907184.74, "uk_ton LTON brton": 1016046.9088})
+_add("distance", True, {"m": 1.0, "ang": 1e-10, "ly": 9460730472580800.0,
+                        "parsec pc": 30856775812815500.0})
+_add("distance", False, {"mi": 1609.344, "Nmi": 1852.0, "in": _IN, "ft": 0.3048, "yd": 0.9144,
+                         "ell": 1.143, "Picapt Pica": _IN / 72, "pica": _IN / 6,
+                         "survey_mi": 1609.34721869444})
+_add("time", True, {"sec s": 1.0})
+_add("time", False, {"yr": 31557600.0, "day d": 86400.0, "hr": 3600.0, "mn min": 60.0})
+_add("pressure", True, {"Pa p": 1.0, "atm at": 101325.0, "mmHg": 133.322})
+_add("pressure", False, {"psi": 6894.75729316836, "Torr": 133.322368421053})
+_add("force", True, {"N": 1.0, "dyn dy": 1e-5, "pond": 0.00980665})
+_add("force", False, {"lbf": 4.4482216152605})
+_add("energy", True, {"J": 1.0, "e": 1e-7, "c": 4.184, "cal": 4.1868, "eV ev": 1.602176487e-19,
+                      "Wh wh": 3600.0})
+_add("energy", False, {"HPh hh": 2684519.53769617, "flb": 1.3558179483314,
+                       "BTU btu": 1055.05585262})
+_add("power", True, {"W w": 1.0})
+_add("power", False, {"HP h": 745.69987158227, "PS": 735.49875})
+_add("magnetism", True, {"T": 1.0, "ga": 1e-4})
+_add("volume", True, {"l L lt": 1e-3, "m3": 1.0, "ang3": 1e-30})
+_add("volume", False, {"tsp": 4.92892159375e-6, "tspm": 5e-6, "tbs": 1.478676478125e-5,
+                       "oz": 2.95735295625e-5, "cup": 2.365882365e-4, "pt us_pt": 4.73176473e-4,
+                       "uk_pt": 5.6826125e-4, "qt": 9.46352946e-4, "uk_qt": 1.1365225e-3,
+                       "gal": 3.785411784e-3, "uk_gal": 4.54609e-3, "barrel": 0.158987294928,
+                       "bushel": 0.03523907016688, "ft3": 0.028316846592, "in3": 1.6387064e-5,
+                       "yd3": 0.764554857984, "mi3": 4168181825.44058, "Nmi3": 6352182208.0,
+                       "GRT regton": 2.8316846592, "MTON": 1.13267386368})
+_add("area", True, {"m2": 1.0, "ar": 100.0, "ang2": 1e-20})
+_add("area", False, {"uk_acre": 4046.8564224, "us_acre": 4046.87260987425, "ft2": 0.09290304,
+                     "ha": 10000.0, "in2": 0.00064516, "mi2": 2589988.110336,
+                     "Nmi2": 3429904.0, "yd2": 0.83612736, "Morgen": 2500.0})
+_add("information", True, {"bit": 1.0, "byte": 8.0})
+_add("speed", True, {"m/s m/sec": 1.0, "m/h m/hr": 1 / 3600})
+_add("speed", False, {"mph": 0.44704, "kn": 1852 / 3600, "admkn": 6080 * 0.3048 / 3600})
+_TEMPERATURE = {"C": "C", "cel": "C", "F": "F", "fah": "F", "K": "K", "kel": "K",
+                "Rank": "R", "Reau": "Re"}
+
+_PREFIXES = {"Y": 1e24, "Z": 1e21, "E": 1e18, "P": 1e15, "T": 1e12, "G": 1e9, "M": 1e6,
+             "k": 1e3, "h": 1e2, "da": 1e1, "e": 1e1, "d": 1e-1, "c": 1e-2, "m": 1e-3,
+             "u": 1e-6, "n": 1e-9, "p": 1e-12, "f": 1e-15, "a": 1e-18, "z": 1e-21, "y": 1e-24}
+_BINARY = {"Yi": 2.0 ** 80, "Zi": 2.0 ** 70, "Ei": 2.0 ** 60, "Pi": 2.0 ** 50, "Ti": 2.0 ** 40,
+           "Gi": 2.0 ** 30, "Mi": 2.0 ** 20, "ki": 2.0 ** 10}
+
+
+def _unit(name: str):
+    """(quantity, factor) of a unit, with an optional prefix; None if unknown."""
+    if name in _UNITS:
+        q, f, _ = _UNITS[name]
+        return q, f
+    if name in _TEMPERATURE:
+        return "temperature", _TEMPERATURE[name]
+    for table in (_BINARY, _PREFIXES):
+        for p, scale in table.items():
+            rest = name[len(p):]
+            if name.startswith(p) and rest in _UNITS and _UNITS[rest][2]:
+                if table is _BINARY and _UNITS[rest][0] != "information":
+                    continue
+                q, f, _ = _UNITS[rest]
+                if rest in ("m2", "ang2"):
+                    scale **= 2
+                elif rest in ("m3", "ang3"):
+                    scale **= 3
+                return q, f * scale
+            if name.startswith(p) and rest in ("K", "kel"):
+                return "temperature", ("K", scale)
+    return None
+
+
+def _to_kelvin(x: float, scale) -> float:
+    unit, factor = scale if isinstance(scale, tuple) else (scale, 1.0)
+    x *= factor
+    return {"C": x + 273.15, "F": (x - 32) * 5 / 9 + 273.15, "K": x, "R": x * 5 / 9,
+            "Re": x * 1.25 + 273.15}[unit]
+
+
+def _from_kelvin(k: float, scale) -> float:
+    unit, factor = scale if isinstance(scale, tuple) else (scale, 1.0)
+    x = {"C": k - 273.15, "F": (k - 273.15) * 9 / 5 + 32, "K": k, "R": k * 9 / 5,
+         "Re": (k - 273.15) * 0.8}[unit]
+    return x / factor
+
+
+@register("CONVERT", "eng", 3, 3)
+def _convert(ctx, value, src, dst):
+    x = c.to_number(value)
+    if isinstance(x, ExcelError):
+        return x
+    a, b = c.to_text(src), c.to_text(dst)
+    for t in (a, b):
+        if isinstance(t, ExcelError):
+            return t
+    ua, ub = _unit(a), _unit(b)
+    if ua is None or ub is None or ua[0] != ub[0]:
+        return ExcelError.NA
+    if ua[0] == "temperature":
+        return c.result(_from_kelvin(_to_kelvin(x, ua[1]), ub[1]))
+    return c.result(x * ua[1] / ub[1])
+
+
+# -- bases ---------------------------------------------------------------------------------
+
+_BASES = {"BIN": (2, 9), "OCT": (8, 29), "HEX": (16, 39)}  # two's complement sign bit
+
+
+def _digits(n: int, base: int) -> str:
+    return {2: format(n, "b"), 8: format(n, "o"), 16: format(n, "X")}[base] if n else "0"
+
+
+def _dec2(base_name):
+    base, bits = _BASES[base_name]
+
+    def fn(ctx, v, places=None):
+        x = c.to_number(v)
+        if isinstance(x, ExcelError):
+            return x
+        n = int(x)
+        if not -(2 ** bits) <= n < 2 ** bits:
+            return ExcelError.NUM
+        if n < 0:
+            return _digits(n + 2 ** (bits + 1), base)
+        text = _digits(n, base)
+        if places is None:
+            return text
+        p = c.to_number(places)
+        if isinstance(p, ExcelError):
+            return p
+        p = int(p)
+        if p < len(text) or p > 10:
+            return ExcelError.NUM
+        return text.zfill(p)
+    register(f"DEC2{base_name}", "eng", 1, 2)(fn)
+
+
+def _parse_base(v, base: int, bits: int) -> int | ExcelError:
+    if isinstance(v, ExcelError):
+        return v
+    if isinstance(v, bool):
+        return ExcelError.VALUE
+    text = c.to_text(v)
+    if isinstance(text, ExcelError):
+        return text
+    text = text.strip() or "0"
+    if len(text) > 10:
+        return ExcelError.NUM
+    try:
+        n = int(text, base)
+    except ValueError:
+        return ExcelError.NUM
+    if n < 0:
+        return ExcelError.NUM
+    return n - 2 ** (bits + 1) if n >= 2 ** bits else n
+
+
+def _from(base_name):
+    base, bits = _BASES[base_name]
+
+    def fn(ctx, v):
+        n = _parse_base(v, base, bits)
+        return n if isinstance(n, ExcelError) else float(n)
+    register(f"{base_name}2DEC", "eng", 1, 1)(fn)
+
+
+def _cross(src_name, dst_name):
+    src, sbits = _BASES[src_name]
+    dec2 = f"DEC2{dst_name}"
+
+    def fn(ctx, v, places=None):
+        n = _parse_base(v, src, sbits)
+        if isinstance(n, ExcelError):
+            return n
+        from workbook_gen.formula.functions.registry import REGISTRY
+        return REGISTRY[dec2].fn(ctx, float(n), places)
+    register(f"{src_name}2{dst_name}", "eng", 1, 2)(fn)
+
+
+for _b in _BASES:
+    _dec2(_b)
+    _from(_b)
+for _s in _BASES:
+    for _d in _BASES:
+        if _s != _d:
+            _cross(_s, _d)
+
+
+@register("DELTA", "eng", 1, 2)
+def _delta(ctx, a, b=0.0):
+    x, y = c.to_number(a), c.to_number(b)
+    for v in (x, y):
+        if isinstance(v, ExcelError):
+            return v
+    return 1.0 if x == y else 0.0
+
+
+@register("GESTEP", "eng", 1, 2)
+def _gestep(ctx, a, b=0.0):
+    x, y = c.to_number(a), c.to_number(b)
+    for v in (x, y):
+        if isinstance(v, ExcelError):
+            return v
+    return 1.0 if x >= y else 0.0

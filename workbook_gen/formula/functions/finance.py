@@ -1,0 +1,262 @@
+"""Finance: PMT, PV, FV, NPER, RATE, IPMT, PPMT, NPV, IRR, XNPV, XIRR, SLN, DDB, EFFECT,
+NOMINAL (Excel's sign convention: money paid out is negative)."""
+
+from __future__ import annotations
+
+import math
+
+from workbook_gen.formula.functions import coerce as c
+from workbook_gen.formula.functions.math import fsum
+from workbook_gen.formula.functions.registry import register
+from workbook_gen.xlerror import ExcelError
+
+
+def _nums(*vs):
+    out = [c.to_number(v) if v is not None else 0.0 for v in vs]
+    bad = next((x for x in out if isinstance(x, ExcelError)), None)
+    return bad if bad is not None else out
+
+
+def _growth(r: float, n: float) -> float:
+    return (1.0 + r) ** n
+
+
+def pmt(r, n, pv, fv=0.0, when=0.0):
+    if n == 0:
+        return ExcelError.NUM
+    if r == 0:
+        return -(pv + fv) / n
+    g = _growth(r, n)
+    return -(r * (pv * g + fv)) / ((1 + r * when) * (g - 1))
+
+
+def fv(r, n, p, pv=0.0, when=0.0):
+    if r == 0:
+        return -(pv + p * n)
+    g = _growth(r, n)
+    return -(pv * g + p * (1 + r * when) * (g - 1) / r)
+
+
+def pv(r, n, p, fv_=0.0, when=0.0):
+    if r == 0:
+        return -(fv_ + p * n)
+    g = _growth(r, n)
+    return -(fv_ + p * (1 + r * when) * (g - 1) / r) / g
+
+
+def _safe(fn, *xs):
+    try:
+        return c.result(float(fn(*xs)))
+    except (OverflowError, ZeroDivisionError, ValueError):
+        return ExcelError.NUM
+
+
+def _tvm(name, fn, nmin):
+    def scalar(ctx, *args):
+        xs = _nums(*args)
+        if isinstance(xs, ExcelError):
+            return xs
+        if len(xs) == 5:
+            xs[4] = 1.0 if xs[4] != 0 else 0.0
+        return _safe(fn, *xs)
+    register(name, "finance", nmin, 5)(scalar)
+
+
+_tvm("PMT", pmt, 3)
+_tvm("FV", fv, 3)
+_tvm("PV", pv, 3)
+
+
+def _nper(r, p, pv_, fv_=0.0, when=0.0):
+    if r == 0:
+        return ExcelError.NUM if p == 0 else -(pv_ + fv_) / p
+    a = p * (1 + r * when)
+    return math.log((a - fv_ * r) / (a + pv_ * r)) / math.log(1 + r)
+
+
+_tvm("NPER", _nper, 3)
+
+
+def ipmt(r, per, n, pv_, fv_=0.0, when=0.0):
+    if not 1 <= per <= n:
+        return ExcelError.NUM
+    p = pmt(r, n, pv_, fv_, when)
+    if when and per == 1:
+        return 0.0
+    interest = fv(r, per - 1, p, pv_, when) * r
+    return interest / (1 + r) if when else interest
+
+
+def ppmt(r, per, n, pv_, fv_=0.0, when=0.0):
+    i = ipmt(r, per, n, pv_, fv_, when)
+    return i if isinstance(i, ExcelError) else pmt(r, n, pv_, fv_, when) - i
+
+
+for _name, _fn in (("IPMT", ipmt), ("PPMT", ppmt)):
+    def _scalar(ctx, *args, _fn=_fn):
+        xs = _nums(*args)
+        return xs if isinstance(xs, ExcelError) else _safe(_fn, *xs)
+    register(_name, "finance", 4, 6)(_scalar)
+
+
+def _solve(f, guess: float, lo: float = -0.999999999, hi: float = 1e10):
+    """A root of ``f`` near ``guess``: Newton's method, then bisection; None if none."""
+    x = guess
+    for _ in range(100):
+        try:
+            y = f(x)
+            h = 1e-7 * max(1.0, abs(x))
+            d = (f(x + h) - y) / h
+        except (OverflowError, ZeroDivisionError, ValueError):
+            break
+        if not math.isfinite(y) or d == 0 or not math.isfinite(d):
+            break
+        step = y / d
+        x -= step
+        if x <= -1:
+            x = (x + step - 1) / 2
+        if abs(step) <= 1e-12 * max(1.0, abs(x)):
+            return x
+    grid = [lo] + [(-0.99 + 0.01 * i) for i in range(100)] + [1.0, 10.0, 100.0, 1000.0, hi]
+    try:
+        values = [(g, f(g)) for g in grid]
+    except (OverflowError, ZeroDivisionError, ValueError):
+        return None
+    for (a, fa), (b, fb) in zip(values, values[1:]):
+        if math.isfinite(fa) and math.isfinite(fb) and fa * fb <= 0:
+            for _ in range(200):
+                m = (a + b) / 2
+                fm = f(m)
+                if fa * fm <= 0:
+                    b = m
+                else:
+                    a, fa = m, fm
+            return (a + b) / 2
+    return None
+
+
+@register("RATE", "finance", 3, 6)
+def _rate(ctx, n, p, pv_, fv_=0.0, when=0.0, guess=0.1):
+    xs = _nums(n, p, pv_, fv_, when, guess)
+    if isinstance(xs, ExcelError):
+        return xs
+    n, p, pv_, fv_, when, g = xs
+    when = 1.0 if when else 0.0
+
+    def f(r):
+        if abs(r) < 1e-12:
+            return pv_ + p * n + fv_
+        gr = _growth(r, n)
+        return pv_ * gr + p * (1 + r * when) * (gr - 1) / r + fv_
+    r = _solve(f, g)
+    return ExcelError.NUM if r is None else c.result(r)
+
+
+@register("NPV", "finance", 2, -1, ("scalar", "range"))
+def _npv(ctx, rate, *args):
+    r = c.to_number(rate)
+    if isinstance(r, ExcelError):
+        return r
+    xs = c.numbers(args, ctx)
+    if isinstance(xs, ExcelError):
+        return xs
+    if r == -1:
+        return ExcelError.DIV0
+    return _safe(lambda: fsum([v / (1 + r) ** (i + 1) for i, v in enumerate(xs)]))
+
+
+@register("IRR", "finance", 1, 2, ("range", "scalar"))
+def _irr(ctx, values, guess=0.1):
+    xs = c.numbers([c.as_area(values)], ctx)
+    g = c.to_number(guess)
+    for x in (xs, g):
+        if isinstance(x, ExcelError):
+            return x
+    if not (any(v > 0 for v in xs) and any(v < 0 for v in xs)):
+        return ExcelError.NUM
+    r = _solve(lambda r: sum(v / (1 + r) ** i for i, v in enumerate(xs)), g)
+    return ExcelError.NUM if r is None else c.result(r)
+
+
+def _flows(values, dates):
+    vs = [v for v in c.flat(values)]
+    ds = [d for d in c.flat(dates)]
+    for v in vs + ds:
+        if isinstance(v, ExcelError):
+            return v
+    if len(vs) != len(ds) or not vs:
+        return ExcelError.NUM
+    try:
+        vs = [float(c.to_number(v)) for v in vs]
+        ds = [math.floor(float(c.to_number(d))) for d in ds]
+    except TypeError:
+        return ExcelError.VALUE
+    if any(d < ds[0] for d in ds):
+        return ExcelError.NUM
+    return vs, ds
+
+
+def _xnpv(r, vs, ds):
+    return fsum([v / (1 + r) ** ((d - ds[0]) / 365.0) for v, d in zip(vs, ds)])
+
+
+@register("XNPV", "finance", 3, 3, ("scalar", "range", "range"))
+def _xnpv_fn(ctx, rate, values, dates):
+    r = c.to_number(rate)
+    flows = _flows(values, dates)
+    for x in (r, flows):
+        if isinstance(x, ExcelError):
+            return x
+    return _safe(_xnpv, r, *flows)
+
+
+@register("XIRR", "finance", 2, 3, ("range", "range", "scalar"))
+def _xirr(ctx, values, dates, guess=0.1):
+    flows = _flows(values, dates)
+    g = c.to_number(guess)
+    for x in (flows, g):
+        if isinstance(x, ExcelError):
+            return x
+    r = _solve(lambda r: _xnpv(r, *flows), g)
+    return ExcelError.NUM if r is None else c.result(r)
+
+
+@register("SLN", "finance", 3, 3)
+def _sln(ctx, cost, salvage, life):
+    xs = _nums(cost, salvage, life)
+    if isinstance(xs, ExcelError):
+        return xs
+    return ExcelError.DIV0 if xs[2] == 0 else c.result((xs[0] - xs[1]) / xs[2])
+
+
+@register("DDB", "finance", 4, 5)
+def _ddb(ctx, cost, salvage, life, period, factor=2.0):
+    xs = _nums(cost, salvage, life, period, factor)
+    if isinstance(xs, ExcelError):
+        return xs
+    cost, salvage, life, period, factor = xs
+    if life <= 0 or period <= 0 or period > life or factor <= 0 or cost < 0 or salvage < 0:
+        return ExcelError.NUM
+    book, dep = cost, 0.0
+    for _ in range(int(math.ceil(period))):
+        dep = min(book * factor / life, max(book - salvage, 0.0))
+        book -= dep
+    return c.result(dep)
+
+
+@register("EFFECT", "finance", 2, 2)
+def _effect(ctx, nominal, n):
+    xs = _nums(nominal, n)
+    if isinstance(xs, ExcelError):
+        return xs
+    r, k = xs[0], int(xs[1])
+    return ExcelError.NUM if r <= 0 or k < 1 else _safe(lambda: (1 + r / k) ** k - 1)
+
+
+@register("NOMINAL", "finance", 2, 2)
+def _nominal(ctx, effect, n):
+    xs = _nums(effect, n)
+    if isinstance(xs, ExcelError):
+        return xs
+    r, k = xs[0], int(xs[1])
+    return ExcelError.NUM if r <= 0 or k < 1 else _safe(lambda: k * ((1 + r) ** (1 / k) - 1))

@@ -1,0 +1,358 @@
+"""Text: LEN, LEFT, RIGHT, MID, UPPER, LOWER, PROPER, TRIM, CONCATENATE, CONCAT, TEXTJOIN,
+TEXT (common formats), VALUE, FIND, SEARCH, SUBSTITUTE, REPLACE, REPT, EXACT, CHAR, CODE,
+FIXED, DOLLAR-free number formatting."""
+
+from __future__ import annotations
+
+import math
+import re
+
+from workbook_gen.formula.functions import coerce as c
+from workbook_gen.formula.functions.registry import register
+from workbook_gen.formula.values import Range
+from workbook_gen.xlerror import ExcelError
+
+
+def _texts(*vs):
+    out = [c.to_text(v) for v in vs]
+    bad = next((t for t in out if isinstance(t, ExcelError)), None)
+    return bad if bad is not None else out
+
+
+def _count(v, default=None):
+    if v is None:
+        return default
+    x = c.to_number(v)
+    return x if isinstance(x, ExcelError) else int(x)
+
+
+@register("LEN", "text", 1, 1)
+def _len(ctx, v):
+    t = c.to_text(v)
+    return t if isinstance(t, ExcelError) else float(len(t))
+
+
+def _side(take_left: bool):
+    def fn(ctx, v, n=None):
+        t, k = c.to_text(v), _count(n, 1)
+        for x in (t, k):
+            if isinstance(x, ExcelError):
+                return x
+        if k < 0:
+            return ExcelError.VALUE
+        return t[:k] if take_left else (t[len(t) - k:] if k else "")
+    return fn
+
+
+register("LEFT", "text", 1, 2)(_side(True))
+register("RIGHT", "text", 1, 2)(_side(False))
+
+
+@register("MID", "text", 3, 3)
+def _mid(ctx, v, start, n):
+    t, s, k = c.to_text(v), _count(start), _count(n)
+    for x in (t, s, k):
+        if isinstance(x, ExcelError):
+            return x
+    if s < 1 or k < 0:
+        return ExcelError.VALUE
+    return t[s - 1:s - 1 + k]
+
+
+def _map(name, fn):
+    def scalar(ctx, v):
+        t = c.to_text(v)
+        return t if isinstance(t, ExcelError) else fn(t)
+    register(name, "text", 1, 1)(scalar)
+
+
+_map("UPPER", str.upper)
+_map("LOWER", str.lower)
+_map("PROPER", lambda t: re.sub(r"[A-Za-z]+", lambda m: m.group(0).capitalize(), t))
+_map("TRIM", lambda t: re.sub(" +", " ", t).strip(" "))
+_map("CLEAN", lambda t: "".join(ch for ch in t if ord(ch) >= 32))
+
+
+@register("CONCATENATE", "text", 1, -1)
+def _concatenate(ctx, *args):
+    ts = _texts(*args)
+    return ts if isinstance(ts, ExcelError) else "".join(ts)
+
+
+def _flat_texts(args):
+    out = []
+    for a in args:
+        for v in (c.flat(a) if isinstance(a, Range) else [a]):
+            t = c.to_text(v)
+            if isinstance(t, ExcelError):
+                return t
+            out.append(t)
+    return out
+
+
+@register("CONCAT", "text", 1, -1, "range")
+def _concat(ctx, *args):
+    ts = _flat_texts(args)
+    return ts if isinstance(ts, ExcelError) else "".join(ts)
+
+
+@register("TEXTJOIN", "text", 3, -1, ("scalar", "scalar", "range"))
+def _textjoin(ctx, delim, ignore_empty, *args):
+    d = c.to_text(delim)
+    skip = c.to_bool(ignore_empty)
+    for x in (d, skip):
+        if isinstance(x, ExcelError):
+            return x
+    ts = _flat_texts(args)
+    if isinstance(ts, ExcelError):
+        return ts
+    return d.join(t for t in ts if t or not skip)
+
+
+@register("REPT", "text", 2, 2)
+def _rept(ctx, v, n):
+    t, k = c.to_text(v), _count(n)
+    for x in (t, k):
+        if isinstance(x, ExcelError):
+            return x
+    if k < 0 or len(t) * k > 32767:
+        return ExcelError.VALUE
+    return t * k
+
+
+@register("EXACT", "text", 2, 2)
+def _exact(ctx, a, b):
+    ts = _texts(a, b)
+    return ts if isinstance(ts, ExcelError) else ts[0] == ts[1]
+
+
+def _find(case: bool):
+    def fn(ctx, needle, hay, start=None):
+        ts = _texts(needle, hay)
+        s = _count(start, 1)
+        if isinstance(ts, ExcelError):
+            return ts
+        if isinstance(s, ExcelError):
+            return s
+        n, h = ts
+        if s < 1 or s > len(h) + 1:
+            return ExcelError.VALUE
+        if case:
+            i = h.find(n, s - 1)
+        else:
+            m = (c.wildcard(n).pattern if c.has_wildcard(n) else re.escape(n))
+            hit = re.compile(m, re.IGNORECASE | re.DOTALL).search(h, s - 1)
+            i = -1 if hit is None else hit.start()
+        return ExcelError.VALUE if i < 0 else float(i + 1)
+    return fn
+
+
+register("FIND", "text", 2, 3)(_find(True))
+register("SEARCH", "text", 2, 3)(_find(False))
+
+
+@register("SUBSTITUTE", "text", 3, 4)
+def _substitute(ctx, v, old, new, which=None):
+    ts = _texts(v, old, new)
+    if isinstance(ts, ExcelError):
+        return ts
+    t, o, n = ts
+    if not o:
+        return t
+    if which is None:
+        return t.replace(o, n)
+    k = _count(which)
+    if isinstance(k, ExcelError):
+        return k
+    if k < 1:
+        return ExcelError.VALUE
+    i = -1
+    for _ in range(k):
+        i = t.find(o, i + 1)
+        if i < 0:
+            return t
+    return t[:i] + n + t[i + len(o):]
+
+
+@register("REPLACE", "text", 4, 4)
+def _replace(ctx, v, start, n, new):
+    ts = _texts(v, new)
+    s, k = _count(start), _count(n)
+    for x in (ts, s, k):
+        if isinstance(x, ExcelError):
+            return x
+    if s < 1 or k < 0:
+        return ExcelError.VALUE
+    t, r = ts
+    return t[:s - 1] + r + t[s - 1 + k:]
+
+
+@register("CHAR", "text", 1, 1)
+def _char(ctx, v):
+    k = _count(v)
+    if isinstance(k, ExcelError):
+        return k
+    return bytes([k]).decode("cp1252", errors="replace") if 1 <= k <= 255 else ExcelError.VALUE
+
+
+@register("CODE", "text", 1, 1)
+def _code(ctx, v):
+    t = c.to_text(v)
+    if isinstance(t, ExcelError):
+        return t
+    if not t:
+        return ExcelError.VALUE
+    try:
+        return float(t[0].encode("cp1252")[0])
+    except UnicodeEncodeError:
+        return 63.0
+
+
+@register("VALUE", "text", 1, 1)
+def _value(ctx, v):
+    if isinstance(v, ExcelError) or c.is_number(v):
+        return v
+    if v is None:
+        return 0.0
+    if isinstance(v, bool):
+        return ExcelError.VALUE
+    from workbook_gen.formula.functions.date import parse_date_text
+    x = c.text_to_number(v.replace(",", "") if re.fullmatch(r"[\s\-+]*\d{1,3}(,\d{3})+(\.\d*)?\s*",
+                                                            v) else v)
+    if isinstance(x, ExcelError):
+        x = parse_date_text(v)
+    return x
+
+
+# -- TEXT and FIXED ----------------------------------------------------------------------
+
+def _round_half_up(x: float, d: int) -> float:
+    from workbook_gen.formula.functions.math import _round
+    from decimal import ROUND_HALF_UP
+    return _round(x, d, ROUND_HALF_UP)
+
+
+def _group(digits: str) -> str:
+    out = []
+    while len(digits) > 3:
+        out.insert(0, digits[-3:])
+        digits = digits[:-3]
+    out.insert(0, digits)
+    return ",".join(out)
+
+
+def format_number(x: float, decimals: int, grouping: bool) -> str:
+    """``x`` with ``decimals`` places (half away from zero) and optional thousands commas."""
+    r = _round_half_up(x, decimals)
+    text = f"{abs(r):.{max(decimals, 0)}f}"
+    whole, _, frac = text.partition(".")
+    if grouping:
+        whole = _group(whole)
+    body = whole + ("." + frac if frac else "")
+    return ("-" if r < 0 else "") + body
+
+
+_NUMERIC_FORMAT = re.compile(r"([#,0]*)(?:\.(0+|#+))?(%?)")
+
+
+def _format_section(x: float, fmt: str, ctx) -> str | ExcelError:
+    from workbook_gen.formula.functions.date import format_date
+    f = fmt.strip()
+    if f.upper() in ("", "GENERAL"):
+        return c.number_to_text(x)
+    if re.search(r"[dmyhs]", f, re.IGNORECASE) and not re.search(r"[0#]", f):
+        return format_date(x, f)
+    m = _NUMERIC_FORMAT.fullmatch(f.replace('"', ""))
+    if m is None or not m.group(1) and not m.group(2):
+        return ExcelError.VALUE
+    decimals = len(m.group(2) or "")
+    if m.group(3):
+        x *= 100
+    text = format_number(x, decimals, "," in m.group(1))
+    if m.group(2) and m.group(2).startswith("#"):
+        text = text.rstrip("0").rstrip(".")
+    whole_zeros = m.group(1).replace(",", "").count("0")
+    if whole_zeros == 0 and text.lstrip("-").startswith("0") and "." in text:
+        text = text.replace("0.", ".", 1)
+    else:
+        sign = "-" if text.startswith("-") else ""
+        body = text.lstrip("-")
+        whole, dot, frac = body.partition(".")
+        if len(whole.replace(",", "")) < whole_zeros:
+            whole = whole.replace(",", "").zfill(whole_zeros)
+        text = sign + whole + dot + frac
+    return text + m.group(3)
+
+
+@register("TEXT", "text", 2, 2)
+def _text(ctx, v, fmt):
+    f = c.to_text(fmt)
+    if isinstance(f, ExcelError):
+        return f
+    if isinstance(v, ExcelError):
+        return v
+    if isinstance(v, str):
+        x = c.text_to_number(v)
+        if isinstance(x, ExcelError):
+            return v
+        v = x
+    x = c.to_number(v)
+    sections = f.split(";")
+    if len(sections) > 1:
+        if x < 0:
+            return _format_section(-x, sections[1], ctx)
+        if x == 0 and len(sections) > 2:
+            return _format_section(x, sections[2], ctx)
+    return _format_section(x, sections[0], ctx)
+
+
+@register("FIXED", "text", 1, 3)
+def _fixed(ctx, v, decimals=2.0, no_commas=False):
+    x, d, nc = c.to_number(v), _count(decimals, 2), c.to_bool(no_commas)
+    for y in (x, d, nc):
+        if isinstance(y, ExcelError):
+            return y
+    if d > 127:
+        return ExcelError.VALUE
+    return format_number(x, d, not nc) if d >= 0 else format_number(
+        _round_half_up(x, d), 0, not nc)
+
+
+@register("NUMBERVALUE", "text", 1, 3)
+def _numbervalue(ctx, v, dec=".", group=","):
+    ts = _texts(v, dec, group)
+    if isinstance(ts, ExcelError):
+        return ts
+    t, d, g = ts
+    t = "".join(t.split())
+    if g:
+        t = t.replace(g[0], "")
+    if d and d[0] != ".":
+        t = t.replace(d[0], ".")
+    return c.text_to_number(t) if t else 0.0
+
+
+@register("UNICHAR", "text", 1, 1)
+def _unichar(ctx, v):
+    k = _count(v)
+    if isinstance(k, ExcelError):
+        return k
+    return chr(k) if 1 <= k <= 0x10FFFF else ExcelError.VALUE
+
+
+@register("UNICODE", "text", 1, 1)
+def _unicode(ctx, v):
+    t = c.to_text(v)
+    if isinstance(t, ExcelError):
+        return t
+    return float(ord(t[0])) if t else ExcelError.VALUE
+
+
+@register("DOLLAR", "text", 1, 2)
+def _dollar(ctx, v, decimals=2.0):
+    x, d = c.to_number(v), _count(decimals, 2)
+    for y in (x, d):
+        if isinstance(y, ExcelError):
+            return y
+    body = format_number(abs(x), max(d, 0), True)
+    return f"(${body})" if x < 0 and not math.isclose(x, 0) else f"${body}"
