@@ -11,7 +11,6 @@ import sys
 from typing import Sequence
 
 from .errors import SceneError, WorkbookGenError
-from .mechanisms import TEMPLATES
 from .version import VERSION
 
 
@@ -46,6 +45,7 @@ def _warn(scene) -> None:
 
 
 def _list(args: argparse.Namespace) -> int:
+    from .mechanisms import TEMPLATES
     for template in TEMPLATES.values():
         print(f"{template.id}: {template.title}")
         print(f"  {template.description}")

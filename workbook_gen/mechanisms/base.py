@@ -9,8 +9,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, Mapping
 
-from ..expr import Node, Param, Var, eq, if_, variables
-from ..expr import parameters as params_of
+from ..expr import Node, Param, Var, eq, if_
+from ..expr.tree import children
 
 
 @dataclass(frozen=True)
@@ -195,15 +195,17 @@ class Template:
     def __post_init__(self) -> None:
         params = {p.name for p in self.parameters} | {d.name for d in self.derived}
         earlier = {self.input.name}
+        seen: set[int] = set()  # subtrees already checked (the known names only grow)
         for q in self.quantities:  # each refers only to earlier columns: a valid order
-            _check_refs(self.id, q.name, q.expr, earlier, params)
+            _check_refs(self.id, q.name, q.expr, earlier, params, seen)
             earlier.add(q.name)
         known = earlier
         for c in self.checks:
-            _check_refs(self.id, c.name, c.expr, known, params)
+            _check_refs(self.id, c.name, c.expr, known, params, seen)
+        _check_refs(self.id, "status", self.status, known, params, seen)
+        alone: set[int] = set()
         for c in self.conditions:
-            _check_refs(self.id, c.name, c.expr + c.scale, set(), params)
-        _check_refs(self.id, "status", self.status, known, params)
+            _check_refs(self.id, c.name, c.expr + c.scale, set(), params, alone)
 
     def quantity(self, name: str) -> Quantity:
         for q in self.quantities:
@@ -228,8 +230,25 @@ class Template:
         return self.configure(self, {**self.option_defaults, **options})
 
 
-def _check_refs(template: str, what: str, expr: Node, known: set[str], params: set[str]) -> None:
-    unknown = (variables(expr) - known) | (params_of(expr) - params)
+def _check_refs(template: str, what: str, expr: Node, known: set[str], params: set[str],
+                seen: set[int]) -> None:
+    """Every Var of ``expr`` is in ``known`` and every Param in ``params``; subtrees in
+    ``seen`` (by identity: the trees share them) were checked against no more names."""
+    unknown = set()
+    stack = [expr]
+    while stack:
+        node = stack.pop()
+        if id(node) in seen:
+            continue
+        seen.add(id(node))
+        if isinstance(node, Var):
+            if node.name not in known:
+                unknown.add(node.name)
+        elif isinstance(node, Param):
+            if node.name not in params:
+                unknown.add(node.name)
+        else:
+            stack.extend(children(node))
     if unknown:
         raise ValueError(f"template {template}: {what} refers to unknown {sorted(unknown)}")
 

@@ -1,0 +1,62 @@
+"""Start-up (issue 9 item 12): ``--version`` and ``list`` import none of the heavy
+libraries; a command imports what it uses.  A sys.modules check, not a timed test
+(bench figures: python -X importtime, repeated runs)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+HEAVY = ("pandas", "xlsxwriter", "openpyxl", "numpy", "mpmath", "tqdm")
+
+_PROBE = """
+import contextlib, io, sys
+from workbook_gen.cli import main
+out = io.StringIO()
+with contextlib.redirect_stdout(out):
+    try:
+        code = main({argv!r})
+    except SystemExit as exc:  # --version exits through argparse
+        code = exc.code
+heavy = [m for m in {heavy!r} if m in sys.modules]
+print(code, len(out.getvalue()), ",".join(heavy))
+"""
+
+
+def _run(argv: list[str]) -> tuple[int, int, list[str]]:
+    code = _PROBE.format(argv=argv, heavy=HEAVY)
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.split()
+    return int(out[0]), int(out[1]), out[2].split(",") if len(out) > 2 else []
+
+
+def test_list_imports_no_heavy_library():
+    code, printed, heavy = _run(["list"])
+    assert code == 0 and printed > 1000
+    assert heavy == []
+
+
+def test_version_imports_no_heavy_library_nor_the_templates():
+    code, _, heavy = _run(["--version"])
+    assert code == 0 and heavy == []
+    probe = ("import sys\nfrom workbook_gen.cli import parser\n"
+             "try:\n    parser().parse_args(['--version'])\nexcept SystemExit:\n    pass\n"
+             "print(any(m.startswith('workbook_gen.mechanisms.') for m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                         check=True).stdout
+    assert out.split()[-1] == "False"
+
+
+def test_importing_the_package_imports_no_heavy_library():
+    probe = f"import sys, workbook_gen\nprint([m for m in {HEAVY!r} if m in sys.modules])"
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                         check=True).stdout
+    assert out.strip() == "[]"
+
+
+def test_templates_load_on_demand_and_know_their_ids():
+    from workbook_gen.mechanisms import TEMPLATES, get_template
+    assert list(TEMPLATES)[:2] == ["slider_crank", "sewing_machine"]
+    for template_id in TEMPLATES:
+        assert get_template(template_id).id == template_id
+    assert "nope" not in TEMPLATES
