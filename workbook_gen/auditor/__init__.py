@@ -21,6 +21,7 @@ from xlsxwriter.utility import xl_col_to_name, xl_rowcol_to_cell
 from ..errors import FormulaSyntaxError, WorkbookGenError, WorkbookReadError
 from ..evaluator import evaluate_cells
 from ..formula import ast, parse
+from ..formula.functions import dialect_of
 from ..formula.scalar import evaluate as evaluate_scalar
 from ..xlerror import ExcelError
 import numpy as np
@@ -122,7 +123,7 @@ def _mark_roots(inputs: AuditInputs, mismatches: list[Mismatch], differ: set[str
                 break
 
 
-def _local_evaluation(inputs: AuditInputs, seen: dict | None = None):
+def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: str = "excel"):
     """Cells that read ranges (MAX, MIN, SUM, INDEX, MATCH over a column), recomputed
     from the cached values they read.
 
@@ -145,7 +146,7 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None):
     given = seen or inputs.cached
     cached = {k: v for k, v in inputs.constants.items() if (k[0], k[2]) in read}
     cached.update((k, given[k]) for k in given if (k[0], k[2]) in read and k not in keys)
-    return evaluate_cells({k: inputs.formulas[k] for k in keys}, cached, names)
+    return evaluate_cells({k: inputs.formulas[k] for k in keys}, cached, names, dialect=dialect)
 
 
 def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True) -> AuditReport:
@@ -155,13 +156,15 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
     inputs = read_inputs(path)
     timings["read"] = time.perf_counter() - started
     t = time.perf_counter()
+    semantics = dialect_of(inputs.book.application)  # the engine that saved the file
     evaluation = evaluate_cells(inputs.formulas, inputs.constants, inputs.book.defined_names,
-                                vectorize=vectorize, uncheckable=inputs.uncheckable())
+                                vectorize=vectorize, uncheckable=inputs.uncheckable(),
+                                dialect=semantics)
     timings["evaluate_all"] = time.perf_counter() - t
     skipped = evaluation.not_checked
 
     values, constants = evaluation.values, inputs.constants
-    local = _local_evaluation(inputs)
+    local = _local_evaluation(inputs, dialect=semantics)
     timings["evaluate_all"] = time.perf_counter() - t
     # "parse": cutting the columns into runs equal in R1C1 form (the formula text analysis);
     # "evaluate": ordering, vectorised and cell-by-cell evaluation (both passes)
@@ -242,7 +245,8 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
         max_abs_error=max_abs, max_rel_error=max_rel, findings=findings, mechanics=mechanics,
         libreoffice_semantics=explained, vector_cells=evaluation.groups.vector_cells,
         seconds=time.perf_counter() - started, engine=engine_result, timings=timings,
-        macros=inputs.book.vba_project)
+        macros=inputs.book.vba_project, semantics=semantics,
+        application=inputs.book.application)
 
 
 def _engine(path, engine: str, inputs: AuditInputs, value_of, scales,
@@ -255,7 +259,7 @@ def _engine(path, engine: str, inputs: AuditInputs, value_of, scales,
     mismatches, explained, cells = [], 0, 0
     sheet_of = {s.name: s for s in inputs.book.sheets}
     seen = {k: theirs.get(k[0], {}).get(inputs.ref(k)) for k in inputs.formulas}
-    local = _local_evaluation(inputs, seen)
+    local = _local_evaluation(inputs, seen, dialect="libreoffice")
     for key, formula in inputs.formulas.items():
         if key in scales_skip:
             continue

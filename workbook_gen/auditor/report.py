@@ -52,6 +52,10 @@ class AuditReport:
     # formula cells that could not be recomputed, or read one: cell -> reason
     not_checked: dict[str, str] = field(default_factory=dict)
     macros: str | None = None  # the VBA project's part: macros the audit does not check
+    # whose semantics recomputed the cells ("excel" or "libreoffice"), from the application
+    # that saved the file (docProps/app.xml)
+    semantics: str = "excel"
+    application: str | None = None
 
     @property
     def ok(self) -> bool:
@@ -110,6 +114,8 @@ class AuditReport:
             "findings": [{"cell": f.cell, "kind": f.kind, "message": f.message}
                          for f in self.findings],
             "macros": self.macros,
+            "semantics": self.semantics,
+            "application": self.application,
             "libreoffice_semantics": self.libreoffice_semantics,
             "vectorized_cells": self.vector_cells,
             "seconds": self.seconds,
@@ -168,6 +174,9 @@ def format_report(report: AuditReport, verbose: bool = False) -> str:
              f"  {report.formula_cells} formula cells: {report.cells_checked} checked "
              f"({report.cells_agree} agree, {report.cells_disagree} disagree), "
              f"{report.cells_not_checked} not checked; {report.seconds:.2f} s"]
+    if report.semantics != "excel":
+        lines.append(f"  recomputed with {report.semantics}'s semantics: the file was saved by "
+                     f"{report.application}")
     reasons = report.not_checked_reasons()
     if reasons:
         shown = reasons if verbose else reasons[:3]

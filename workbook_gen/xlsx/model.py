@@ -120,6 +120,7 @@ class Workbook:
     other_sheets: list[tuple[str, str]]  # (name, kind) of chartsheets, dialog sheets, ...
     date1904: bool = False
     vba_project: str | None = None  # the part holding macros (xl/vbaProject.bin), never run
+    application: str | None = None  # docProps/app.xml's Application: the program that saved it
 
     @property
     def sheet_names(self) -> list[str]:

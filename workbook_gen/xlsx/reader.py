@@ -19,6 +19,7 @@ import re
 from pathlib import Path
 from xml.etree.ElementTree import Element
 
+from workbook_gen.errors import WorkbookReadError
 from workbook_gen.xlerror import ExcelError
 from workbook_gen.xlsx.limits import MAX_RATIO, MAX_UNCOMPRESSED, Package
 from workbook_gen.xlsx.model import (MAX_COL, Cell, ExternalLink, SharedFormula, Sheet, Value,
@@ -92,11 +93,30 @@ def _read(pkg: Package, path: str, max_cells: int) -> Workbook:
                                  and not p.startswith("external:")), None)
         sst_part = next((p for k, p in rels.values() if k == "sharedStrings" and p
                         and not p.startswith("external:")), None)
+        book.application = _application(pkg)
         strings = _shared_strings(pkg, sst_part, max_cells) if sst_part else []
         budget = max_cells
         for sheet, part in sheet_parts:
             budget -= _read_sheet(pkg, part, sheet, strings, budget, max_cells)
         return book
+
+
+def _application(pkg: Package) -> str | None:
+    """The ``Application`` of the extended properties (docProps/app.xml), or None."""
+    part = None
+    if pkg.find("_rels/.rels"):
+        part = next((p for kind, p in _relationships(pkg, "").values()
+                     if kind == "extended-properties" and p and not p.startswith("external:")),
+                    None)
+    part = part or pkg.find("docProps/app.xml")
+    if part is None:
+        return None
+    try:
+        el = _child(pkg.parse(part), "Application")
+    except WorkbookReadError:  # a broken property part says nothing about the cells
+        return None
+    text = (el.text or "").strip() if el is not None else ""
+    return text or None
 
 
 def _workbook_part(pkg: Package) -> str:

@@ -18,7 +18,7 @@ from workbook_gen.formula.functions import (  # noqa: F401  (each module registe
     date, eng, finance, info, logical, lookup, math, stats, text,
 )
 from workbook_gen.formula.functions.dialect import (
-    LIBREOFFICE_DIFFERENCES, Difference, libreoffice_result, numeric_deviation,
+    LIBREOFFICE_DIFFERENCES, Difference, dialect_of, libreoffice_result, numeric_deviation,
 )
 from workbook_gen.formula.functions.math import power
 from workbook_gen.formula.functions.registry import (
@@ -33,7 +33,7 @@ LAZY = frozenset(n for n, f in REGISTRY.items() if f.lazy)
 
 __all__ = ["REGISTRY", "SUPPORTED", "VOLATILE", "LAZY", "Context", "Function", "RowDependent",
            "register",
-           "call", "power", "LIBREOFFICE_DIFFERENCES", "Difference", "libreoffice_result",
+           "call", "power", "LIBREOFFICE_DIFFERENCES", "Difference", "dialect_of", "libreoffice_result",
            "ExcelError"]
 
 

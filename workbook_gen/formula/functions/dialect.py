@@ -45,6 +45,13 @@ def _odd_root(x: float, y: float) -> float | None:
     return None
 
 
+def dialect_of(application: str | None) -> str:
+    """The semantics to recompute with, from docProps/app.xml's Application: "libreoffice"
+    for LibreOffice / OpenOffice, else "excel" (Microsoft Excel, and unknown writers)."""
+    text = (application or "").lower()
+    return "libreoffice" if "libreoffice" in text or "openoffice" in text else "excel"
+
+
 NUMERIC_DEVIATIONS = frozenset({"SQRT", "ATAN2", "POWER", "LN"})
 
 
