@@ -304,3 +304,32 @@ def test_a_leg_at_the_edge_of_its_reach_is_flagged_not_ok():
         assert status != "ok" if expected is None else status == expected, nudge
         if status == "singular":
             assert math.isfinite(table["theta_11 [deg]"].iloc[0])
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_random_designs_match_the_reference(tmp_path, seed):
+    """Random designs (every length, platform coordinate, centre of mass and mass moved by up
+    to 15 %, random branches, balanced or not): every column of compute() against the
+    reference, rows out of reach included."""
+    rng = np.random.default_rng(seed)
+    balance = bool(seed % 2)
+    scene_path = BALANCED if balance else BARE
+    base = load_scene(scene_path).parameters
+    overrides = {k: float(v * rng.uniform(0.85, 1.15)) for k, v in base.items()
+                 if not k.startswith(("gamma_", "alpha_0", "A_", "omega_t"))}
+    overrides |= {f"gamma_{i}": float(base[f"gamma_{i}"] + rng.uniform(-20, 20)) for i in LEGS}
+    branch = "".join(rng.choice(["+", "-"], 4))
+    text = open(scene_path, encoding="utf-8").read().replace('branch = "++++"',
+                                                            f'branch = "{branch}"')
+    path = tmp_path / "scene.toml"
+    path.write_text(text, encoding="utf-8")
+    scene = load_scene(path, overrides=overrides, step=7.5)
+    result = evaluate(scene)
+    reference = solve("parallel_4dof", result.params, result.inputs, scene.options)
+    reached = np.all([np.isfinite(reference[f"theta_{i}1"]) for i in LEGS], axis=0)
+    assert np.array_equal(result.status != "cannot assemble", reached)
+    for name, column in result.columns.items():
+        if name == "t":
+            continue
+        ours = np.where(column.err != 0, np.nan, column.val.astype(float))
+        assert column_error(name, ours, reference[name]) <= TOLERANCE, (name, branch)
