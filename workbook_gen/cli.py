@@ -69,7 +69,10 @@ def _generate(args: argparse.Namespace) -> int:
     scene = load_scene(args.scene, overrides=_overrides(args.scene, args.set), step=args.step,
                        start=args.start, stop=args.stop, name=args.name)
     _warn(scene)
-    path = write_workbook(scene, args.out, force=args.force)
+    from .progress import Progress
+    with Progress(2 * scene.sweep.rows, desc=f"{scene.name}.xlsx", unit="row",
+                  delay=1.0) as bar:
+        path = write_workbook(scene, args.out, force=args.force, progress=bar.update)
     print(path)
     return 0
 

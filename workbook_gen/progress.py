@@ -36,14 +36,16 @@ def is_terminal(stream: TextIO | None) -> bool:
 
 
 class Progress:
-    """A tqdm bar on ``stream`` (stderr by default), drawn only on a terminal.
+    """A tqdm bar on ``stream`` (stderr by default), drawn only on a terminal
+    (and, with ``delay``, only once the work has taken that many seconds).
 
     ``bar(label)`` advances by one and shows ``label``; ``bar.update(n)``
     advances by ``n``; ``close()`` (or leaving the ``with`` block) clears it.
     """
 
     def __init__(self, total: int | None = None, *, desc: str = "", unit: str = "it",
-                 stream: TextIO | None = None, quiet: bool = False, leave: bool = False):
+                 stream: TextIO | None = None, quiet: bool = False, leave: bool = False,
+                 delay: float = 0.0):
         self.stream = stream if stream is not None else sys.stderr
         self.enabled = not quiet and is_terminal(self.stream)
         self.total = total
@@ -53,7 +55,7 @@ class Progress:
             from tqdm import tqdm  # only when a bar is drawn
             self._bar = tqdm(total=total, desc=desc or None, unit=unit, file=self.stream,
                              leave=leave, dynamic_ncols=True, smoothing=0.1,
-                             mininterval=0.2)
+                             mininterval=0.2, delay=delay)
 
     def __call__(self, label: str = "") -> None:
         self.update(1, label)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import datetime as dt
 import io
 from pathlib import Path
+from typing import Callable
 
 from ..compute import Evaluated, evaluate
 from ..files import refuse_existing, write_bytes_atomically
@@ -30,7 +31,8 @@ def in_memory(result: Evaluated) -> bool:
 
 
 def _build(stream: io.BytesIO, result: Evaluated, filename: str,
-           memory: bool | None = None) -> None:
+           memory: bool | None = None, progress: Callable[[int], None] | None = None) -> None:
+    """``progress(n)``: n more rows written (the Table's, then the Checks')."""
     workbook = Book(stream, in_memory=in_memory(result) if memory is None else memory)
     workbook.set_properties({
         "title": result.scene.title,
@@ -41,9 +43,9 @@ def _build(stream: io.BytesIO, result: Evaluated, filename: str,
     })
     formats = {name: workbook.add_format(spec) for name, spec in FORMATS.items()}
     layout = TableLayout.of(result)
-    write_table(workbook, formats, result, layout)
+    write_table(workbook, formats, result, layout, progress)
     write_parameters(workbook, formats, result)
-    write_checks(workbook, formats, result, layout)
+    write_checks(workbook, formats, result, layout, progress)
     write_summary(workbook, formats, result, layout)
     write_charts(workbook, result, layout)
     write_about(workbook, formats, result, VERSION, filename)
@@ -54,20 +56,24 @@ def output_path(scene: Scene, out_dir: str | Path) -> Path:
     return Path(out_dir) / f"{scene.name}.xlsx"
 
 
-def workbook_bytes(scene: Scene, filename: str | Path, result: Evaluated | None = None) -> bytes:
+def workbook_bytes(scene: Scene, filename: str | Path, result: Evaluated | None = None,
+                   progress: Callable[[int], None] | None = None) -> bytes:
     """The workbook of ``scene`` as it would be written to ``filename`` (the About sheet
     names that path), built in memory: the one code path of ``generate`` and ``batch``.
-    Raises CannotAssembleError where nothing assembles."""
+    Raises CannotAssembleError where nothing assembles.  ``progress(n)`` is called as
+    rows are written: 2 x rows in all (Table and Checks)."""
     if result is None:
         result = evaluate(scene)
     stream = io.BytesIO()
-    _build(stream, result, str(filename))
+    _build(stream, result, str(filename), progress=progress)
     return stream.getvalue()
 
 
-def write_workbook(scene: Scene, out_dir: str | Path = "outputs", *, force: bool = False) -> Path:
-    """Write ``out_dir/<name>.xlsx``; refuses to overwrite unless ``force``."""
+def write_workbook(scene: Scene, out_dir: str | Path = "outputs", *, force: bool = False,
+                   progress: Callable[[int], None] | None = None) -> Path:
+    """Write ``out_dir/<name>.xlsx``; refuses to overwrite unless ``force``.
+    ``progress``: as for ``workbook_bytes``."""
     target = output_path(scene, out_dir)
     refuse_existing(target, force)
-    data = workbook_bytes(scene, target)  # refuses a sweep where nothing assembles, before any write
+    data = workbook_bytes(scene, target, progress=progress)  # refuses a sweep where nothing assembles, before any write
     return write_bytes_atomically(target, data, force=force)
