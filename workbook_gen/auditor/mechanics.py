@@ -13,11 +13,24 @@ import re
 from dataclasses import dataclass, field
 
 import numpy as np
-from xlsxwriter.utility import xl_rowcol_to_cell
+from xlsxwriter.utility import xl_cell_to_rowcol, xl_rowcol_to_cell
 
 from .. import reference
+from ..reference.newton import NOISE
+from .noise import ColumnNoise
 
-REFERENCE_TOLERANCE = 1e-9  # of the column's magnitude
+REFERENCE_TOLERANCE = 1e-9  # of the column's magnitude, or of its rounding noise (noise.py)
+# An angle's magnitude is at least a radian: a rod 1e20 long at 4e-17 deg to the slide is
+# at 0 deg to within the reference's closure, and 4e-17 deg is not a relative error of 1.
+ANGLE_FLOOR = {"deg": 180.0 / np.pi, "rad": 1.0}
+# Rows the workbook flags as singular: their rates are undefined or half their digits are
+# the model's (Newton at a double root), so they are counted, not compared.  A row that is
+# "not converged" or on the "other branch" is compared: the model shows how far off it is.
+SINGULAR = frozenset({"dead centre", "toggle"})
+# Rounding noise m (noise.py) allows an error of NOISE_ULPS * eps * m: as a magnitude to
+# measure the error against, that is m * NOISE_ULPS * eps / REFERENCE_TOLERANCE.
+NOISE_ULPS = 1024
+NOISE_TO_SCALE = NOISE_ULPS * np.finfo(float).eps / REFERENCE_TOLERANCE
 PAPER_QUANTITY = "alpha_5"  # the sewing-machine paper checked the lever's angular acceleration
 _HEADER = re.compile(r"^(\w+)(?: \[(.*)\])?$")
 CRANK_PIN = {"theta_1r", "psi", "theta_2r", "x_B", "y_B", "u_B", "n_B"}  # defined whether or not the rod reaches
@@ -30,6 +43,7 @@ class QuantityCheck:
     max_error: float          # relative to the column's magnitude
     worst_row_input: float | None
     wrong_rows: list[str] = field(default_factory=list)  # cells valued where nothing assembles, ...
+    flagged_rows: int = 0     # rows flagged singular (toggle, dead centre): not compared
 
     @property
     def ok(self) -> bool:
@@ -97,20 +111,29 @@ def check_mechanics(book, value_of, column_of) -> MechanicsReport | None:
     except json.JSONDecodeError:
         options = {}
     solved = reference.solve(mechanism, params, inputs, options)
+    flagged: dict[str, int] = {}
+    singular = np.zeros(len(rows), dtype=bool)
+    for cell in table.row(1)[1:]:
+        if cell.value == "status":
+            for i, text in enumerate(_column(column_of, "Table", cell.col, rows)):
+                if isinstance(text, str) and text not in ("ok", "cannot assemble"):
+                    flagged[text] = flagged.get(text, 0) + 1
+                    singular[i] = text in SINGULAR
+    noise = ColumnNoise(table, rows, lambda col: _column(column_of, "Table", col, rows),
+                        lambda name: _name_value(book, value_of, name))
     quantities = []
     for cell in table.row(1)[1:]:
         match = _HEADER.match(str(cell.value))
         name = match.group(1) if match else None
         if name not in solved:
             continue
+        ours_noise, ref_noise = noise.of(cell.col), solved.get(name + NOISE)
+        if ref_noise is not None:  # the model's own cancellation (sewing h_BC = y_B - y_C)
+            ref_noise = np.where(np.isfinite(ref_noise), ref_noise, 0.0)
+            ours_noise = ref_noise if ours_noise is None else np.maximum(ours_noise, ref_noise)
         quantities.append(_check_column(name, _column(column_of, "Table", cell.col, rows),
-                                        solved[name], inputs, cell.col))
-    flagged: dict[str, int] = {}
-    for cell in table.row(1)[1:]:
-        if cell.value == "status":
-            for text in _column(column_of, "Table", cell.col, rows):
-                if isinstance(text, str) and text not in ("ok", "cannot assemble"):
-                    flagged[text] = flagged.get(text, 0) + 1
+                                        solved[name], inputs, cell.col, singular,
+                                        ours_noise, match.group(2)))
     residuals, tolerance = _residuals(book, value_of)
     return MechanicsReport(mechanism, generator, quantities, residuals, tolerance,
                            _paper_table(table, column_of, solved, inputs, rows), flagged)
@@ -121,22 +144,47 @@ def _as_float(values: list) -> np.ndarray:
                      for v in values], dtype=float)
 
 
-def _check_column(name, values, ref, inputs, col) -> QuantityCheck:
+def _name_value(book, value_of, name: str) -> float | None:
+    """The number a defined name holds (a Parameters cell), or None."""
+    text = book.resolve_name(name)
+    if not text:
+        return None
+    sheet, _, ref = text.lstrip("=").rpartition("!")
+    try:
+        row, col = xl_cell_to_rowcol(ref.replace("$", ""))
+        value = value_of(sheet.strip("'"), row + 1, col + 1)
+    except (ValueError, KeyError, AttributeError):
+        return None
+    return float(value) if isinstance(value, (int, float)) and not isinstance(value, bool) \
+        else None
+
+
+def _check_column(name, values, ref, inputs, col, singular, noise, unit) -> QuantityCheck:
+    """Worst error of a column against the model, over the larger of the column's
+    magnitude and each row's rounding noise; rows flagged singular are counted, not
+    compared (the model's Newton loses half its digits at a dead centre)."""
     ours = _as_float(values)
     wrong = []
     for i in np.flatnonzero(np.isfinite(ours) != np.isfinite(ref)):
+        if singular[i]:  # a flagged row may hold an error value, or the model none
+            continue
         if name in CRANK_PIN and np.isfinite(ours[i]):
             continue
         what = "a value where the model has none" if np.isfinite(ours[i]) else (
             f"{values[i]} where the model has {ref[i]:.12g}")
         wrong.append(f"{xl_rowcol_to_cell(i + 1, col - 1)}: {what}")
-    both = np.isfinite(ours) & np.isfinite(ref)
+    finite = np.isfinite(ours) & np.isfinite(ref)
+    both = finite & ~singular
+    skipped = int((finite & singular).sum())
     if not both.any():
-        return QuantityCheck(name, 0, 0.0, None, wrong)
-    scale = max(float(np.max(np.abs(ref[both]))), 1e-300)
-    errors = np.where(both, np.abs(ours - ref), 0.0) / scale
+        return QuantityCheck(name, 0, 0.0, None, wrong, skipped)
+    scale = max(float(np.max(np.abs(ref[both]))), ANGLE_FLOOR.get(unit or "", 0.0), 1e-300)
+    if noise is not None:
+        scale = np.maximum(scale, NOISE_TO_SCALE * np.where(np.isfinite(noise), noise, 0.0))
+    errors = np.where(both, np.abs(ours - ref) / scale, 0.0)
     worst = int(np.argmax(errors))
-    return QuantityCheck(name, int(both.sum()), float(errors[worst]), float(inputs[worst]), wrong)
+    return QuantityCheck(name, int(both.sum()), float(errors[worst]), float(inputs[worst]),
+                         wrong, skipped)
 
 
 def _residuals(book, value_of) -> tuple[dict[str, float], float | None]:

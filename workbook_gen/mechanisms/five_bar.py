@@ -23,7 +23,7 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import Mapping
 
-from ..expr import Node, atan2, degrees, iserror, if_, or_, root, sqrt
+from ..expr import Node, abs_, atan2, degrees, iserror, if_, or_, root, sqrt
 from ..expr import cos, radians, sin, min_, max_
 from .base import (Chart, Check, InputSpec, OptionSpec, ParamSpec, Quantity, Span, Template,
                    quantity_vars, symbols)
@@ -104,8 +104,10 @@ def _checks() -> tuple[Check, ...]:
         Check("coupler_DC", "position", (sqrt(dx ** 2 + dy ** 2) - l_3) / l_3,
               "|C - D| - l_3, over l_3 (D = E + l_4 (cos theta_4, sin theta_4))"),
         Check("path", "position",
-              (sqrt((x_C - x_0) ** 2 + (y_C - y_0) ** 2) - R_path) / R_path,
-              "|C - (x_0, y_0)| - R_path, over R_path"),
+              (sqrt((x_C - x_0) ** 2 + (y_C - y_0) ** 2) - R_path)
+              / (R_path + abs_(x_0) + abs_(y_0)),
+              "|C - (x_0, y_0)| - R_path, over R_path + |x_0| + |y_0| (C's coordinates "
+              "carry the rounding of x_0 and y_0, which the difference cancels)"),
         Check("elbow_B_left", "position",
               min_(0, x_C * sin(t1) - y_C * cos(t1)) / l_2,
               "(C - A) x (B - A) / l_1 where negative (B right of A->C), over l_2"),

@@ -8,13 +8,13 @@ with l_5 along x).  S = -A^-1 B with the 2x2 inverse written out:
 S = [q_y, -p_y; -q_x, p_x] [p.u_1, l_2, 0, 0, 0; 0, 0, l_3, q.u_4, q_x] / det_BCD,
 det_BCD = p x q (zero when B, C, D are in line: C is then not located).
 
-Clearance r_clear at one joint, direction alpha: the displacement
-delta = r_clear (cos alpha, sin alpha) moves
-  joint A (pivot of crank 1) or B (pin of crank 1 in coupler 2): coupler 2's end B by delta;
-  joint D (pin of crank 4 in coupler 3) or E (pivot of crank 4): coupler 3's end D by delta;
-  joint C: coupler 3's eye sits at delta from coupler 2's pin C (the output point), which
-           is coupler 3's end D moved by -delta.
-So with the inputs held the columns of A and B agree, those of D and E agree, and C at alpha
+Clearance r_clear at one joint, direction alpha, u = (cos alpha, sin alpha) (issue 12):
+  joint A or E (a crank's pivot): the crank's journal is offset from its ground pivot by
+           r_clear u, so coupler 2's end B (resp. coupler 3's end D) moves by +r_clear u;
+  joint B: coupler 2's journal at B is offset by -r_clear u: B moves by -r_clear u;
+  joint C or D: coupler 3's end D moves by -r_clear u (at C: coupler 3's eye sits at
+           r_clear u from coupler 2's pin C, the output point).
+So with the inputs held B at alpha is A at alpha + 180 deg, C and D agree, and E at alpha
 is D at alpha + 180 deg; the reference solves each joint from its own displaced geometry.
 
 C' is re-solved exactly (not linearised) as a small displacement e = C' - C, without
@@ -26,8 +26,9 @@ near-equal terms), e = ea g/|g| + en m with
   en = -gamma / (beta + SIGN(beta) sqrt(beta^2 - gamma)),  the small root of
   en^2 + 2 beta en + gamma = 0, beta = m.(C - B'), gamma = ea^2 + 2 ea (g/|g|).(C - B') + k_1.
 The root kept puts C' on the same side of the line B'D' as C (the assembly mode kept).
-The error of C is |C' - C| = sqrt(ea^2 + en^2) (columns dC_<joint>_<alpha> [m]); the
-intermediate columns en_B_<alpha> / en_D_<alpha> hold en for coupler end B / D moved.
+The error of C is C' - C = ea g/|g| + en m: its components dx_C_<joint>_<alpha>,
+dy_C_<joint>_<alpha> [m] and its length |C' - C| = sqrt(ea^2 + en^2) (dC_<joint>_<alpha>);
+the intermediate columns en_B_<alpha> / en_D_<alpha> hold en for coupler end B / D moved.
 """
 
 from __future__ import annotations
@@ -87,10 +88,10 @@ def _power(s: int, along_x: bool, v: tuple[Node, Node]) -> Node:
     return r_clear * (r_clear - 2 * v_i if s > 0 else r_clear + 2 * v_i)
 
 
-def _clearance_pair(end: str, alpha: int) -> tuple[Node, Node]:
-    """(ea, en) trees of C's displacement when coupler end ``end`` ("B" or "D") moves by
-    delta at ``alpha``.  ea is written inline (it exists even where the moved circles do
-    not meet); en is #NUM! there."""
+def _clearance_pair(end: str, alpha: int) -> tuple[Node, Node, tuple[Node, Node, Node]]:
+    """(ea, en, (g_x, g_y, |g|)) trees of C's displacement when coupler end ``end`` ("B"
+    or "D") moves by delta at ``alpha``.  ea is written inline (it exists even where the
+    moved circles do not meet); en is #NUM! there."""
     cx, cy = _UNIT[alpha]
     s, along_x = cx + cy, cx != 0
     if end == "B":   # B' = B + delta: g = D - B', C - B' = p - delta
@@ -109,29 +110,37 @@ def _clearance_pair(end: str, alpha: int) -> tuple[Node, Node]:
     gamma = ea ** 2 + 2 * ea * (gx * wx + gy * wy) / g
     if k_1 is not None:
         gamma = gamma + k_1
-    return ea, -gamma / (beta + sign(beta) * root(beta ** 2 - gamma))
+    return ea, -gamma / (beta + sign(beta) * root(beta ** 2 - gamma)), (gx, gy, g)
 
 
 def _clearance_columns() -> tuple[Quantity, ...]:
-    out, along = [], {}
+    out, along, line = [], {}, {}
     for end in ("B", "D"):
         moved = ("coupler 2's end B (joint A or B)" if end == "B"
                  else "coupler 3's end D (joint C, D or E)")
         for alpha in ANGLES:
-            along[f"{end}_{alpha}"], en = _clearance_pair(end, alpha)
+            along[f"{end}_{alpha}"], en, line[f"{end}_{alpha}"] = _clearance_pair(end, alpha)
             out.append(Q(f"en_{end}_{alpha}", "m", en,
                          f"C's error normal to D'-B' (to the left) when {moved} moves by "
                          f"r_clear at {alpha} deg; #NUM! where C' does not exist",
                          output=False))
-    source = {"A": ("B", 0), "B": ("B", 0), "C": ("D", 180), "D": ("D", 0), "E": ("D", 0)}
+    # which coupler end moves, and by delta at alpha + turn
+    source = {"A": ("B", 0), "B": ("B", 180), "C": ("D", 180), "D": ("D", 180),
+              "E": ("D", 0)}
+    signed = []
     for joint, (end, turn) in source.items():
         for alpha in ANGLES:
             case = f"{end}_{(alpha + turn) % 360}"
-            out.append(Q(f"dC_{joint}_{alpha}", "m",
-                         sqrt(along[case] ** 2 + Var(f"en_{case}") ** 2),
-                         f"|C' - C|: exact error of C from a clearance r_clear at joint "
-                         f"{joint}, direction {alpha} deg"))
-    return tuple(out)
+            ea, en = along[case], Var(f"en_{case}")
+            gx, gy, g = line[case]
+            where = f"from a clearance r_clear at joint {joint}, direction {alpha} deg"
+            out.append(Q(f"dC_{joint}_{alpha}", "m", sqrt(ea ** 2 + en ** 2),
+                         f"|C' - C|: exact error of C {where}"))
+            signed += [Q(f"dx_C_{joint}_{alpha}", "m", (ea * gx - en * gy) / g,
+                         f"x of C' - C, exact, {where}"),
+                       Q(f"dy_C_{joint}_{alpha}", "m", (ea * gy + en * gx) / g,
+                         f"y of C' - C, exact, {where}")]
+    return tuple(out + signed)
 
 
 CLEARANCE = _clearance_columns()

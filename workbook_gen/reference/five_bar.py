@@ -111,8 +111,8 @@ def _displaced(p, joint: str, alpha: int, t1, t2, t3, t4):
     zero = np.zeros(2)
     a_shift, b_shift, eye, d_shift, e_shift = (delta if j == joint else zero for j in JOINTS)
     l1, l2, l3, l4, l5 = (p[f"l_{i}"] for i in range(1, 6))
-    moved_b = a_shift + b_shift                       # B' - B
-    moved_d = d_shift + e_shift - eye                 # D' - D as coupler 2 sees it
+    moved_b = a_shift - b_shift                       # B' - B (B's journal offset by -delta)
+    moved_d = e_shift - d_shift - eye                 # D' - D as coupler 2 sees it
     gap = moved_b - moved_d
     rows = t1.shape[0]
 
@@ -165,9 +165,10 @@ def _clearance(p, t1, t2, t3, t4) -> dict[str, np.ndarray]:
         for alpha in ANGLES:
             ex, ey, (bx, by), (dx, dy) = _displaced(p, joint, alpha, t1, t2, t3, t4)
             out[f"dC_{joint}_{alpha}"] = np.hypot(ex, ey)
-            if joint in "BD":   # coupler end B or D moved: C's error normal to D' - B'
+            out[f"dx_C_{joint}_{alpha}"], out[f"dy_C_{joint}_{alpha}"] = ex, ey
+            if joint in "AE":   # coupler end B or D moved by +delta: C's error normal to D' - B'
                 gx, gy = dx - bx, dy - by
-                out[f"en_{joint}_{alpha}"] = (ey * gx - ex * gy) / np.hypot(gx, gy)
+                out[f"en_{'B' if joint == 'A' else 'D'}_{alpha}"] = (ey * gx - ex * gy) / np.hypot(gx, gy)
     return out
 
 

@@ -30,6 +30,10 @@ MAX_ITER = 100
 POLISH_ITER = 2
 
 
+# ``out[name + NOISE]``: the magnitude a reference value cancelled on the way (its
+# rounding is about eps times it); the audit allows it as it allows its own (noise.py).
+NOISE = "~noise"
+
 class Jet:
     """Value, first and second time derivative of an array quantity."""
 

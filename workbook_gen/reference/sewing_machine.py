@@ -15,7 +15,7 @@ from typing import Mapping
 
 import numpy as np
 
-from .newton import Jet, jcos, jsin, solve_stage, wrap_deg
+from .newton import NOISE, Jet, jcos, jsin, solve_stage, wrap_deg
 
 DEFAULTS = {
     "l_AB": 32.0, "l_BC": 100.0, "l_BE": 28.0, "beta_E": 0.0,
@@ -112,4 +112,18 @@ def solve(p: Mapping[str, float], theta_1_deg: np.ndarray) -> dict[str, np.ndarr
     out["theta_5"] = wrap_deg(th5_v, math.degrees(theta_fa) - 180.0)
     th2_v, out["omega_2"], out["alpha_2"] = _mask(th2, ok, rod.singular)
     out["theta_2"] = wrap_deg(th2_v, -180.0)
-    return {name: out[name] for name in OUTPUTS}
+    result = {name: out[name] for name in OUTPUTS}
+    # h_BC = y_B - y_C cancels two values near l_BC when the crank is short: its rounding
+    # is that of the terms, and its rates' that of the rate solve, whose terms are of
+    # the order of omega^k times the positions (NOISE: the audit allows them).
+    w, size = abs(p["omega_1"]), np.abs(y_b.v) + np.abs(y_c.v)
+    result["h_BC" + NOISE] = size
+    result["dh_BC" + NOISE] = np.abs(y_b.d) + np.abs(y_c.d) + w * size
+    result["ddh_BC" + NOISE] = np.abs(y_b.dd) + np.abs(y_c.dd) + w * w * size
+    # E = B + l_BE (cos, sin)(theta_2 + beta): with the rod near vertical, cos of an angle
+    # near -90 deg keeps the angle's absolute rounding, l_BE |theta_2| eps, and so on.
+    size = l_ab + l_be * (1.0 + np.abs(th2.v + beta))
+    for axis in ("x", "y"):
+        for k, prefix in enumerate(("", "v", "a")):
+            result[f"{prefix}{axis}_E" + NOISE] = w ** k * size
+    return result

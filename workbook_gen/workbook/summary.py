@@ -9,6 +9,7 @@ import numpy as np
 from .. import xlmath as xm
 from ..compute import Evaluated
 from ..expr.excel import to_excel
+from ..expr.magnitude import magnitude
 from ..expr.numeric import compile_numpy
 from ..xlerror import ExcelError
 from .table import cached_values
@@ -23,6 +24,32 @@ def _extreme(column: xm.XArray, inputs: np.ndarray, pick) -> tuple[object, objec
         return first, first
     i = int(pick(column.val))
     return float(column.val[i]), float(inputs[i])
+
+
+# A column whose max - min is within TIE_ULPS ulps of the magnitudes its formula cancels
+# (expr/magnitude.py) is constant to rounding: its extremes are a tie, not a location
+# (a balanced shaking force, a centre of mass that stands still).  Engines round such
+# noise differently (LibreOffice makes near-equal differences 0), so a location there
+# would be an accident of the engine.
+TIE_ULPS = 4096
+TIE = "tie"
+
+
+def tie_threshold(result: Evaluated, name: str) -> float:
+    """Largest max - min that is rounding noise for quantity ``name`` (0 if none)."""
+    quantity = result.model.template.quantity(name)
+    m = magnitude(quantity.expr, result.columns, result.params, result.rows)
+    m = m[np.isfinite(m)]
+    bound = TIE_ULPS * np.finfo(float).eps * float(m.max()) if m.size else 0.0
+    return float(f"{bound:.3g}")  # as written in the formula
+
+
+def _where(row: int, value_col: str, inputs_abs: str, rng: str, tie: float) -> str:
+    """The input where the extreme in ``value_col`` occurs, or "tie" when the column is
+    constant to rounding (max - min within ``tie``)."""
+    r = row + 1
+    return (f'=IF(C{r}-E{r}<={tie!r},"{TIE}",'
+            f"INDEX({inputs_abs},MATCH({value_col}{r},{rng},0)))")
 
 
 def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> None:
@@ -43,15 +70,17 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
         rng = layout.column(q.name)
         hi, at_hi = _extreme(column, result.inputs, np.argmax)
         lo, at_lo = _extreme(column, result.inputs, np.argmin)
+        tie = tie_threshold(result, q.name)
+        tied = isinstance(hi, float) and isinstance(lo, float) and hi - lo <= tie
+        if tied:
+            at_hi = at_lo = TIE
         sheet.write_string(row, 0, q.name)
         sheet.write_string(row, 1, q.unit)
         sheet.write_formula(row, 2, f"=MAX({rng})", None, hi)
-        sheet.write_formula(row, 3, f"=INDEX({inputs_abs},MATCH(C{row + 1},{rng},0))", None,
-                            at_hi)
+        sheet.write_formula(row, 3, _where(row, "C", inputs_abs, rng, tie), None, at_hi)
         sheet.write_formula(row, 4, f"=MIN({rng})", None, lo)
-        sheet.write_formula(row, 5, f"=INDEX({inputs_abs},MATCH(E{row + 1},{rng},0))", None,
-                            at_lo)
-        extremes[q.name] = (row + 1, hi, lo)
+        sheet.write_formula(row, 5, _where(row, "E", inputs_abs, rng, tie), None, at_lo)
+        extremes[q.name] = (row + 1, hi, lo, tie, tied)
         row += 1
 
     row += 1
@@ -59,11 +88,12 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
         sheet.write_string(row, c, text, formats["header"])
     row += 1
     for span in result.model.spans:
-        line, hi, lo = extremes[span.quantity]
+        line, hi, lo, tie, tied = extremes[span.quantity]
         value = hi - lo if isinstance(hi, float) and isinstance(lo, float) else hi
         sheet.write_string(row, 0, f"{span.label} (from the table)")
         sheet.write_string(row, 1, result.model.template.quantity(span.quantity).unit)
-        sheet.write_formula(row, 2, f"=C{line}-E{line}", None, value)
+        sheet.write_formula(row, 2, f"=IF(C{line}-E{line}<={tie!r},0,C{line}-E{line})", None,
+                            0.0 if tied else value)
         sheet.write_string(row, 3, f"max - min of {span.quantity} over the sweep")
         row += 1
     for figure in result.model.figures:
