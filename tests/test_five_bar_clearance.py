@@ -10,7 +10,8 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from workbook_gen import compute, load_scene
+from workbook_gen.compute import compute
+from workbook_gen.scene import load_scene
 
 SCENE = Path(__file__).resolve().parent.parent / "templates" / "five_bar.toml"
 JOINTS, ANGLES = "ABCDE", (0, 90, 180, 270)
