@@ -103,7 +103,7 @@ def main() -> None:
         os.environ["PYTHONPATH"] = os.pathsep.join(
             [str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])
         with LocalCluster(n_workers=2, processes=True, threads_per_worker=1,
-                          dashboard_address=None) as cluster, Client(cluster) as client:
+                          dashboard_address=":0") as cluster, Client(cluster) as client:
             dask = file_batch(tmp / "dask", n, client=client)
         print(f"3. Dask LocalCluster, 2 worker processes: {dask:.1f} s for {n:,} variants, "
               f"{dask / pool:.2f}x the time of --jobs {args.jobs} "

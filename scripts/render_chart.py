@@ -35,7 +35,8 @@ def single_sheet_copy(src: Path, dst: Path, sheet: str) -> None:
                 text = text.replace("<workbookView ",
                                     f'<workbookView activeTab="{names.index(sheet)}" ', 1)
                 for name in names:
-                    if name != sheet:
+                    element = re.search(f'<sheet name="{re.escape(name)}" [^>]*>', text)
+                    if name != sheet and element and "state=" not in element.group(0):
                         text = text.replace(f'<sheet name="{name}" ',
                                             f'<sheet name="{name}" state="hidden" ')
                 data = text.encode()

@@ -191,8 +191,11 @@ def test_summary_xlsx_sheets_links_filter_and_native_charts(sewing_batch):
         charts = [n for n in z.namelist() if n.startswith("xl/charts/chart")]
         # 15 outputs and 3 spans; two varied grid parameters: one series per l_AB value.
         assert len(charts) == 18
-        xml = z.read(charts[0]).decode()
-        assert "<c:scatterChart>" in xml and xml.count("<c:ser>") == 2 * 3
+        stroke = z.read("xl/charts/chart1.xml").decode()  # the needle stroke, a span
+        assert "<c:scatterChart>" in stroke and stroke.count("<c:ser>") == 3
+        assert "l_AB = 30" in stroke and "ChartData" in stroke
+        needle = z.read("xl/charts/chart4.xml").decode()  # y_C: max and min per l_AB
+        assert needle.count("<c:ser>") == 2 * 3 and "y_C [mm]: max and min" in needle
     about = [r for r in book["About"].iter_rows(values_only=True)]
     assert about[0][0] == "command" and "--vary l_BC=20,95,105" in about[0][1]
 

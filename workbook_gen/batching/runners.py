@@ -37,7 +37,8 @@ class InProcess:
 
 class LocalPool:
     """``jobs`` worker processes (forked where the platform allows: the workers start
-    with the package already imported)."""
+    with the package imported and the per-process caches (compiled trees, row
+    templates) filled by the first chunk, which runs in this process)."""
 
     def __init__(self, jobs: int):
         self.jobs = jobs
@@ -45,9 +46,15 @@ class LocalPool:
 
     def run(self, fn: Callable, spec, parts: Iterable[Chunk]) -> Iterator[tuple[Chunk, object]]:
         methods = multiprocessing.get_all_start_methods()
-        context = multiprocessing.get_context("fork" if "fork" in methods else None)
+        fork = "fork" in methods
+        context = multiprocessing.get_context("fork" if fork else None)
         limit = 2 * self.jobs
         parts = iter(parts)
+        if fork:  # the first chunk here: forked workers start with its caches warm
+            first = next(parts, None)
+            if first is None:
+                return
+            yield first, fn(spec, first)
         with cf.ProcessPoolExecutor(self.jobs, mp_context=context) as pool:
             pending: dict[cf.Future, Chunk] = {}
             for part in parts:

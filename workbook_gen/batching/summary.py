@@ -125,20 +125,23 @@ def _variants_sheet(book, table: Table) -> None:
 
 
 def _plotted(table: Table) -> list[tuple[str, list[str]]]:
-    """(title, summary columns) of each chart: each output's min and max, the spans."""
+    """(title, summary columns) of each chart: the spans (stroke, swing), then each
+    output's max and min."""
     charts = []
-    for q in table.model.outputs():
-        unit = f" [{q.unit}]" if q.unit else ""
-        charts.append((f"{q.name}{unit}: min and max over the sweep",
-                       [f"{q.name}_max", f"{q.name}_min"]))
     for span in table.model.spans:
         q = table.model.template.quantity(span.quantity)
         unit = f" [{q.unit}]" if q.unit else ""
         charts.append((f"{span.label}{unit}", [snake(span.label)]))
+    for q in table.model.outputs():
+        unit = f" [{q.unit}]" if q.unit else ""
+        charts.append((f"{q.name}{unit}: max and min over the sweep",
+                       [f"{q.name}_max", f"{q.name}_min"]))
     return charts
 
 
 def _charts_sheet(book, sheet, table: Table) -> None:
+    sheet.set_landscape()
+    sheet.fit_to_pages(1, 0)
     design = table.design
     if not design.names:
         return
