@@ -5,8 +5,6 @@ workbooks themselves, failure isolation, determinism, resuming, --summary-only."
 from __future__ import annotations
 
 import csv
-import math
-import os
 import zipfile
 from pathlib import Path
 

@@ -106,6 +106,8 @@ def batch(scene: str | Path | Scene, vary: Sequence[str] | None = None,
         raise SceneError("--audit checks workbooks; --summary-only makes none")
     if jobs is not None and jobs < 1:
         raise SceneError(f"--jobs must be >= 1, got {jobs}")
+    if jobs is not None and (client is not None or scheduler is not None):
+        raise SceneError("--jobs and --scheduler: give one (the cluster's workers do the work)")
     base = parse_scene(text, source, sets or None, step)
     plan = _design(base, vary, design, sets, samples, seed)
     folder_path = Path(out) / f"{base.name}-batch"
@@ -119,17 +121,20 @@ def batch(scene: str | Path | Scene, vary: Sequence[str] | None = None,
                                        for v in plan.variants]).encode())}
     folder = Folder(folder_path, base.name, identity)
     resume = folder.check(force)
-    if scheduler is not None and client is None:
-        client = runners.connect(scheduler)
+    own = runners.connect(scheduler) if scheduler is not None and client is None else None
     command = _command(source, vary, design, sets, step, samples, seed, summary_only, audit)
-    folder_path.mkdir(parents=True, exist_ok=True)
-    folder.start(resume, command)
-    table = Table(plan, select(base.template, base.outputs), base.parameters)
-    runner = runners.pick(jobs, client)
-    if summary_only:
-        _summaries_only(spec, plan, table, runner, progress)
-    else:
-        _workbooks(spec, plan, table, runner, folder, resume, progress)
+    try:
+        folder_path.mkdir(parents=True, exist_ok=True)
+        folder.start(resume, command)
+        table = Table(plan, select(base.template, base.outputs), base.parameters)
+        runner = runners.pick(jobs, client or own)
+        if summary_only:
+            _summaries_only(spec, plan, table, runner, progress)
+        else:
+            _workbooks(spec, plan, table, runner, folder, resume, progress)
+    finally:
+        if own is not None:
+            own.close()
     about = [("command", command), ("scene file", source), ("generator", f"workbook-gen {VERSION}"),
              ("variants", f"{len(plan)} ({plan.kind}); varied: {', '.join(plan.names)}"),
              ("statuses", _counts(table)), ("workbooks", "none (--summary-only)" if summary_only

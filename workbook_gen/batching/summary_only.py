@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import functools
 import math
-from typing import Iterator, Sequence
+from typing import Sequence
 
 import numpy as np
 
