@@ -30,11 +30,12 @@ from __future__ import annotations
 import math
 import re
 from collections import defaultdict
+from operator import itemgetter
 
 from ..formula import ast
 from ..formula.printer import column_letters
 from ..xlerror import ExcelError
-from .grid import EMPTY, ERROR, FORMULA, NUMBER, TEXT, Grid, Key
+from .grid import ERROR, FORMULA, NUMBER, TEXT, Grid, Key, value_kind
 from .structure import Finding
 
 KINDS = ("inconsistent_formula", "constant_in_formula_run", "formula_omits_adjacent_cells",
@@ -62,25 +63,18 @@ def find(inputs, runs, cell_name) -> list[Finding]:
     return checks.findings
 
 
-def _token(grid: Grid, key: Key):
-    """What a cell is, for comparing neighbours: a formula's R1C1 form, or its kind."""
-    kind = grid.kind(key)
-    if kind == FORMULA:
-        r1c1 = grid.r1c1(key)
-        return (FORMULA, r1c1 if r1c1 is not None else key)  # unparsed: equal to nothing
-    return (kind,)
-
-
-def _segments(grid: Grid, cells: list[Key], along: int) -> list[tuple[int, int, tuple]]:
+def _segments(tokens: dict, cells: list[Key], along: int) -> list[tuple[int, int, tuple]]:
     """Runs of adjacent cells of a line (sorted along index ``along``) with one token."""
     out: list[list] = []
+    last = None
     for key in cells:
-        pos, token = key[along], _token(grid, key)
-        if out and out[-1][1] == pos - 1 and out[-1][2] == token:
-            out[-1][1] = pos
+        pos, token = key[along], tokens[key]
+        if last is not None and last[1] == pos - 1 and last[2] == token:
+            last[1] = pos
         else:
-            out.append([pos, pos, token])
-    return [tuple(s) for s in out]
+            last = [pos, pos, token]
+            out.append(last)
+    return out
 
 
 class _Checks:
@@ -103,40 +97,83 @@ class _Checks:
         return _show(value)
 
     # inconsistent_formula, constant_in_formula_run -----------------------------------
-    def shapes(self) -> None:
+    def token(self, key: Key):
+        """What a cell is, for comparing neighbours: a formula's R1C1 form or its kind;
+        None for an empty cell."""
         grid = self.grid
-        lines: dict[tuple, list[Key]] = defaultdict(list)
-        for key in list(grid.formulas) + list(grid.constants):
-            lines[("col", key[0], key[2])].append(key)
-            lines[("row", key[0], key[1])].append(key)
-        for (direction, *_), cells in lines.items():
-            along = 1 if direction == "col" else 2
-            cells.sort(key=lambda k: k[along])
-            self._line(_segments(grid, cells, along), cells[0], along)
+        run = grid.run_index(key)
+        if run is not None:
+            return (FORMULA, grid.key_of_run[run])
+        if key in grid.formulas or key in grid.array:
+            return (FORMULA, key)  # unparsed or an array formula: equal to nothing
+        if key in grid.constants:
+            return (value_kind(grid.constants[key]),)
+        return None
 
-    def _line(self, segments, sample: Key, along: int) -> None:
+    def shapes(self) -> None:
+        """Down each column, from the runs (a run is a stretch of one formula) and the
+        constants; along rows, around the cells that could differ from both sides (a
+        formula in a run of two or more rows agrees with the row above or below)."""
+        grid = self.grid
+        columns: dict[tuple[str, int], list] = defaultdict(list)
+        for i, run in enumerate(grid.runs):
+            columns[(run.sheet, run.col)].append([run.first, run.last,
+                                                  (FORMULA, grid.key_of_run[i])])
+        for key in grid.unparsed:
+            columns[(key[0], key[2])].append([key[1], key[1], (FORMULA, key)])
+        candidates = [(run.sheet, run.first, run.col) for run in grid.runs
+                      if run.first == run.last]
+        for key, value in grid.constants.items():
+            token = self.token(key)
+            columns[(key[0], key[2])].append([key[1], key[1], token])
+            if token[0] == NUMBER:
+                candidates.append(key)
+        for (sheet, col), items in columns.items():
+            if len(items) < 3 and sum(b - a + 1 for a, b, _ in items) < 3:
+                continue
+            items.sort(key=itemgetter(0))
+            segments = [items[0]]
+            for item in items[1:]:
+                last = segments[-1]
+                if item[0] == last[1] + 1 and item[2] == last[2]:
+                    last[1] = item[1]
+                else:
+                    segments.append(item)
+            sample = (sheet, 0, col)
+            for i in range(1, len(segments) - 1):
+                self._check(segments, i, sample, 1)
+        for key in candidates:
+            sheet, row, col = key
+            window = [(sheet, row, c) for c in range(max(1, col - 6), col + 7)]
+            tokens = {k: t for k in window if (t := self.token(k)) is not None}
+            segments = _segments(tokens, list(tokens), 2)
+            i = next(n for n, seg in enumerate(segments) if seg[0] <= col <= seg[1])
+            if 0 < i < len(segments) - 1:
+                self._check(segments, i, key, 2)
+
+    def _check(self, segments, i: int, sample: Key, along: int) -> None:
+        """Is segment ``i`` of a line a slip inside the run around it?"""
         n = len(segments)
-        for i in range(1, n - 1):
-            before, this, after = segments[i - 1], segments[i], segments[i + 1]
-            if not (before[1] == this[0] - 1 and after[0] == this[1] + 1):
-                continue
-            if before[2] != after[2] or before[2][0] != FORMULA or this[2] == before[2]:
-                continue
-            length = this[1] - this[0] + 1
-            sizes = (before[1] - before[0] + 1, after[1] - after[0] + 1)
-            # alternating layouts: the same token two segments away, adjacent
-            if (i >= 2 and segments[i - 2][2] == this[2] and segments[i - 2][1] == before[0] - 1) \
-                    or (i + 2 < n and segments[i + 2][2] == this[2]
-                        and segments[i + 2][0] == after[1] + 1):
-                continue
-            if along == 1:   # down a column
-                if length > 2 or (length == 2 and min(sizes) < 2):
-                    continue
-            elif length > 1 or sum(sizes) < 3:   # along a row: stricter, rows mix quantities
-                continue
-            for pos in range(this[0], this[1] + 1):
-                key = _at(sample, along, pos)
-                self._shape_finding(key, this[2], along, before, after)
+        before, this, after = segments[i - 1], segments[i], segments[i + 1]
+        if not (before[1] == this[0] - 1 and after[0] == this[1] + 1):
+            return
+        if before[2] != after[2] or before[2][0] != FORMULA or this[2] == before[2]:
+            return
+        length = this[1] - this[0] + 1
+        sizes = (before[1] - before[0] + 1, after[1] - after[0] + 1)
+        # alternating layouts: the same token two segments away, adjacent
+        if (i >= 2 and segments[i - 2][2] == this[2] and segments[i - 2][1] == before[0] - 1) \
+                or (i + 2 < n and segments[i + 2][2] == this[2]
+                    and segments[i + 2][0] == after[1] + 1):
+            return
+        if along == 1:   # down a column
+            if length > 2 or (length == 2 and min(sizes) < 2):
+                return
+        elif length > 1 or sum(sizes) < 3:   # along a row: stricter, rows mix quantities
+            return
+        for pos in range(this[0], this[1] + 1):
+            key = _at(sample, along, pos)
+            self._shape_finding(key, this[2], along, before, after)
 
     def _shape_finding(self, key: Key, token, along: int, before, after) -> None:
         grid = self.grid
@@ -145,7 +182,7 @@ class _Checks:
         where = "above and below" if along == 1 else "left and right"
         neighbour = _at(key, along, before[1])
         if token[0] == FORMULA:
-            if any(_token(grid, k) == token for k in side):
+            if any(self.token(k) == token for k in side):
                 return  # the same formula the other way: a row (column) of its own
             if not self._has_refs(key) and not self._has_refs(neighbour):
                 return  # constant expressions (=2*3.5): values typed as formulas
@@ -192,34 +229,40 @@ class _Checks:
             length = run.last - run.first + 1
             for ref in refs:
                 moves = _row_relative(ref.node)
-                if ref.function in AGGREGATES and not ref.single:
-                    top = ref.r2 + (length - 1 if moves else 0)
-                    self.aggregate_ranges.append((ref.sheet, ref.r1, ref.c1, top, ref.c2))
+                if ref.single:
+                    if not ref.guarded:
+                        self._empty(run, ref, moves)
+                    continue
+                if ref.function not in AGGREGATES:
+                    continue
+                top = ref.r2 + (length - 1 if moves else 0)
+                self.aggregate_ranges.append((ref.sheet, ref.r1, ref.c1, top, ref.c2))
+                if ref.guarded or (moves and length > 1 and ref.c1 == ref.c2):
+                    continue  # a moving window or a running total down its own run
                 for dr in range(length):
-                    key = (home, run.first + dr, run.col)
                     r1, r2 = (ref.r1 + dr, ref.r2 + dr) if moves else (ref.r1, ref.r2)
-                    if ref.single and not ref.guarded:
-                        self._empty(key, ref, r1)
-                    elif ref.function in AGGREGATES and not ref.single and not ref.guarded \
-                            and not (moves and length > 1 and ref.c1 == ref.c2):
-                        omits.append((key, ref, r1, r2))
+                    omits.append(((home, run.first + dr, run.col), ref, r1, r2))
         by_sheet: dict[str, list] = defaultdict(list)
         for sheet, *rect in self.aggregate_ranges:
             by_sheet[sheet].append(rect)
         for key, ref, r1, r2 in omits:
             self._omits(key, ref, r1, r2, by_sheet[ref.sheet])
 
-    def _empty(self, key: Key, ref, row: int) -> None:
+    def _empty(self, run, ref, moves: bool) -> None:
+        """The run's cells whose reference ``ref`` lands on a notable empty cell."""
         grid = self.grid
-        target = (ref.sheet, row, ref.c1)
-        if ref.sheet.lower() not in grid.sheets or grid.kind(target) is not EMPTY:
+        if ref.sheet.lower() not in grid.sheets:
             return
-        where = grid.emptiness(target)
-        if where is None:
-            return  # a blank in a filled row and column: an input left empty, most likely
-        self.add("reference_to_empty_cell", key,
-                 f"{self.text(key)} reads {self.name(target)}, which is empty ({where}; "
-                 f"it counts as 0 or \"\")")
+        length = run.last - run.first + 1
+        last = ref.r1 + (length - 1 if moves else 0)
+        for row, where in grid.notable_empty(ref.sheet, ref.c1, ref.r1, last):
+            target = (ref.sheet, row, ref.c1)
+            rows = [run.first + row - ref.r1] if moves else range(run.first, run.last + 1)
+            for r in rows:
+                key = (run.sheet, r, run.col)
+                self.add("reference_to_empty_cell", key,
+                         f"{self.text(key)} reads {self.name(target)}, which is empty "
+                         f"({where}; it counts as 0 or \"\")")
 
     def _omits(self, key: Key, ref, r1: int, r2: int, ranges: list) -> None:
         vertical = ref.c1 == ref.c2 and r2 > r1
@@ -290,8 +333,8 @@ class _Checks:
     # error_value ---------------------------------------------------------------------
     def errors(self) -> None:
         grid = self.grid
-        errors = {k: v for k, v in grid.cached.items() if grid.kind(k) == FORMULA
-                  and isinstance(v, ExcelError)}
+        errors = {k: v for k, v in grid.cached.items() if type(v) is ExcelError
+                  and grid.kind(k) == FORMULA}
         errors.update((k, v) for k, v in grid.constants.items()
                       if grid.kind(k) == ERROR)
         if not errors:
@@ -345,7 +388,7 @@ def _deliberate_na(grid: Grid, key: Key, error) -> bool:
     """``=NA()`` or ``#N/A`` written in the formula: a gap left on purpose (charts)."""
     if error is not ExcelError.NA or key not in grid.formulas:
         return False
-    run = grid.run_of.get(key)
+    run = grid.run_index(key)
     if run is None:
         return False
     return any((isinstance(n, ast.Func) and n.name == "NA")

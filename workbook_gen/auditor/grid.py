@@ -10,6 +10,7 @@ with their relative rows moved by ``dr``.
 
 from __future__ import annotations
 
+from bisect import bisect_right
 from collections.abc import Iterator
 from dataclasses import dataclass
 
@@ -59,15 +60,47 @@ class Grid:
         self.constants = inputs.constants
         self.array = set(inputs.array_cells)
         self.sheets = {s.lower(): s for s in inputs.book.sheet_names}
-        self.runs = [r for r in runs]
-        self.run_of: dict[Key, int] = {}
-        self.key_of_run: list[str] = []
+        self.runs = list(runs)
+        self.key_of_run = [ast.to_relative(run.node, run.first, run.col) for run in self.runs]
+        by_column: dict[tuple[str, int], list[tuple[int, int]]] = {}
         for i, run in enumerate(self.runs):
-            self.key_of_run.append(ast.to_relative(run.node, run.first, run.col))
-            for row in range(run.first, run.last + 1):
-                self.run_of[(run.sheet, row, run.col)] = i
+            by_column.setdefault((run.sheet, run.col), []).append((run.first, i))
+        self._starts = {}
+        for column, starts in by_column.items():
+            starts.sort()
+            self._starts[column] = ([f for f, _ in starts], [i for _, i in starts])
+        # formula cells in no run: those that did not parse
+        self.unparsed = [] if sum(r.last - r.first + 1 for r in self.runs) == len(self.formulas) \
+            else [k for k in self.formulas if self.run_index(k) is None]
         self._names: dict[str, ast.Node | None] = {}
-        self._lines: dict[str, tuple[set, set, tuple]] | None = None
+        self._lines: dict[str, tuple[set, tuple]] | None = None
+
+    def run_index(self, key: Key) -> int | None:
+        """The index of the run holding formula cell ``key``, None if none does."""
+        found = self._starts.get((key[0], key[2]))
+        if found is None:
+            return None
+        starts, indexes = found
+        at = bisect_right(starts, key[1]) - 1
+        if at < 0 or self.runs[indexes[at]].last < key[1]:
+            return None
+        return indexes[at]
+
+    def extent(self, sheet: str) -> tuple[set, tuple]:
+        """The columns holding cells and the used range (r1, c1, r2, c2) of a sheet."""
+        if self._lines is None:
+            lines: dict[str, tuple[set, list]] = {}
+
+            def add(s, r1, c, r2):
+                cols, box = lines.setdefault(s, (set(), [r1, c, r2, c]))
+                cols.add(c)
+                box[:] = [min(box[0], r1), min(box[1], c), max(box[2], r2), max(box[3], c)]
+            for run in self.runs:
+                add(run.sheet, run.first, run.col, run.last)
+            for s, r, c in (*self.unparsed, *self.constants):
+                add(s, r, c, r)
+            self._lines = {s: (cols, tuple(box)) for s, (cols, box) in lines.items()}
+        return self._lines.get(sheet, (set(), (1, 1, 0, 0)))
 
     # what a cell holds -------------------------------------------------------------
     def kind(self, key: Key) -> str | None:
@@ -85,28 +118,22 @@ class Grid:
 
     def r1c1(self, key: Key) -> str | None:
         """The formula's R1C1 text; None for a formula that did not parse, or no formula."""
-        run = self.run_of.get(key)
+        run = self.run_index(key)
         return None if run is None else self.key_of_run[run]
 
-    def emptiness(self, key: Key) -> str | None:
-        """Why an empty cell stands out: "an empty column", "outside the used range";
-        None otherwise (an empty cell in a column of data, or a blank row between blocks,
-        is most often left blank on purpose)."""
-        if self._lines is None:
-            self._lines = {}
-            for sheet, row, col in (*self.formulas, *self.constants):
-                rows, cols, box = self._lines.get(sheet, (set(), set(), (row, col, row, col)))
-                rows.add(row)
-                cols.add(col)
-                box = (min(box[0], row), min(box[1], col), max(box[2], row), max(box[3], col))
-                self._lines[sheet] = (rows, cols, box)
-        sheet, row, col = key
-        _, cols, box = self._lines.get(sheet, (set(), set(), (0, 0, 0, 0)))
-        if not (box[0] <= row <= box[2] and box[1] <= col <= box[3]):
-            return "outside the sheet's used range"
+    def notable_empty(self, sheet: str, col: int, first: int, last: int):
+        """(row, why) for the rows ``first..last`` of column ``col`` whose cell is empty
+        and stands out: in an empty column, or outside the sheet's used range. An empty
+        cell in a column of data, or a blank row between blocks, is most often left
+        blank on purpose: not listed."""
+        cols, box = self.extent(sheet)
+        outside = "outside the sheet's used range"
         if col not in cols:
-            return "an empty column"
-        return None
+            inside_cols = box[1] <= col <= box[3]
+            return [(r, "an empty column" if inside_cols and box[0] <= r <= box[2] else outside)
+                    for r in range(first, last + 1)]
+        return [(r, outside) for r in range(first, min(last, box[0] - 1) + 1)] + \
+            [(r, outside) for r in range(max(first, box[2] + 1), last + 1)]
 
     def sheet(self, name: str | None, home: str) -> str | None:
         """The canonical name of a sheet a reference names; None for an external one."""
@@ -119,7 +146,7 @@ class Grid:
     # what a formula reads --------------------------------------------------------
     def refs(self, key: Key, names: bool = True) -> Iterator[Ref]:
         """The references the formula of ``key`` makes (defined names followed)."""
-        run_index = self.run_of.get(key)
+        run_index = self.run_index(key)
         if run_index is None:
             return
         run = self.runs[run_index]
