@@ -45,14 +45,17 @@ class _Resolver:
     """The scalar evaluator's view of the recomputed workbook (for re-evaluating a cell
     with LibreOffice's semantics)."""
 
-    def __init__(self, value_of, names: dict[str, str], sheet: str):
+    def __init__(self, value_of, names: dict[str, str], sheet: str, clip=None):
         self.value_of, self.names, self.sheet = value_of, names, sheet
+        self.clip = clip
         self._upper = {k.upper(): v for k, v in names.items()}
 
     def cell(self, sheet, row, col):
         return self.value_of(sheet or self.sheet, row, col)
 
     def range(self, sheet, row1, col1, row2, col2):
+        if self.clip is not None:  # A:A is read up to the used range only
+            row1, col1, row2, col2 = self.clip(sheet or self.sheet, row1, col1, row2, col2)
         return [[self.cell(sheet, r, c) for c in range(col1, col2 + 1)]
                 for r in range(row1, row2 + 1)]
 
@@ -74,7 +77,8 @@ def _libreoffice_explains(inputs: AuditInputs, key, value_of, cached) -> bool:
         node = parse(inputs.formulas[key])
     except FormulaSyntaxError:
         return False
-    resolver = _Resolver(value_of, inputs.book.defined_names, key[0])
+    resolver = _Resolver(value_of, inputs.book.defined_names, key[0],
+                         getattr(value_of, "clip", None))
     value = evaluate_scalar(node, resolver, dialect="libreoffice")
     return compare(cached, value, 0.0).agree
 
@@ -136,17 +140,25 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: st
     keys = {k for k, text in inputs.formulas.items() if ":" in text}
     names = inputs.book.defined_names
     read: set[tuple[str, int]] = set()  # the (sheet, column) pairs those formulas read
+    local_names = any(s.defined_names for s in inputs.book.sheets)
+    everything = False  # 3-D, structured references, sheet-scoped names: read all
     for key in keys:
         try:
             node = parse(inputs.formulas[key])
         except FormulaSyntaxError:
             continue
+        if any(isinstance(n, (ast.Sheets3D, ast.StructRef, ast.RefOp))
+               or (local_names and isinstance(n, ast.Name)) for n in ast.walk(node)):
+            everything = True
+            break
         for sheet, _, c1, _, c2 in _rectangles(node, key[0], names):
             read.update((sheet, c) for c in range(c1, c2 + 1))
     given = seen or inputs.cached
-    cached = {k: v for k, v in inputs.constants.items() if (k[0], k[2]) in read}
-    cached.update((k, given[k]) for k in given if (k[0], k[2]) in read and k not in keys)
-    return evaluate_cells({k: inputs.formulas[k] for k in keys}, cached, names, dialect=dialect)
+    cached = {k: v for k, v in inputs.constants.items() if everything or (k[0], k[2]) in read}
+    cached.update((k, given[k]) for k in given
+                  if (everything or (k[0], k[2]) in read) and k not in keys)
+    return evaluate_cells({k: inputs.formulas[k] for k in keys}, cached, names,
+                          dialect=dialect, book=inputs.book_info())
 
 
 def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True) -> AuditReport:
@@ -159,7 +171,7 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
     semantics = dialect_of(inputs.book.application)  # the engine that saved the file
     evaluation = evaluate_cells(inputs.formulas, inputs.constants, inputs.book.defined_names,
                                 vectorize=vectorize, uncheckable=inputs.uncheckable(),
-                                dialect=semantics)
+                                dialect=semantics, book=inputs.book_info())
     timings["evaluate_all"] = time.perf_counter() - t
     skipped = evaluation.not_checked
 
@@ -175,6 +187,8 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
     def value_of(sheet: str, row: int, col: int):
         key = (sheet, row, col)
         return values[key] if key in values else constants.get(key)
+    value_of.clip = lambda sheet, *rect: evaluation.store.clip(evaluation.store.sheet(sheet),
+                                                               *rect)
 
     t = time.perf_counter()
     columns: dict[tuple[str, int], ColumnStats] = {}

@@ -33,6 +33,24 @@ class AuditInputs:
             out[key] = "array formula: not recomputed"
         return out
 
+    def book_info(self):
+        """Sheet order, sheet-scoped names and tables, for the evaluator."""
+        from ..evaluator.book import BookInfo, Table
+        from ..formula.tokenizer import CELL_PARTS, column_number
+        tables = []
+        for sheet in self.book.sheets:
+            for t in sheet.tables:
+                corners = [CELL_PARTS.fullmatch(p) for p in t.ref.replace("$", "").split(":")]
+                if len(corners) != 2 or not all(corners):
+                    continue
+                (c1, r1), (c2, r2) = ((column_number(m.group(2)), int(m.group(4)))
+                                      for m in corners)
+                tables.append(Table(t.name, sheet.name, r1, c1, r2, c2, tuple(t.columns),
+                                    t.header_rows, t.totals_rows))
+        return BookInfo(self.book.sheet_names,
+                        {s.name: dict(s.defined_names) for s in self.book.sheets
+                         if s.defined_names}, tables)
+
     @property
     def formula_count(self) -> int:
         """Formula cells as the file stores them: an array formula counts once."""
@@ -67,7 +85,7 @@ def read_inputs(path: str | Path) -> AuditInputs:
     for sheet in book.sheets:
         for cell in sheet.cells.values():
             key = (sheet.name, cell.row, cell.col)
-            if cell.is_array or cell.array_master:
+            if cell.is_array or (cell.array_master and not cell.has_formula):
                 inputs.array_cells.append(key)
                 inputs.constants[key] = cell.value
                 continue

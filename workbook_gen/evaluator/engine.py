@@ -23,6 +23,7 @@ Documented choices:
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import re
 import time
@@ -31,6 +32,7 @@ from dataclasses import dataclass, field
 
 from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.evaluator import graph
+from workbook_gen.evaluator.book import BookInfo, resolve
 from workbook_gen.evaluator.taint import Shape, Taint
 from workbook_gen.evaluator.grouping import Run, group_formulas
 from workbook_gen.evaluator.ops import Const
@@ -116,17 +118,22 @@ class _Unit:
 def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object],
                    names: Mapping[str, str], *, vectorize: bool = True,
                    uncheckable: Mapping[Cell, str] | None = None,
-                   dialect: str = "excel") -> Evaluation:
+                   dialect: str = "excel", book: BookInfo | None = None) -> Evaluation:
     """Recompute every formula (texts without '=') of a workbook; see the module doc.
 
     ``uncheckable``: cells among ``constants`` that are formulas the caller could not
-    hand over (with the reason): their readers are not checked either."""
+    hand over (with the reason): their readers are not checked either. ``book``: sheet
+    order, sheet-scoped names and tables (structured references)."""
     if dialect not in fx.registry.DIALECTS:
         raise ValueError(f"unknown dialect {dialect!r}")
-    sheets = {k[0] for k in formulas} | {k[0] for k in constants}
-    store = Store(sheets)
+    book = book or BookInfo()
+    sheets = {k[0] for k in formulas} | {k[0] for k in constants} | set(book.sheets)
+    store = Store(sheets, book.sheets)
     store.put_constants(constants)
-    name_table = Names(dict(names))
+    for sheet, row, col in formulas:
+        store.note(sheet, row, col)
+    name_table = Names(dict(names), book.local_names,
+                       prepare=lambda node: resolve(node, book, "", 0, 0))
     result = Evaluation(CellMap(formulas, store.get), CellMap(formulas, store.scale),
                         store=store, bad_names=dict(name_table.errors))
     taint = Taint()
@@ -135,6 +142,9 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
 
     clock = time.perf_counter()
     runs, errors = _runs(formulas, vectorize)
+    if book.tables:
+        runs = [dataclasses.replace(r, node=resolve(r.node, book, r.sheet, r.first, r.col))
+                for r in runs]
     result.runs = runs
     for cell, message in errors.items():
         if _EXTERNAL.search(formulas[cell]):
@@ -242,6 +252,8 @@ def _singles(unit: _Unit) -> list[_Unit]:
 def _report_functions(units: list[_Unit], result: Evaluation) -> None:
     for u in units:
         called = {n.name for n in ast.walk(u.node) if isinstance(n, ast.Func)}
+        if not called:
+            continue
         bad = sorted(unsupported_functions(u.node))
         volatile = sorted(called & VOLATILE)
         if not bad and not volatile:
@@ -305,7 +317,7 @@ def _reads(node: ast.Node):
     stack = [node]
     while stack:
         n = stack.pop()
-        if isinstance(n, (ast.CellRef, ast.RangeRef, ast.Name)):
+        if isinstance(n, (ast.CellRef, ast.RangeRef, ast.Name, ast.Sheets3D)):
             yield n
         elif isinstance(n, ast.Func) and n.name in REFERENCE_ONLY:
             stack.extend(a for a in n.args if not isinstance(a, (ast.CellRef, ast.RangeRef)))
@@ -319,29 +331,36 @@ def _shapes(unit: _Unit, store: Store, names: Names) -> tuple[list[Shape], list[
     out: list[Shape] = []
     bad: list[str] = []
     pending = [(unit.node, unit.sheet)]
-    seen_names: set[str] = set()
+    seen_names: set[tuple] = set()
     while pending:
         node, home = pending.pop()
         for n in _reads(node):
             if isinstance(n, ast.Name):
-                key = n.name.upper()
+                key = (n.name.upper(), n.sheet, home)
                 if key in seen_names:
                     continue
                 seen_names.add(key)
-                if names.node(key) is not None:
-                    pending.append((names.node(key), home))
-                elif key in names.errors:
-                    bad.append(key)
+                target = names.node(n.name, n.sheet, home)
+                if target is not None:
+                    pending.append((target, home if n.sheet is None else store.sheet(n.sheet)))
+                elif (label := names.error(n.name, n.sheet, home)) is not None:
+                    bad.append(label)
                 continue
-            if isinstance(n, ast.CellRef):
-                first = last = n
+            if isinstance(n, ast.Sheets3D):
+                sheets = store.sheets_between(n.sheet, n.sheet2) or []
+                ref = n.ref
             else:
-                first, last = n.first, n.last
-            sheet = home if n.sheet is None else store.sheet(n.sheet)
+                ref = n
+                sheets = [home if n.sheet is None else store.sheet(n.sheet)]
+            if isinstance(ref, ast.CellRef):
+                first = last = ref
+            else:
+                first, last = ref.first, ref.last
             if first.row > last.row:
                 first, last = last, first
-            out.append(Shape(sheet, first.row, min(first.col, last.col), last.row,
-                             max(first.col, last.col), not first.row_abs, not last.row_abs))
+            for sheet in sheets:
+                out.append(Shape(sheet, first.row, min(first.col, last.col), last.row,
+                                 max(first.col, last.col), not first.row_abs, not last.row_abs))
     return out, bad
 
 

@@ -60,16 +60,53 @@ class _Column:
         self.scale = np.concatenate([self.scale, np.zeros(size - old)])
 
 
-class Store:
-    """Every cell value of a workbook; rows index arrays directly (row 0 unused)."""
+BIG_ROWS, BIG_COLS = 65_536, 1_024  # ranges taller / wider are cut to the used range
 
-    def __init__(self, sheets):
+
+class Store:
+    """Every cell value of a workbook; rows index arrays directly (row 0 unused).
+
+    ``order`` is the workbook's sheet order (3-D references); ``extent[sheet]`` the
+    largest row and column holding a value or a formula: a range taller than BIG_ROWS or
+    wider than BIG_COLS (``A:A``, ``1:1``, ``C1:XFD1048576``) is read up to there only,
+    what lies beyond being empty."""
+
+    def __init__(self, sheets, order=()):
         self.canonical = {s.lower(): s for s in sheets}
+        self.order = [s for s in order if s.lower() in self.canonical] or sorted(sheets)
         self.cols: dict[tuple[str, int], _Column] = {}
         self.rect_cache: dict[tuple, Range] = {}
+        self.extent: dict[str, list[int]] = {}
 
     def sheet(self, name: str) -> str:
         return self.canonical.get(name.lower(), name)
+
+    def note(self, sheet: str, row: int, col: int) -> None:
+        e = self.extent.setdefault(sheet, [0, 0])
+        if row > e[0]:
+            e[0] = row
+        if col > e[1]:
+            e[1] = col
+
+    def clip(self, sheet: str, r1: int, c1: int, r2: int, c2: int) -> tuple[int, int, int, int]:
+        """A huge rectangle cut to the sheet's used rows and columns (never empty)."""
+        if r2 - r1 >= BIG_ROWS or c2 - c1 >= BIG_COLS:
+            rows, cols = self.extent.get(sheet, (0, 0))
+            if r2 - r1 >= BIG_ROWS:
+                r2 = max(r1, min(r2, rows))
+            if c2 - c1 >= BIG_COLS:
+                c2 = max(c1, min(c2, cols))
+        return r1, c1, r2, c2
+
+    def sheets_between(self, first: str, last: str) -> list[str] | None:
+        """The sheets of a 3-D reference ``first:last``, in workbook order."""
+        names = [s.lower() for s in self.order]
+        try:
+            a, b = names.index(first.lower()), names.index(last.lower())
+        except ValueError:
+            return None
+        a, b = min(a, b), max(a, b)
+        return self.order[a:b + 1]
 
     def _column(self, sheet: str, col: int, rows: int) -> _Column:
         column = self.cols.get((sheet, col))
@@ -79,6 +116,7 @@ class Store:
         return column
 
     def put(self, sheet: str, row: int, col: int, value, scale: float = 0.0) -> None:
+        self.note(sheet, row, col)
         c = self._column(sheet, col, row)
         c.scale[row] = scale
         if isinstance(value, ExcelError):
@@ -98,6 +136,7 @@ class Store:
             columns.setdefault((sheet, col), []).append((row, value))
         for (sheet, col), cells in columns.items():
             rows = np.array([r for r, _ in cells])
+            self.note(sheet, int(rows.max()), col)
             c = self._column(sheet, col, int(rows.max()))
             plain = np.array([type(v) is float for _, v in cells], bool)
             # + 0.0: a cell never holds -0 in Excel (a file may say "-0")
@@ -167,6 +206,7 @@ class Store:
     def rect(self, sheet: str, r1: int, c1: int, r2: int, c2: int) -> Range:
         """Values of a rectangle, row by row. Cached: evaluation in dependency order
         reads a rectangle only once everything in it is final."""
+        r1, c1, r2, c2 = self.clip(sheet, r1, c1, r2, c2)
         key = (sheet, r1, c1, r2, c2)
         rows = self.rect_cache.get(key)
         if rows is None:
@@ -176,6 +216,7 @@ class Store:
 
     def rect_scale(self, sheet: str, r1: int, c1: int, r2: int, c2: int) -> float:
         """Largest magnitude among the numbers of a rectangle."""
+        r1, c1, r2, c2 = self.clip(sheet, r1, c1, r2, c2)
         scale = 0.0
         for col in range(c1, c2 + 1):
             c = self.cols.get((sheet, col))
@@ -216,19 +257,51 @@ def value_scale(value) -> float:
 
 
 class Names:
-    """Workbook-level defined names, each parsed once (case-insensitive)."""
+    """Defined names, each parsed once (case-insensitive): workbook-level ones and
+    sheet-scoped ones (``local[sheet]``), which win on their own sheet. A name that
+    does not parse is in ``errors`` (keyed ``NAME`` or ``Sheet!NAME``)."""
 
-    def __init__(self, names: dict[str, str]):
+    def __init__(self, names: dict[str, str], local: dict[str, dict[str, str]] | None = None,
+                 prepare=None):
         self.nodes: dict[str, ast.Node] = {}
+        self.local: dict[str, dict[str, ast.Node]] = {}
         self.errors: dict[str, str] = {}
         for name, text in names.items():
-            try:
-                self.nodes[name.upper()] = parse(str(text).lstrip("="))
-            except FormulaSyntaxError as exc:
-                self.errors[name.upper()] = str(exc)
+            self._add(self.nodes, name.upper(), name, text, prepare)
+        for sheet, scope in (local or {}).items():
+            nodes = self.local.setdefault(sheet.lower(), {})
+            for name, text in scope.items():
+                self._add(nodes, name.upper(), f"{sheet}!{name}", text, prepare)
 
-    def node(self, name: str) -> ast.Node | None:
-        return self.nodes.get(name.upper())
+    def _add(self, nodes, key, label, text, prepare) -> None:
+        try:
+            node = parse(str(text).lstrip("="))
+            nodes[key] = prepare(node) if prepare else node
+        except FormulaSyntaxError as exc:
+            self.errors[label.upper()] = str(exc)
+
+    def node(self, name: str, sheet: str | None = None, home: str | None = None
+             ) -> ast.Node | None:
+        """The tree of ``name`` as written in a formula of sheet ``home``
+        (``sheet``: the qualifier of ``Sheet2!Name``)."""
+        key = name.upper()
+        if sheet is not None:
+            scope = self.local.get(sheet.lower(), {})
+            return scope.get(key, self.nodes.get(key))
+        if home is not None:
+            found = self.local.get(home.lower(), {}).get(key)
+            if found is not None:
+                return found
+        return self.nodes.get(key)
+
+    def error(self, name: str, sheet: str | None = None, home: str | None = None) -> str | None:
+        """Why ``name`` (seen as :meth:`node` sees it) does not parse, or None."""
+        key = name.upper()
+        for label in ([f"{sheet}!{key}".upper()] if sheet else
+                      [f"{home}!{key}".upper()] if home else []) + [key]:
+            if label in self.errors:
+                return label
+        return None
 
 
 class SheetResolver:
@@ -248,15 +321,19 @@ class SheetResolver:
     def range(self, sheet, row1, col1, row2, col2):
         return self.store.rect(self._sheet(sheet), row1, col1, row2, col2)
 
+    def sheets_between(self, first: str, last: str) -> list[str] | None:
+        return self.store.sheets_between(first, last)
+
     def range_scale(self, sheet, row1, col1, row2, col2) -> float:
         return self.store.rect_scale(self._sheet(sheet), row1, col1, row2, col2)
 
     def name(self, name, sheet):
-        node = self.names.node(name)
+        node = self.names.node(name, sheet, self.sheet)
         if node is None or self.depth >= self.MAX_NAME_DEPTH:
             return ExcelError.NAME
         from workbook_gen.formula.scalar import Evaluator  # the reference semantics
 
-        inner = SheetResolver(self.store, self.names, self.sheet, self.depth + 1)
+        home = self.sheet if sheet is None else self.store.sheet(sheet)
+        inner = SheetResolver(self.store, self.names, home, self.depth + 1)
         value = Evaluator(inner, "excel", None).arg(node)
         return [list(r) for r in value.rows] if isinstance(value, Range) else value

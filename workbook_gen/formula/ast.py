@@ -76,11 +76,52 @@ class CellRef:
 
 @dataclass(frozen=True, slots=True)
 class RangeRef:
-    """A rectangular range; the corners are CellRefs with ``sheet=None``."""
+    """A rectangular range; the corners are CellRefs with ``sheet=None``.
+
+    ``whole`` is "col" for ``A:B`` (rows 1..MAX_ROW, absolute) and "row" for ``2:3``
+    (columns 1..MAX_COL, absolute); evaluators bound such ranges by the used range."""
 
     sheet: str | None
     first: CellRef
     last: CellRef
+    whole: str = ""
+
+
+@dataclass(frozen=True, slots=True)
+class Sheets3D:
+    """A 3-D reference ``Sheet1:Sheet3!A1:B2``: ``ref`` (sheet None) on every sheet from
+    ``sheet`` to ``sheet2`` in workbook order."""
+
+    sheet: str
+    sheet2: str
+    ref: "CellRef | RangeRef"
+
+
+@dataclass(frozen=True, slots=True)
+class RefOp:
+    """A reference operator: ``:`` (range of two references, ``INDEX(..):INDEX(..)``),
+    ``" "`` (intersection) or ``,`` (union, inside parentheses)."""
+
+    op: str
+    left: "Node"
+    right: "Node"
+
+
+@dataclass(frozen=True, slots=True)
+class Array:
+    """An array constant ``{1,2;3,4}``: rows of Number/String/Bool/ErrorLit nodes."""
+
+    rows: tuple[tuple["Node", ...], ...]
+
+
+@dataclass(frozen=True, slots=True)
+class StructRef:
+    """A structured reference ``Table1[Amount]``, ``[@x]``: ``table`` ("" for the table
+    holding the formula) and ``spec``, the bracketed text as written. The evaluator
+    resolves it to cells with the workbook's table definitions."""
+
+    table: str
+    spec: str
 
 
 @dataclass(frozen=True, slots=True)
@@ -124,7 +165,7 @@ class Paren:
 
 
 Node = (Number | String | Bool | ErrorLit | Missing | CellRef | RangeRef | Name | Func
-        | Unary | Percent | Binary | Paren)
+        | Unary | Percent | Binary | Paren | Sheets3D | RefOp | Array | StructRef)
 
 
 def children(node: Node) -> tuple[Node, ...]:
@@ -137,6 +178,8 @@ def children(node: Node) -> tuple[Node, ...]:
         return (node.left, node.right)
     if isinstance(node, Paren):
         return (node.inner,)
+    if isinstance(node, RefOp):
+        return (node.left, node.right)
     return ()
 
 
@@ -168,6 +211,11 @@ def map_refs(node: Node, fn) -> Node:
         return result
     if isinstance(node, Paren):
         return Paren(map_refs(node.inner, fn))
+    if isinstance(node, RefOp):
+        return RefOp(node.op, map_refs(node.left, fn), map_refs(node.right, fn))
+    if isinstance(node, Sheets3D):
+        moved = fn(node.ref)
+        return moved if isinstance(moved, ErrorLit) else Sheets3D(node.sheet, node.sheet2, moved)
     return node
 
 
@@ -193,7 +241,7 @@ def shift(node: Node, drow: int, dcol: int) -> Node:
         last = _shift_cell(ref.last, drow, dcol)
         if first is None or last is None:
             return ErrorLit(ExcelError.REF)
-        return RangeRef(ref.sheet, first, last)
+        return RangeRef(ref.sheet, first, last, ref.whole)
     return map_refs(node, move)
 
 

@@ -2,12 +2,16 @@
 
 Excel's precedence, tightest first: unary ``-``/``+``, postfix ``%``, ``^`` (left
 associative), ``* /``, ``+ -``, ``&``, comparisons. So ``-2^2`` is ``(-2)^2`` = 4 and
-``2^3^2`` is ``(2^3)^2`` = 64. Ranges are single tokens (``A1:B3``); the space
-(intersection) operator, whole rows/columns and array constants are rejected
-with a :class:`FormulaSyntaxError` that names the position.
+``2^3^2`` is ``(2^3)^2`` = 64. Ranges are single tokens (``A1:B3``, ``A:B``, ``2:3``,
+``Sheet1:Sheet3!A1``); the reference operators bind tighter than any other: ``:``
+between references that are not one token (``INDEX(..):INDEX(..)``), then the space
+(intersection), then ``,`` (union, inside parentheses only). Array constants
+(``{1,2;3,4}``) and structured references (``Table1[Amount]``) are single tokens.
 """
 
 from __future__ import annotations
+
+import re
 
 from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.formula import ast
@@ -16,6 +20,7 @@ from workbook_gen.xlerror import ExcelError
 
 from workbook_gen.formula.ast import INFIX_POWER, PERCENT_POWER, PREFIX_POWER
 
+RANGE_POWER, INTERSECT_POWER, UNION_POWER = 90, 85, 80
 MAX_DEPTH = 128  # nesting of parentheses, functions and signs (Excel allows 64 functions)
 _FUNC_PREFIXES = ("_xlfn._xlws.", "_xlfn.", "_xlws.")
 
@@ -92,18 +97,26 @@ class _Parser:
                     return left
                 self.i += 1
                 left = ast.Percent(left)
+            elif token.kind == tk.INFIX and token.text == "~":  # LibreOffice's union
+                if UNION_POWER < min_power:
+                    return left
+                self.i += 1
+                left = ast.RefOp("~", left, self._expression(UNION_POWER + 1))
+            elif token.kind == tk.INFIX and token.text == ":":
+                if RANGE_POWER < min_power:
+                    return left
+                self.i += 1
+                left = ast.RefOp(":", left, self._expression(RANGE_POWER + 1))
             elif token.kind == tk.INFIX:
-                if token.text == ":":
-                    self._fail(token, "the range operator ':' is only supported inside a "
-                                      "reference such as A1:B3 or Sheet!A1:B3")
                 power = INFIX_POWER[token.text]
                 if power < min_power:
                     return left
                 self.i += 1
                 left = ast.Binary(token.text, left, self._expression(power + 1))
-            elif had_space and token.kind in tk.OPERAND_KINDS | {tk.FUNC, tk.OPEN, tk.PREFIX}:
-                self._fail(token, "the intersection operator (space) is not supported: "
-                                  f"unexpected {token.text!r}")
+            elif had_space and token.kind in tk.OPERAND_KINDS | {tk.FUNC, tk.OPEN}:
+                if INTERSECT_POWER < min_power:
+                    return left
+                left = ast.RefOp(" ", left, self._expression(INTERSECT_POWER + 1))
             else:
                 return left
 
@@ -116,8 +129,16 @@ class _Parser:
             return ast.Unary(token.text, self._expression(PREFIX_POWER))
         if kind == tk.OPEN:
             inner = self._expression(0)
+            while (sep := self._peek()) is not None and sep.kind == tk.SEP:
+                self.i += 1  # the union operator: (A1:A3,C1:C3)
+                inner = ast.RefOp(",", inner, self._expression(0))
             self._expect_close(token)
             return ast.Paren(inner)
+        if kind == tk.ARRAY:
+            return _array(self.text, token)
+        if kind == tk.STRUCT:
+            table, _, spec = token.text.partition("[")
+            return ast.StructRef(table, "[" + spec)
         if kind == tk.FUNC:
             return self._call(token)
         if kind == tk.NUMBER:
@@ -132,7 +153,7 @@ class _Parser:
             return self._reference(token)
         if kind == tk.NAME:
             sheet, name = tk.split_sheet(token.text)
-            return ast.Name(name, sheet)
+            return ast.Name(name, None if sheet == "[0]" else sheet)
         self._fail(token)
 
     def _expect_close(self, opener: tk.Token) -> None:
@@ -171,13 +192,22 @@ class _Parser:
 
     def _reference(self, token: tk.Token) -> ast.Node:
         sheet, body = tk.split_sheet(token.text)
+        sheet2 = None
+        if sheet is not None and ":" in sheet:  # Excel forbids ':' in sheet names: 3-D
+            sheet, _, sheet2 = sheet.partition(":")
         parts = body.split(":")
         cells = [_cell(p) for p in parts]
         if any(c is None for c in cells):
-            self._fail(token, f"whole-row or whole-column reference {token.text!r} is not supported")
-        if len(cells) == 1:
-            return ast.CellRef(sheet, cells[0].col, cells[0].row, cells[0].col_abs, cells[0].row_abs)
-        return ast.RangeRef(sheet, cells[0], cells[1])
+            cells = _whole(parts)
+            if cells is None:
+                self._fail(token, f"bad reference {token.text!r}")
+            ref = ast.RangeRef(None if sheet2 else sheet, *cells)
+        elif len(cells) == 1:
+            ref = ast.CellRef(None if sheet2 else sheet, cells[0].col, cells[0].row,
+                              cells[0].col_abs, cells[0].row_abs)
+        else:
+            ref = ast.RangeRef(None if sheet2 else sheet, cells[0], cells[1])
+        return ast.Sheets3D(sheet, sheet2, ref) if sheet2 else ref
 
 
 def _cell(text: str) -> ast.CellRef | None:
@@ -186,3 +216,63 @@ def _cell(text: str) -> ast.CellRef | None:
         return None
     return ast.CellRef(None, tk.column_number(m.group(2)), int(m.group(4)),
                        col_abs=bool(m.group(1)), row_abs=bool(m.group(3)))
+
+
+def _whole(parts: list[str]) -> tuple[ast.CellRef, ast.CellRef, str] | None:
+    """The corners of ``A:B`` (every row) or ``2:3`` (every column), or None."""
+    if len(parts) != 2:
+        return None
+    cols = [tk.WHOLE_COL.fullmatch(p) for p in parts]
+    if all(cols):
+        a, b = ((tk.column_number(m.group(2)), bool(m.group(1))) for m in cols)
+        if max(a[0], b[0]) > ast.MAX_COL:
+            return None
+        return (ast.CellRef(None, a[0], 1, a[1], True),
+                ast.CellRef(None, b[0], ast.MAX_ROW, b[1], True), "col")
+    rows = [tk.WHOLE_ROW.fullmatch(p) for p in parts]
+    if all(rows):
+        a, b = ((int(m.group(2)), bool(m.group(1))) for m in rows)
+        if not 1 <= min(a[0], b[0]) <= max(a[0], b[0]) <= ast.MAX_ROW:
+            return None
+        return (ast.CellRef(None, 1, a[0], True, a[1]),
+                ast.CellRef(None, ast.MAX_COL, b[0], True, b[1]), "row")
+    return None
+
+
+_ITEM = re.compile(r'\s*(?:(?P<num>[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)'
+                   r'|(?P<str>"(?:[^"]|"")*")|(?P<bool>TRUE|FALSE)|(?P<err>#[A-Z0-9/_]+[!?]?|#N/A))'
+                   r'\s*(?P<sep>[,;]|$)', re.IGNORECASE)
+
+
+def _array(text: str, token: tk.Token) -> ast.Array:
+    """``{1,2;3,"x"}``: rows separated by ';', items by ','; constants only."""
+    inner = token.text[1:-1]
+    rows: list[list[ast.Node]] = [[]]
+    at = 0
+    while True:
+        m = _ITEM.match(inner, at)
+        if m is None:
+            raise FormulaSyntaxError(tk.describe(text, token.pos + 1 + at,
+                                                 "an array constant holds only numbers, "
+                                                 "text, TRUE/FALSE and errors"))
+        if m.group("num"):
+            rows[-1].append(ast.Number(float(m.group("num")), m.group("num")))
+        elif m.group("str"):
+            rows[-1].append(ast.String(m.group("str")[1:-1].replace('""', '"')))
+        elif m.group("bool"):
+            rows[-1].append(ast.Bool(m.group("bool").upper() == "TRUE"))
+        else:
+            error = ExcelError.from_text(m.group("err"))
+            if error is None:
+                raise FormulaSyntaxError(tk.describe(text, token.pos + 1 + at,
+                                                     "unknown error literal"))
+            rows[-1].append(ast.ErrorLit(error))
+        at = m.end()
+        if m.group("sep") == ";":
+            rows.append([])
+        elif not m.group("sep"):
+            break
+    if len({len(r) for r in rows}) != 1:
+        raise FormulaSyntaxError(tk.describe(text, token.pos, "array constant rows differ "
+                                                              "in length"))
+    return ast.Array(tuple(tuple(r) for r in rows))

@@ -54,6 +54,13 @@ def number_text(value: float) -> str:
 def _a1(ref) -> str:
     if isinstance(ref, ast.CellRef):
         return cell_text(ref)
+    if ref.whole == "col":
+        return "".join(("$" if c.col_abs else "") + column_letters(c.col)
+                       for c in (ref.first,)) + ":" + \
+            ("$" if ref.last.col_abs else "") + column_letters(ref.last.col)
+    if ref.whole == "row":
+        return (("$" if ref.first.row_abs else "") + str(ref.first.row) + ":"
+                + ("$" if ref.last.row_abs else "") + str(ref.last.row))
     return cell_text(ref.first) + ":" + cell_text(ref.last)
 
 
@@ -64,6 +71,8 @@ def _power(node: ast.Node) -> int:
         return _PERCENT_POWER
     if isinstance(node, ast.Unary):
         return _PREFIX_POWER
+    if isinstance(node, ast.RefOp):
+        return 80 if node.op in ",~" else 85 if node.op == " " else 90
     return 100
 
 
@@ -123,5 +132,17 @@ def render_with(node: ast.Node, ref_text) -> str:
             return binary(n)
         if isinstance(n, ast.Paren):
             return "(" + go(n.inner) + ")"
+        if isinstance(n, ast.RefOp):
+            power = _power(n)
+            return wrap(n.left, power) + n.op + wrap(n.right, power + 1)
+        if isinstance(n, ast.Sheets3D):
+            a, b = quote_sheet(n.sheet), quote_sheet(n.sheet2)
+            both = (f"{a}:{b}" if not (a + b).startswith("'") and "'" not in a + b
+                    else quote_sheet(f"{n.sheet}:{n.sheet2}"))
+            return both + "!" + ref_text(n.ref)
+        if isinstance(n, ast.Array):
+            return "{" + ";".join(",".join(go(v) for v in row) for row in n.rows) + "}"
+        if isinstance(n, ast.StructRef):
+            return n.table + n.spec
         raise TypeError(f"not a formula node: {n!r}")
     return go(node)

@@ -151,6 +151,9 @@ class Evaluator:
             return Range.of(value) if isinstance(value, list) else value
         if isinstance(node, ast.Func):
             return self.func(node)
+        if isinstance(node, (ast.Array, ast.RefOp, ast.Sheets3D, ast.StructRef)):
+            from workbook_gen.formula import refops
+            return refops.evaluate(self, node)
         return self.value(node)
 
     def value(self, node: ast.Node) -> Value:

@@ -14,6 +14,7 @@ import re
 from dataclasses import dataclass
 
 from workbook_gen.errors import FormulaSyntaxError
+from workbook_gen.xlerror import ExcelError
 
 # Token kinds
 START = "START"          # the leading '='
@@ -31,8 +32,10 @@ PREFIX = "PREFIX"        # unary + -
 INFIX = "INFIX"          # binary operators, ':' included
 POSTFIX = "POSTFIX"      # %
 WSPACE = "WSPACE"
+ARRAY = "ARRAY"          # an array constant, braces included: "{1,2;3,4}"
+STRUCT = "STRUCT"        # a structured reference: "Table1[Amount]", "[@x]"
 
-OPERAND_KINDS = frozenset({NUMBER, STRING, BOOL, ERROR, REF, NAME})
+OPERAND_KINDS = frozenset({NUMBER, STRING, BOOL, ERROR, REF, NAME, ARRAY, STRUCT})
 # After these a '+' or '-' is unary.
 _PREFIX_CONTEXT = frozenset({START, OPEN, FUNC, SEP, PREFIX, INFIX, None})
 
@@ -49,17 +52,23 @@ def describe(text: str, pos: int, what: str) -> str:
     return f"{what} at position {pos} in '{text}'"
 
 
-_SHEET = r"(?:'(?:[^']|'')+'|[A-Za-z_\\\u00a1-\uffff][\w.\u00a1-\uffff]*)!"
+_SHEET_NAME = r"[A-Za-z_\\\u00a1-\uffff][\w.\u00a1-\uffff]*"
+_SHEET = rf"(?:'(?:[^']|'')+'|{_SHEET_NAME}(?::{_SHEET_NAME})?)!"  # 3-D: Sheet1:Sheet3!
 _CELL = r"\$?[A-Za-z]{1,3}\$?[0-9]{1,7}"
-_END = r"(?![\w.(!\u00a1-\uffff])"
+_END = r"(?![\w.(!\[\u00a1-\uffff])"
 _REF_RE = re.compile(rf"(?:{_SHEET})?{_CELL}(?::{_CELL})?{_END}")
 _COLS_RE = re.compile(rf"(?:{_SHEET})?\$?[A-Za-z]{{1,3}}:\$?[A-Za-z]{{1,3}}{_END}")
 _ROWS_RE = re.compile(rf"(?:{_SHEET})?\$?[0-9]{{1,7}}:\$?[0-9]{{1,7}}{_END}")
 _WORD_RE = re.compile(rf"(?:{_SHEET})?[A-Za-z_\\\u00a1-\uffff][\w.?\\\u00a1-\uffff]*")
 _NUMBER_RE = re.compile(r"(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
 _STRING_RE = re.compile(r'"(?:[^"]|"")*"')
-_ERROR_RE = re.compile(r"#(?:NULL!|DIV/0!|VALUE!|REF!|NAME\?|NUM!|N/A)", re.IGNORECASE)
+_ERROR_RE = re.compile("|".join(re.escape(e.value) for e in sorted(
+    ExcelError, key=lambda e: -len(e.value))), re.IGNORECASE)
+_EXTERNAL_RE = re.compile(r"\[\d+\]")
+_THIS_BOOK_RE = re.compile(r"\[0\]!")  # "[0]!name": a name of this workbook (Excel for Mac)
 _WSPACE_RE = re.compile(r"[ \n\r\t]+")
+WHOLE_COL = re.compile(r"(\$?)([A-Za-z]{1,3})")
+WHOLE_ROW = re.compile(r"(\$?)([0-9]{1,7})")
 CELL_PARTS = re.compile(r"(\$?)([A-Za-z]{1,3})(\$?)([0-9]+)")
 
 
@@ -93,10 +102,12 @@ class Tokenizer:
             ("#", self._error),
             (" \n\r\t", self._whitespace),
             ("0123456789.", self._number),
-            ("+-*/^&=<>%:", self._operator),
+            ("+-*/^&=<>%:~", self._operator),  # '~': union as LibreOffice saves it
             ("(", self._open),
             (")", self._close),
             (",", self._separator),
+            ("{", self._array),
+            ("[", self._bracket),
         )
         for chars, consumer in consumers:
             dispatch.update(dict.fromkeys(chars, consumer))
@@ -126,10 +137,6 @@ class Tokenizer:
 
     def _unexpected(self) -> None:
         ch = self.formula[self.offset]
-        if ch in "{}":
-            self._fail(f"array constants are not supported: unexpected {ch!r}")
-        if ch == "[":
-            self._fail("external or structured references are not supported: unexpected '['")
         if ch == ";":
             self._fail("unexpected ';' (argument separator must be ',')")
         self._fail(f"unexpected character {ch!r}")
@@ -182,6 +189,48 @@ class Tokenizer:
     def _separator(self) -> None:
         self._add(SEP, ",")
 
+    def _array(self) -> None:
+        """``{...}`` up to its closing brace (strings may hold braces)."""
+        at = self.offset + 1
+        while at < len(self.formula) and self.formula[at] != "}":
+            if self.formula[at] == '"':
+                m = _STRING_RE.match(self.formula, at)
+                if m is None:
+                    break
+                at = m.end()
+            else:
+                at += 1
+        if at >= len(self.formula):
+            self._fail("unclosed '{'")
+        self._add(ARRAY, self.formula[self.offset:at + 1])
+
+    def _brackets(self, at: int) -> int:
+        """End offset of the balanced ``[...]`` group starting at ``at`` (``'`` escapes)."""
+        depth = 0
+        while at < len(self.formula):
+            ch = self.formula[at]
+            if ch == "'":
+                at += 2
+                continue
+            if ch == "[":
+                depth += 1
+            elif ch == "]":
+                depth -= 1
+                if depth == 0:
+                    return at + 1
+            at += 1
+        self._fail("unclosed '['")
+
+    def _bracket(self) -> None:
+        if _EXTERNAL_RE.match(self.formula, self.offset):
+            if _THIS_BOOK_RE.match(self.formula, self.offset):
+                m = _WORD_RE.match(self.formula, self.offset + 4)
+                if m is not None:
+                    self._add(NAME, self.formula[self.offset:m.end()])
+                    return
+            self._fail("external reference (to another workbook) at '['")
+        self._add(STRUCT, self.formula[self.offset:self._brackets(self.offset)])
+
     def _word(self) -> None:
         for regex in (_REF_RE, _COLS_RE, _ROWS_RE):
             m = regex.match(self.formula, self.offset)
@@ -195,7 +244,9 @@ class Tokenizer:
             self._fail(f"unexpected character {self.formula[self.offset]!r}")
         word = m.group(0)
         end = self.offset + len(word)
-        if end < len(self.formula) and self.formula[end] == "(" and "!" not in word:
+        if end < len(self.formula) and self.formula[end] == "[" and "!" not in word:
+            self._add(STRUCT, self.formula[self.offset:self._brackets(end)])
+        elif end < len(self.formula) and self.formula[end] == "(" and "!" not in word:
             self._add(FUNC, word + "(")
         elif word.upper() in ("TRUE", "FALSE"):
             self._add(BOOL, word)

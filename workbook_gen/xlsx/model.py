@@ -45,6 +45,17 @@ class SharedFormula:
     text: str
 
 
+@dataclass(slots=True)
+class TableDef:
+    """A table (ListObject) of a sheet, from its xl/tables part."""
+
+    name: str        # displayName, the name formulas use
+    ref: str         # "A1:D10", headers and totals included
+    columns: list[str]
+    header_rows: int = 1
+    totals_rows: int = 0
+
+
 @dataclass
 class Sheet:
     """A worksheet: cells in document (row-major) order, keyed by A1 ref."""
@@ -56,6 +67,7 @@ class Sheet:
     defined_names: dict[str, str] = field(default_factory=dict)  # sheet-local names
     shared_formulas: dict[int, SharedFormula] = field(default_factory=dict)
     dimension: str | None = None
+    tables: list[TableDef] = field(default_factory=list)
     _rows: dict[int, list[Cell]] | None = field(default=None, repr=False)
 
     def __getitem__(self, ref: str) -> Cell:

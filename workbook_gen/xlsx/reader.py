@@ -22,8 +22,8 @@ from xml.etree.ElementTree import Element
 from workbook_gen.errors import WorkbookReadError
 from workbook_gen.xlerror import ExcelError
 from workbook_gen.xlsx.limits import MAX_RATIO, MAX_UNCOMPRESSED, Package
-from workbook_gen.xlsx.model import (MAX_COL, Cell, ExternalLink, SharedFormula, Sheet, Value,
-                                     Workbook, column_letters)
+from workbook_gen.xlsx.model import (MAX_COL, Cell, ExternalLink, SharedFormula, Sheet,
+                                     TableDef, Value, Workbook, column_letters)
 
 log = logging.getLogger(__name__)
 
@@ -98,6 +98,7 @@ def _read(pkg: Package, path: str, max_cells: int) -> Workbook:
         budget = max_cells
         for sheet, part in sheet_parts:
             budget -= _read_sheet(pkg, part, sheet, strings, budget, max_cells)
+            _read_tables(pkg, part, sheet)
         return book
 
 
@@ -117,6 +118,25 @@ def _application(pkg: Package) -> str | None:
         return None
     text = (el.text or "").strip() if el is not None else ""
     return text or None
+
+
+def _read_tables(pkg: Package, part: str, sheet: Sheet) -> None:
+    """The tables of a sheet (structured references name them)."""
+    for kind, target in _relationships(pkg, part).values():
+        if kind != "table" or target is None or target.startswith("external:"):
+            continue
+        root = pkg.parse(target)
+        name = root.get("displayName") or root.get("name")
+        ref = root.get("ref")
+        if not name or not ref:
+            continue
+        columns = [c.get("name", "") for c in _children(_child(root, "tableColumns"),
+                                                         "tableColumn")]
+        header = root.get("headerRowCount", "1")
+        totals = root.get("totalsRowCount", "0")
+        sheet.tables.append(TableDef(name, ref, columns,
+                                     int(header) if header.isdigit() else 1,
+                                     int(totals) if totals.isdigit() else 0))
 
 
 def _workbook_part(pkg: Package) -> str:
