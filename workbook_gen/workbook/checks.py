@@ -20,7 +20,7 @@ from ..expr.excel import to_excel
 from ..expr.numeric import compile_numpy
 from .conditions import write_conditions
 from ..xlerror import ExcelError
-from .layout import CHECK_FIRST_ROW, CHECKS, STATUS, TableLayout, add_sheet
+from .layout import CHECK_FIRST_ROW, CHECKS, STATUS, TableLayout, add_sheet, print_wide
 from .rows import Column
 from .table import cached_values
 from .terms import Term, common_terms
@@ -118,6 +118,7 @@ def write_checks(workbook, formats, result: Evaluated, layout: TableLayout,
         sheet.write_formula(1, 1, f'=IF(MAX(B4:{xl_col_to_name(len(checks))}4)<=check_tol,'
                                   '"PASS","FAIL")', formats["label"], verdict)
     sheet.freeze_panes(CHECK_FIRST_ROW - 1, 1)
+    print_wide(sheet, CHECK_FIRST_ROW - 2)
     sheet.set_column(0, 0, 11, formats["input"])
     sheet.set_column(1, len(checks), 14, formats["residual"])
     if terms:

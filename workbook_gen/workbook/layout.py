@@ -90,6 +90,19 @@ def _printed(node: Node, letters: tuple[tuple[str, str], ...], on_checks: bool,
     return row_template(node, resolve)
 
 
+A4 = 9  # XlsxWriter's paper index
+
+
+def print_wide(sheet, header_row: int | None = None) -> None:
+    """Print a wide sheet landscape on A4, fitted to the page width (as many pages down
+    as it takes), with its header row, if any, repeated on every page."""
+    sheet.set_landscape()
+    sheet.set_paper(A4)
+    sheet.fit_to_pages(1, 0)
+    if header_row is not None:
+        sheet.repeat_rows(header_row)
+
+
 def add_sheet(workbook, name: str) -> Sheet:
     """A sheet of ``workbook``: a package.Book makes it (in memory or not), else a Sheet."""
     make = getattr(workbook, "sheet", None)

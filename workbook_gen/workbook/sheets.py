@@ -10,7 +10,7 @@ from .. import xlmath as xm
 from ..compute import Evaluated
 from ..expr.excel import to_excel
 from .table import cached_values
-from .layout import ABOUT, PARAMETERS, add_sheet
+from .layout import ABOUT, PARAMETERS, add_sheet, print_wide
 
 
 def write_parameters(workbook, formats, result: Evaluated) -> None:
@@ -22,6 +22,7 @@ def write_parameters(workbook, formats, result: Evaluated) -> None:
     sheet.set_column(2, 2, 8)
     sheet.set_column(3, 3, 60)
     sheet.freeze_panes(1, 0)
+    print_wide(sheet, 0)
     row = 0
     for row, spec in enumerate(result.scene.template.parameters, start=1):
         sheet.write_string(row, 0, spec.name)
@@ -43,6 +44,7 @@ def write_about(workbook, formats, result: Evaluated, version: str, filename: st
     scene = result.scene
     sheet.set_column(0, 0, 22)
     sheet.set_column(1, 1, 100)
+    print_wide(sheet)
     sheet.write_string(0, 0, scene.title, formats["title"])
     rows = [
         ("mechanism", scene.template.id),

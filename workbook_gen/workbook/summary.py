@@ -13,7 +13,7 @@ from ..expr.magnitude import magnitude
 from ..expr.numeric import compile_numpy
 from ..xlerror import ExcelError
 from .table import cached_values
-from .layout import CHECK_FIRST_ROW, CHECKS, SUMMARY, TableLayout, add_sheet
+from .layout import CHECK_FIRST_ROW, CHECKS, SUMMARY, TableLayout, add_sheet, print_wide
 from xlsxwriter.utility import xl_col_to_name
 
 
@@ -60,6 +60,7 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
     for c, text in enumerate(heads):
         sheet.write_string(0, c, text, formats["header"])
     sheet.set_column(0, 0, 30)
+    print_wide(sheet, 0)
     sheet.set_column(1, 1, 9)
     sheet.set_column(2, 5, 14, formats["value"])
     inputs_abs = layout.column(spec.name, absolute=True)
