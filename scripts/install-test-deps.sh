@@ -31,5 +31,21 @@ else
     fi
 fi
 
+# poppler-utils: pdftotext reads the PDF that LibreOffice prints (tests/test_printing.py)
+if ! command -v pdftotext >/dev/null 2>&1; then
+    if ! command -v apt-get >/dev/null 2>&1; then
+        echo "pdftotext is missing and apt-get is not available: install poppler-utils by hand" >&2
+        exit 1
+    fi
+    SUDO=""
+    if [ "$(id -u)" -ne 0 ]; then
+        SUDO="sudo -n"
+    fi
+    echo "Installing poppler-utils with apt-get"
+    $SUDO apt-get update </dev/null
+    $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
+        poppler-utils </dev/null
+fi
+
 PYTHON="${PYTHON:-python}"
 "$PYTHON" -m pip install -e '.[test]' </dev/null
