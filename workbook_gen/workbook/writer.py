@@ -8,6 +8,9 @@ from pathlib import Path
 from typing import Callable
 
 from ..compute import Evaluated, evaluate
+from ..errors import SceneError
+from ..model import select
+from ..xlsx.limits import MAX_CELLS
 from ..files import refuse_existing, write_bytes_atomically
 from ..scene import Scene
 from ..version import VERSION
@@ -21,6 +24,33 @@ from .table import write_table
 
 # A fixed document date: the same scene and version give the same bytes.
 DOCUMENT_DATE = dt.datetime(2024, 1, 1)
+
+
+OTHER_CELLS = 5_000  # Parameters, Summary, Charts' data, About: a bound for every template
+
+
+def cells_of(scene: Scene) -> int:
+    """An upper bound of the cells the workbook of ``scene`` holds (Table and Checks rows,
+    the header, the other sheets), known before anything is computed."""
+    model = select(scene.template, scene.outputs)
+    terms, _ = plan(model)
+    per_row = len(model.names) + 3 + len(model.checks) + len(terms)
+    return (scene.sweep.rows + 1) * per_row + OTHER_CELLS
+
+
+def refuse_unauditable(scene: Scene) -> None:
+    """A workbook its own audit would refuse (more cells than it reads) is not written."""
+    cells = cells_of(scene)
+    if cells <= MAX_CELLS:
+        return
+    sweep = scene.sweep
+    per_row = (cells - OTHER_CELLS) / (sweep.rows + 1)
+    rows = int((MAX_CELLS - OTHER_CELLS) / per_row) - 1
+    least = (sweep.stop - sweep.start) / max(rows - 1, 1)
+    raise SceneError(f"{scene.source}: step {sweep.step:g} gives {sweep.rows:,} rows, a "
+                     f"workbook of about {cells:,} cells: more than the {MAX_CELLS:,} that "
+                     f"'workbook-gen audit' reads in its time and memory bounds; use a step "
+                     f"of at least {least:.3g}")
 
 
 def in_memory(result: Evaluated) -> bool:
@@ -60,8 +90,10 @@ def workbook_bytes(scene: Scene, filename: str | Path, result: Evaluated | None 
                    progress: Callable[[int], None] | None = None) -> bytes:
     """The workbook of ``scene`` as it would be written to ``filename`` (the About sheet
     names that path), built in memory: the one code path of ``generate`` and ``batch``.
-    Raises CannotAssembleError where nothing assembles.  ``progress(n)`` is called as
+    Raises CannotAssembleError where nothing assembles, SceneError for a sweep whose
+    workbook would hold more cells than the audit reads.  ``progress(n)`` is called as
     rows are written: 2 x rows in all (Table and Checks)."""
+    refuse_unauditable(scene)
     if result is None:
         result = evaluate(scene)
     stream = io.BytesIO()

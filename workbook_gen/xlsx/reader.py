@@ -21,7 +21,7 @@ from xml.etree.ElementTree import Element
 
 from workbook_gen.errors import WorkbookReadError
 from workbook_gen.xlerror import ExcelError
-from workbook_gen.xlsx.limits import MAX_RATIO, MAX_UNCOMPRESSED, Package
+from workbook_gen.xlsx.limits import MAX_CELLS, MAX_RATIO, MAX_UNCOMPRESSED, Package
 from workbook_gen.xlsx.model import (MAX_COL, Cell, ExternalLink, SharedFormula, Sheet,
                                      TableDef, Value, Workbook, column_letters)
 
@@ -42,7 +42,7 @@ _UPPER = "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
 _COLS: dict[str, int] = {}
 
 
-def read_workbook(path: str | Path, *, max_cells: int = 5_000_000,
+def read_workbook(path: str | Path, *, max_cells: int = MAX_CELLS,
                   max_uncompressed: int = MAX_UNCOMPRESSED,
                   max_ratio: float = MAX_RATIO) -> Workbook:
     """Read every worksheet's cells, the defined names and external links of ``path``.

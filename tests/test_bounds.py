@@ -1,0 +1,75 @@
+"""Bounded audits: a formula over a huge range costs what the used cells cost; generate
+never writes a workbook its own audit would refuse for size."""
+
+from __future__ import annotations
+
+import json
+import resource
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import xlsxwriter
+
+from workbook_gen.scene import load_scene
+from workbook_gen.workbook.writer import OTHER_CELLS, cells_of, workbook_bytes
+from workbook_gen.xlsx import read_workbook
+from workbook_gen.xlsx.limits import MAX_CELLS
+
+MEMORY = 1536 * 2**20  # the bound an audit must keep (address space, numpy included)
+TEMPLATES = sorted(Path("templates").glob("*.toml"))
+
+
+def _limited():
+    resource.setrlimit(resource.RLIMIT_AS, (MEMORY, MEMORY))
+
+
+def test_huge_explicit_ranges_on_a_nearly_empty_sheet_cost_the_used_cells(tmp_path):
+    path = tmp_path / "huge.xlsx"
+    book = xlsxwriter.Workbook(path)
+    sheet = book.add_worksheet()
+    other = book.add_worksheet("Other")
+    sheet.write_number("C1", 2)
+    sheet.write_number("D5", 3)
+    sheet.write_number("E2", 4)
+    other.write_number("B3", 7)
+    # cached values worked out by hand: the sheet holds 2, 3 and 4 (and 7 on Other)
+    cases = {"A1": ("=SUM(C1:XFD1048576)", 9), "A2": ("=COUNT(C:XFD)", 3),
+             "A3": ("=MAX(C1:XFD1048576)*COUNTA(C1:XFD1048576)", 12),
+             "A4": ("=SUMPRODUCT(C1:XFD1048576,C1:XFD1048576)", 29),
+             "A5": ("=INDEX(C1:XFD1048576,5,2)", 3), "A6": ("=MATCH(4,E1:E1048576,0)", 2),
+             "A7": ("=SUM(Other!A1:XFD1048576)+SUM(Other!2:1048576)", 14)}
+    for cell, (formula, value) in cases.items():
+        sheet.write_formula(cell, formula, None, value)
+    book.close()
+    result = subprocess.run([sys.executable, "-m", "workbook_gen.cli", "audit", str(path),
+                             "--json"], capture_output=True, text=True, timeout=300,
+                            preexec_fn=_limited)
+    assert result.returncode == 0, (result.stdout[-2000:], result.stderr[-2000:])
+    report = json.loads(result.stdout)
+    assert report["cells_agree"] == len(cases) and report["cells_not_checked"] == 0
+
+
+@pytest.mark.parametrize("scene", TEMPLATES, ids=[t.stem for t in TEMPLATES])
+def test_cells_known_before_computing_bound_the_workbook(scene, tmp_path):
+    loaded = load_scene(str(scene))
+    path = tmp_path / "book.xlsx"
+    path.write_bytes(workbook_bytes(loaded, path))
+    cells = read_workbook(path).n_cells
+    assert cells <= cells_of(loaded) <= cells + OTHER_CELLS
+
+
+def test_generate_refuses_a_sweep_its_audit_would_refuse(tmp_path):
+    scene = load_scene("templates/sewing_machine.toml", step=0.01)
+    assert cells_of(scene) > MAX_CELLS
+    out = tmp_path / "out"
+    result = subprocess.run([sys.executable, "-m", "workbook_gen.cli", "generate",
+                             "templates/sewing_machine.toml", "--step", "0.01", "--out",
+                             str(out)], capture_output=True, text=True, timeout=300)
+    assert result.returncode == 2 and len(result.stderr.strip().splitlines()) == 1
+    assert "step 0.01" in result.stderr and "at least" in result.stderr
+    assert not out.exists()
+    least = float(result.stderr.rsplit("at least", 1)[1])
+    assert cells_of(load_scene("templates/sewing_machine.toml", step=least * 1.001)) \
+        <= MAX_CELLS
