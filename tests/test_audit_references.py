@@ -11,6 +11,7 @@ from __future__ import annotations
 import openpyxl
 import pytest
 from openpyxl.workbook.defined_name import DefinedName
+from openpyxl.worksheet.formula import ArrayFormula
 from openpyxl.worksheet.table import Table, TableStyleInfo
 
 from workbook_gen import audit
@@ -43,6 +44,18 @@ CASES = {
     "B18": "=Data!LocalName",
     # the newer error literals
     "B19": "=IFERROR(#N/A,7)",
+    # arrays outside array formulas, implicit intersection across sheets
+    "B20": "=SUMPRODUCT(Data!A1:A3*Data!B1:B3)",
+    "B21": "=SUMPRODUCT((Data!A1:C1>1)*Data!A2:C2)",
+}
+# array formulas: (range, formula)
+ARRAYS = {
+    "D1": ("D1:D3", "=Data!A1:A3*Data!C1:C3"),
+    "E1": ("E1:G1", "=SIN(Data!A1:C1)+1"),
+    "D5": ("D5", "=SUM(IF(Data!A1:C3>4,Data!A1:C3,0))"),
+    "D6": ("D6:E7", "={1,2;3,4}*2"),
+    "D8": ("D8:D10", "=Data!A1:A2"),   # larger than its value: #N/A below
+    "D11": ("D11", "=MAX(ABS(Data!A1:B2-5))"),
 }
 
 
@@ -76,6 +89,8 @@ def saved(libreoffice, tmp_path_factory):
     data.defined_names["LocalName"] = DefinedName("LocalName", attr_text="Data!$A$2")
     for ref, formula in CASES.items():
         main[ref] = formula
+    for ref, (area, formula) in ARRAYS.items():
+        main[ref] = ArrayFormula(area, formula)
     src = tmp / "refs.xlsx"
     book.save(src)
     return recalculate(src, tmp / "lo")
@@ -91,10 +106,17 @@ def test_libreoffice_computed_what_the_cases_mean(saved):
     assert values["B10"].value == 10
     assert values["B13"].value == 12
     assert values["B17"].value == 9 and values["B18"].value == 4
+    assert values["B20"].value == 1 * 2 + 4 * 5 + 7 * 8
+    assert [values[f"D{r}"].value for r in (1, 2, 3)] == [3, 24, 63]
+    assert values["D5"].value == 5 + 6 + 7 + 8 + 9
+    assert values["D10"].value == "#N/A"
 
 
 def test_every_reference_case_is_recomputed_and_agrees(saved):
     report = audit(saved)
     assert report.not_checked == {}, report.not_checked
     assert report.ok, [(m.cell, m.formula, m.cached, m.recomputed) for m in report.mismatches]
-    assert report.cells_checked == report.formula_cells == len(CASES) + 3
+    # each cell an array formula fills is checked; the file stores the formula once
+    filled = 3 + 3 + 1 + 4 + 3 + 1
+    assert report.formula_cells == len(CASES) + 3 + len(ARRAYS)
+    assert report.cells_checked == len(CASES) + 3 + filled

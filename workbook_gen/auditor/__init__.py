@@ -74,7 +74,7 @@ def _libreoffice_explains(inputs: AuditInputs, key, value_of, cached) -> bool:
     """Does LibreOffice's evaluation of this cell (its known deviations from Excel:
     SQRT(-1), ATAN2(0,0), 0^0, odd roots) give the cached value?"""
     try:
-        node = parse(inputs.formulas[key])
+        node = parse(inputs.text_of(key).removeprefix("{=").removesuffix("}"))
     except FormulaSyntaxError:
         return False
     resolver = _Resolver(value_of, inputs.book.defined_names, key[0],
@@ -171,7 +171,8 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
     semantics = dialect_of(inputs.book.application)  # the engine that saved the file
     evaluation = evaluate_cells(inputs.formulas, inputs.constants, inputs.book.defined_names,
                                 vectorize=vectorize, uncheckable=inputs.uncheckable(),
-                                dialect=semantics, book=inputs.book_info())
+                                dialect=semantics, book=inputs.book_info(),
+                                arrays=inputs.arrays)
     timings["evaluate_all"] = time.perf_counter() - t
     skipped = evaluation.not_checked
 
@@ -196,7 +197,7 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
     max_abs = max_rel = 0.0
     by_column: dict[tuple[str, int], list] = {}
     for key in inputs.cached:
-        if key not in skipped:
+        if key not in skipped and key in values:
             by_column.setdefault((key[0], key[2]), []).append(key)
     store = evaluation.store
     for (sheet, col), keys in by_column.items():
@@ -217,7 +218,7 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
             checked += len(fast)
             for i in np.flatnonzero(~agree):
                 k = fast[i]
-                mismatches.append(Mismatch(_cell_name(k), inputs.formulas[k], inputs.cached[k],
+                mismatches.append(Mismatch(_cell_name(k), inputs.text_of(k), inputs.cached[k],
                                            float(column.val[rows[i]]), float(diff[i])))
         done = set(fast)
         for key in keys:
@@ -233,7 +234,7 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
             checked += 1
             stats.add(inputs.ref(key), verdict)
             if not verdict.agree:
-                mismatches.append(Mismatch(_cell_name(key), inputs.formulas[key], cached,
+                mismatches.append(Mismatch(_cell_name(key), inputs.text_of(key), cached,
                                            recomputed, verdict.abs_error))
             else:
                 max_abs = max(max_abs, verdict.abs_error)

@@ -23,15 +23,22 @@ class AuditInputs:
     constants: dict[Key, object] = field(default_factory=dict)
     array_cells: list[Key] = field(default_factory=list)       # array formulas: not recomputed
     broken: dict[Key, str] = field(default_factory=dict)       # shared formulas that do not expand
+    # array formulas: master -> (text, (last row, last col)); cached holds every cell they fill
+    arrays: dict[Key, tuple[str, tuple[int, int]]] = field(default_factory=dict)
     _names: dict[str, Key] | None = None
+    array_master: dict[Key, Key] = field(default_factory=dict)  # array cell -> its master
 
     def uncheckable(self) -> dict[Key, str]:
         """Formula cells not handed to the evaluator, with the reason (cells an array
         formula fills included: what reads them is not checked either)."""
-        out = {k: f"formula syntax: {msg}" for k, msg in self.broken.items()}
-        for key in self.array_cells:
-            out[key] = "array formula: not recomputed"
-        return out
+        return {k: f"formula syntax: {msg}" for k, msg in self.broken.items()}
+
+    def text_of(self, key: Key) -> str:
+        """The formula of a cell; for a cell an array formula fills, the array's."""
+        if key in self.formulas:
+            return self.formulas[key]
+        master = self.array_master.get(key)
+        return "{=" + self.arrays[master][0] + "}" if master in self.arrays else ""
 
     def book_info(self):
         """Sheet order, sheet-scoped names and tables, for the evaluator."""
@@ -73,8 +80,23 @@ class AuditInputs:
         """'Sheet!B2' -> key, for the formula cells (built on first use)."""
         if self._names is None:
             from . import _cell_name
-            self._names = {_cell_name(k): k for k in self.formulas}
+            self._names = {_cell_name(k): k for k in self.cached}
         return self._names
+
+
+def _array(inputs: AuditInputs, sheet, cell, key: Key) -> None:
+    from ..formula.tokenizer import CELL_PARTS, column_number
+    corners = [CELL_PARTS.fullmatch(p) for p in (cell.array_ref or cell.ref).replace("$", "")
+               .split(":")]
+    if not all(corners):
+        return
+    last = corners[-1]
+    area = (max(cell.row, int(last.group(4))), max(cell.col, column_number(last.group(2))))
+    text = sheet.formula_source(cell)[0] if cell.formula is not None else ""
+    inputs.arrays[key] = (text, area)
+    for r in range(cell.row, area[0] + 1):
+        for c in range(cell.col, area[1] + 1):
+            inputs.array_master[(sheet.name, r, c)] = key
 
 
 def read_inputs(path: str | Path) -> AuditInputs:
@@ -88,6 +110,9 @@ def read_inputs(path: str | Path) -> AuditInputs:
             if cell.is_array or (cell.array_master and not cell.has_formula):
                 inputs.array_cells.append(key)
                 inputs.constants[key] = cell.value
+                inputs.cached[key] = cell.value
+                if cell.is_array:
+                    _array(inputs, sheet, cell, key)
                 continue
             source = sheet.formula_source(cell) if cell.has_formula else None
             if source is None:

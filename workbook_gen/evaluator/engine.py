@@ -110,20 +110,28 @@ class _Unit:
     last: int
     node: ast.Node
     block: object = None   # compiled vector Block, or None for a single cell
+    area: tuple[int, int] | None = None  # an array formula: its last row and column
 
     def cells(self):
+        if self.area is not None:
+            return [(self.sheet, r, c) for r in range(self.first, self.area[0] + 1)
+                    for c in range(self.col, self.area[1] + 1)]
         return [(self.sheet, r, self.col) for r in range(self.first, self.last + 1)]
 
 
 def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object],
                    names: Mapping[str, str], *, vectorize: bool = True,
                    uncheckable: Mapping[Cell, str] | None = None,
-                   dialect: str = "excel", book: BookInfo | None = None) -> Evaluation:
+                   dialect: str = "excel", book: BookInfo | None = None,
+                   arrays: Mapping[Cell, tuple[str, tuple[int, int]]] | None = None
+                   ) -> Evaluation:
     """Recompute every formula (texts without '=') of a workbook; see the module doc.
 
     ``uncheckable``: cells among ``constants`` that are formulas the caller could not
     hand over (with the reason): their readers are not checked either. ``book``: sheet
-    order, sheet-scoped names and tables (structured references)."""
+    order, sheet-scoped names and tables (structured references). ``arrays``: array
+    formulas, ``{master cell: (text, (last row, last col))}``; the values of every cell
+    they fill are in ``values``."""
     if dialect not in fx.registry.DIALECTS:
         raise ValueError(f"unknown dialect {dialect!r}")
     book = book or BookInfo()
@@ -134,7 +142,14 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
         store.note(sheet, row, col)
     name_table = Names(dict(names), book.local_names,
                        prepare=lambda node: resolve(node, book, "", 0, 0))
-    result = Evaluation(CellMap(formulas, store.get), CellMap(formulas, store.scale),
+    keys = formulas
+    if arrays:
+        keys = dict.fromkeys(formulas)
+        for (sheet, row, col), (_, (r2, c2)) in arrays.items():
+            keys.update(dict.fromkeys((sheet, r, c) for r in range(row, r2 + 1)
+                                      for c in range(col, c2 + 1)))
+            store.note(sheet, r2, c2)
+    result = Evaluation(CellMap(keys, store.get), CellMap(keys, store.scale),
                         store=store, bad_names=dict(name_table.errors))
     taint = Taint()
     for cell, reason in (uncheckable or {}).items():
@@ -156,6 +171,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
             store.put(*cell, SYNTAX_VALUE)
             _source(result, taint, cell, cell, f"formula syntax: {message}")
     units = _units(runs, vectorize, store, result)
+    units += _array_units(arrays or {}, book, result, taint, store)
     for cell in result.external:
         _source(result, taint, cell, cell, "external reference")
     _report_functions(units, result)
@@ -166,7 +182,10 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     while True:
         shapes = [_shapes(u, store, name_table) for u in units]
         inputs = [_rects(u, s) for u, s in zip(units, shapes)]
-        deps = graph.build([(u.sheet, u.col, u.first, u.last) for u in units], inputs)
+        deps = graph.build([(u.sheet, u.col, u.first, u.area[0] if u.area else u.last)
+                            for u in units], inputs,
+                           [(i, u.sheet, c, u.first, u.area[0]) for i, u in enumerate(units)
+                            if u.area for c in range(u.col + 1, u.area[1] + 1)])
         components = graph.order(deps)
         cyclic = [c for c in components if graph.is_cycle(c, deps)]
         split = {u for c in cyclic for u in c if units[u].block is not None}
@@ -243,6 +262,25 @@ def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -
     return units
 
 
+def _array_units(arrays, book: BookInfo, result: Evaluation, taint: Taint,
+                 store: Store) -> list[_Unit]:
+    """One unit per array formula, filling its rectangle."""
+    units = []
+    for (sheet, row, col), (text, area) in arrays.items():
+        try:
+            node = resolve(parse(text), book, sheet, row, col)
+        except FormulaSyntaxError as exc:
+            for r in range(row, area[0] + 1):
+                for c in range(col, area[1] + 1):
+                    store.put(sheet, r, c, SYNTAX_VALUE)
+                    _source(result, taint, (sheet, r, c), (sheet, row, col),
+                            f"formula syntax: {exc}")
+            continue
+        result.runs.append(Run(sheet, col, row, row, node))
+        units.append(_Unit(sheet, col, row, row, node, area=area))
+    return units
+
+
 def _singles(unit: _Unit) -> list[_Unit]:
     """A run as single cells, each with its own (shifted) tree."""
     return [_Unit(unit.sheet, unit.col, r, r, ast.shift(unit.node, r - unit.first, 0))
@@ -304,8 +342,9 @@ def _spread(unit: _Unit, shaped: tuple, taint: Taint, result: Evaluation) -> Non
     for shape in shapes:
         for lo, hi, origin in taint.hits(shape, n):
             why = result.not_checked.get(origin, "")
-            for i in range(lo, hi + 1):
-                cell = (unit.sheet, unit.first + i, unit.col)
+            cells = (unit.cells() if unit.area else
+                     [(unit.sheet, unit.first + i, unit.col) for i in range(lo, hi + 1)])
+            for cell in cells:
                 if cell not in result.not_checked:
                     result.not_checked[cell] = f"depends on {_where(origin)}: {why}"
                     taint.add(unit.sheet, unit.col, cell[1], cell[1], origin)
@@ -374,6 +413,15 @@ def _rects(unit: _Unit, shaped: tuple) -> list[graph.Rect]:
 def _evaluate(unit: _Unit, store: Store, names: Names, dialect: str = "excel") -> None:
     resolver = SheetResolver(store, names, unit.sheet)
     cell = (unit.sheet, unit.first, unit.col)
+    if unit.area is not None:
+        from workbook_gen.formula.arrays import evaluate_array, spread
+        rows, cols = unit.area[0] - unit.first + 1, unit.area[1] - unit.col + 1
+        values = spread(evaluate_array(unit.node, resolver, dialect, cell), rows, cols)
+        scale = cell_scale(unit.node, resolver)
+        for i, row in enumerate(values):
+            for j, value in enumerate(row):
+                store.put(unit.sheet, unit.first + i, unit.col + j, value, scale)
+        return
     if unit.block is None:
         value = evaluate(unit.node, resolver, dialect=dialect, cell=cell)
         store.put(unit.sheet, unit.first, unit.col, value, cell_scale(unit.node, resolver))

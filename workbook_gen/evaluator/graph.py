@@ -20,10 +20,12 @@ Rect = tuple[str, int, int, int, int]
 class Producers:
     """Which units write which cells: per (sheet, column), sorted disjoint row blocks."""
 
-    def __init__(self, blocks: list[tuple[str, int, int, int]]):
-        """``blocks[u] = (sheet, col, first, last)`` for unit ``u``."""
+    def __init__(self, blocks: list[tuple[str, int, int, int]], extra=()):
+        """``blocks[u] = (sheet, col, first, last)`` for unit ``u``; ``extra``: more
+        ``(unit, sheet, col, first, last)`` (an array formula fills several columns)."""
         per_col: dict[tuple[str, int], list[tuple[int, int, int]]] = defaultdict(list)
-        for unit, (sheet, col, first, last) in enumerate(blocks):
+        for unit, (sheet, col, first, last) in [*enumerate(blocks), *(
+                (u, rest) for u, *rest in extra)]:
             per_col[(sheet, col)].append((first, last, unit))
         self.cols: dict[tuple[str, int], tuple[list[int], list[int], list[int]]] = {}
         self.sheet_cols: dict[str, list[int]] = defaultdict(list)
@@ -49,9 +51,10 @@ class Producers:
             yield from units[a:b]
 
 
-def build(blocks: list[tuple[str, int, int, int]], inputs: list[list[Rect]]) -> list[list[int]]:
+def build(blocks: list[tuple[str, int, int, int]], inputs: list[list[Rect]],
+          extra=()) -> list[list[int]]:
     """``deps[u]``: the units whose cells unit ``u`` reads (``u`` itself if it does)."""
-    producers = Producers(blocks)
+    producers = Producers(blocks, extra)
     deps = []
     for rects in inputs:
         seen: set[int] = set()

@@ -336,4 +336,6 @@ class SheetResolver:
         home = self.sheet if sheet is None else self.store.sheet(sheet)
         inner = SheetResolver(self.store, self.names, home, self.depth + 1)
         value = Evaluator(inner, "excel", None).arg(node)
-        return [list(r) for r in value.rows] if isinstance(value, Range) else value
+        if isinstance(value, Range) and value.ref is not None and value.ref.sheet is None:
+            value = value.with_ref(value.ref._replace(sheet=home))  # where the name points
+        return value

@@ -100,6 +100,10 @@ def _clean(x: float | ExcelError) -> float | ExcelError:
     return 0.0 if x == 0 else x
 
 
+# functions whose arguments Excel evaluates as arrays even outside an array formula
+ARRAY_ARGUMENTS = frozenset({"SUMPRODUCT", "MMULT", "TRANSPOSE", "MDETERM", "MINVERSE"})
+
+
 class Evaluator:
     """Excel's semantics for one formula AST: ``arg`` keeps references as Ranges,
     ``value`` gives a scalar, ``apply`` is a binary operator on two values."""
@@ -233,6 +237,11 @@ class Evaluator:
             return ExcelError.NAME
         if entry.lazy:
             args = [lambda a=a: self.arg(a) for a in node.args]
+        elif node.name in ARRAY_ARGUMENTS:  # SUMPRODUCT(A1:A3*B1:B3) needs no Ctrl+Shift+Enter
+            from workbook_gen.formula.arrays import ArrayEvaluator
+            inner = ArrayEvaluator(self.resolver, self.dialect, self.on_unsupported,
+                                   self.ctx.cell)
+            args = [inner.arg(a) for a in node.args]
         else:
             args = [self.arg(a) for a in node.args]
         result = fx.call(node.name, args, self.ctx)

@@ -70,7 +70,8 @@ class Context:
             if not self.intersect:
                 raise RowDependent(v.ref)
             ref, (_, row, col) = v.ref, self.cell
-            same_sheet = ref.sheet is None or ref.sheet == self.cell[0]
+            same_sheet = True  # Excel intersects with the row/column on any sheet
+            # (koala__basic.xlsx: Sheet2!B2 =Liste2, a range of Sheet1, cached 20 = B2's)
             if same_sheet and ref.col1 == ref.col2 and ref.row1 <= row <= ref.row2:
                 return v.rows[row - ref.row1][0]
             if same_sheet and ref.row1 == ref.row2 and ref.col1 <= col <= ref.col2:
