@@ -101,3 +101,22 @@ def test_every_template_formula_round_trips_through_the_parser():
         for quantity in template.quantities:
             text = to_excel(quantity.expr, lambda n: "Z9")
             assert "=" + render(parse(text)) == text
+
+
+def test_cached_node_hashes_are_not_pickled():
+    """Nodes cache their hash; string hashes differ between processes (a batch sends
+    scenes to workers), so a pickled node must hash afresh."""
+    import pickle
+    import subprocess
+    import sys
+    from workbook_gen.expr.tree import Bin, Call, Neg, Num
+    tree = Call("SIN", (Neg(Bin("+", Var("x"), Num(1.0))),))
+    assert hash(tree) == hash(Call("SIN", (Neg(Bin("+", Var("x"), Num(1.0))),)))
+    code = ("import pickle, sys\nfrom workbook_gen.expr import Var, Num\n"
+            "from workbook_gen.expr.tree import Bin, Call, Neg\n"
+            "tree = pickle.loads(sys.stdin.buffer.read())\n"
+            "fresh = Call('SIN', (Neg(Bin('+', Var('x'), Num(1.0))),))\n"
+            "print(hash(tree) == hash(fresh) and {fresh: 1}.get(tree) == 1)")
+    out = subprocess.run([sys.executable, "-c", code], input=pickle.dumps(tree),
+                         capture_output=True, check=True).stdout
+    assert out.decode().strip() == "True"

@@ -10,13 +10,14 @@ a balanced four-bar, sum m_i a_i = 1e-16 N from terms near 1 N, has m near 1 N.
 
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import Mapping
 
 import numpy as np
 
 from .. import xlmath as xm
 from .numeric import compile_numpy
-from .tree import Bin, Call, Neg, Node, Num, Param, Var
+from .tree import Bin, Call, Neg, Node, Num, Param, Var, children
 
 _DERIVATIVE = {
     "SIN": np.cos, "COS": lambda a: -np.sin(a), "TAN": lambda a: 1.0 / np.cos(a) ** 2,
@@ -32,23 +33,75 @@ def magnitude(node: Node, columns: Mapping[str, xm.XArray], params: Mapping[str,
               n: int) -> np.ndarray:
     """Per row, the magnitude of what ``node`` adds and cancels (NaN where an error)."""
     with np.errstate(all="ignore"):
-        return np.abs(_m(node, columns, params, n))
+        return np.abs(_m(node, _Values(columns, params, n)))
 
 
-def _value(node: Node, columns, params, n) -> np.ndarray:
-    result = compile_numpy(node)(columns, params, n)
-    return np.where(result.err != 0, np.nan, np.asarray(result.val, dtype=float)) \
-        if not result.is_text else np.zeros(n)
+class _Scope(Mapping):
+    """The columns, with the values of a node's children under placeholder names."""
+
+    def __init__(self, local: dict, columns: Mapping):
+        self.local, self.columns = local, columns
+
+    def __getitem__(self, name):
+        found = self.local.get(name)
+        return self.columns[name] if found is None else found
+
+    def __iter__(self):
+        return iter({**self.columns, **self.local})
+
+    def __len__(self):
+        return len(self.local) + len(self.columns)
 
 
-def _m(node: Node, columns, params, n) -> np.ndarray:
-    if isinstance(node, (Num, Param, Var)):
-        return np.abs(_value(node, columns, params, n))
+_PLACEHOLDERS = tuple(Var(f"\x00{i}") for i in range(256))
+_compiled = lru_cache(maxsize=1024)(compile_numpy)
+
+
+def _shell(node: Node) -> Node:
+    """``node`` with its children replaced by placeholders: evaluated over its children's
+    values it gives what the whole subtree gives (compile_numpy is compositional)."""
     if isinstance(node, Neg):
-        return _m(node.operand, columns, params, n)
+        return Neg(_PLACEHOLDERS[0])
     if isinstance(node, Bin):
-        ma, mb = _m(node.left, columns, params, n), _m(node.right, columns, params, n)
-        a, b = _value(node.left, columns, params, n), _value(node.right, columns, params, n)
+        return Bin(node.op, _PLACEHOLDERS[0], _PLACEHOLDERS[1])
+    return Call(node.fn, _PLACEHOLDERS[:len(node.args)])
+
+
+class _Values:
+    """Each subtree's value, computed once from its children's (not the subtree again at
+    every level), as ``compile_numpy(subtree)`` gives it."""
+
+    def __init__(self, columns, params, n):
+        self.columns, self.params, self.n = columns, params, n
+        self.memo: dict[int, tuple[Node, xm.XArray]] = {}
+
+    def xarray(self, node: Node) -> xm.XArray:
+        found = self.memo.get(id(node))
+        if found is not None:
+            return found[1]
+        kids = children(node)
+        if kids:
+            local = {p.name: self.xarray(k) for p, k in zip(_PLACEHOLDERS, kids)}
+            value = _compiled(_shell(node))(_Scope(local, self.columns), self.params, self.n)
+        else:
+            value = _compiled(node)(self.columns, self.params, self.n)
+        self.memo[id(node)] = (node, value)  # the node kept alive: its id stays its own
+        return value
+
+    def __call__(self, node: Node) -> np.ndarray:
+        result = self.xarray(node)
+        return np.where(result.err != 0, np.nan, np.asarray(result.val, dtype=float)) \
+            if not result.is_text else np.zeros(self.n)
+
+
+def _m(node: Node, value: _Values) -> np.ndarray:
+    if isinstance(node, (Num, Param, Var)):
+        return np.abs(value(node))
+    if isinstance(node, Neg):
+        return _m(node.operand, value)
+    if isinstance(node, Bin):
+        ma, mb = _m(node.left, value), _m(node.right, value)
+        a, b = value(node.left), value(node.right)
         if node.op in ("+", "-"):
             return ma + mb
         if node.op == "*":
@@ -57,21 +110,19 @@ def _m(node: Node, columns, params, n) -> np.ndarray:
             return ma / np.abs(b) + np.abs(a) * mb / (b * b)
         if node.op == "^" and isinstance(node.right, Num):
             return np.abs(b * np.power(a, b - 1)) * ma + np.abs(np.power(a, b))
-        return np.abs(_value(node, columns, params, n))
+        return np.abs(value(node))
     if isinstance(node, Call):
         if node.fn == "IF" and len(node.args) == 3:
-            cond = _value(node.args[0], columns, params, n)
-            return np.where(cond != 0, _m(node.args[1], columns, params, n),
-                            _m(node.args[2], columns, params, n))
+            cond = value(node.args[0])
+            return np.where(cond != 0, _m(node.args[1], value), _m(node.args[2], value))
         if node.fn in _DERIVATIVE:
-            a = _value(node.args[0], columns, params, n)
-            return (np.abs(_DERIVATIVE[node.fn](a)) * _m(node.args[0], columns, params, n)
-                    + np.abs(_value(node, columns, params, n)))
+            a = value(node.args[0])
+            return (np.abs(_DERIVATIVE[node.fn](a)) * _m(node.args[0], value)
+                    + np.abs(value(node)))
         if node.fn == "ATAN2":
-            x, y = (_value(arg, columns, params, n) for arg in node.args)
-            mx, my = (_m(arg, columns, params, n) for arg in node.args)
-            return (np.abs(y) * mx + np.abs(x) * my) / (x * x + y * y) + np.abs(
-                _value(node, columns, params, n))
+            x, y = (value(arg) for arg in node.args)
+            mx, my = (_m(arg, value) for arg in node.args)
+            return (np.abs(y) * mx + np.abs(x) * my) / (x * x + y * y) + np.abs(value(node))
         if node.fn in ("MIN", "MAX"):
-            return np.max([_m(arg, columns, params, n) for arg in node.args], axis=0)
-    return np.abs(_value(node, columns, params, n))
+            return np.max([_m(arg, value) for arg in node.args], axis=0)
+    return np.abs(value(node))

@@ -16,7 +16,8 @@ comparisons are built with ``lt``/``le``/``eq``... so they cannot be confused.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Iterator, Union
 
 Operand = Union["Node", float, int]
@@ -96,9 +97,26 @@ class Var(Node):
     name: str
 
 
+def _cached_hash(node, parts: tuple) -> int:
+    """A composite node's hash, computed once: trees are hashed as cache keys (printed
+    formulas, compiled functions) and would otherwise be walked at every look-up."""
+    h = node._hash
+    if h == 0:
+        h = hash(parts) or 1
+        object.__setattr__(node, "_hash", h)
+    return h
+
+
 @dataclass(frozen=True, slots=True)
 class Neg(Node):
     operand: Node
+    _hash: int = field(default=0, init=False, repr=False, compare=False)
+
+    def __hash__(self) -> int:
+        return _cached_hash(self, (Neg, self.operand))
+
+    def __reduce__(self):  # not the cached hash: string hashes differ between processes
+        return (Neg, (self.operand,))
 
 
 BINARY_OPS = ("+", "-", "*", "/", "^", "&", "=", "<>", "<", ">", "<=", ">=")
@@ -109,6 +127,13 @@ class Bin(Node):
     op: str
     left: Node
     right: Node
+    _hash: int = field(default=0, init=False, repr=False, compare=False)
+
+    def __hash__(self) -> int:
+        return _cached_hash(self, (Bin, self.op, self.left, self.right))
+
+    def __reduce__(self):  # not the cached hash: string hashes differ between processes
+        return (Bin, (self.op, self.left, self.right))
 
     def __post_init__(self) -> None:
         if self.op not in BINARY_OPS:
@@ -129,6 +154,13 @@ FUNCTIONS = {
 class Call(Node):
     fn: str
     args: tuple[Node, ...]
+    _hash: int = field(default=0, init=False, repr=False, compare=False)
+
+    def __hash__(self) -> int:
+        return _cached_hash(self, (Call, self.fn, self.args))
+
+    def __reduce__(self):  # not the cached hash: string hashes differ between processes
+        return (Call, (self.fn, self.args))
 
     def __post_init__(self) -> None:
         if self.fn not in FUNCTIONS:
@@ -171,6 +203,7 @@ def walk(node: Node) -> Iterator[Node]:
         stack.extend(reversed(children(current)))
 
 
+@lru_cache(maxsize=8192)  # model selection asks for every tree's at every scene
 def variables(node: Node) -> frozenset[str]:
     """Names of the quantities (columns) the tree refers to."""
     return frozenset(n.name for n in walk(node) if isinstance(n, Var))
