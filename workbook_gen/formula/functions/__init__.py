@@ -15,10 +15,11 @@ and propagate.
 from __future__ import annotations
 
 from workbook_gen.formula.functions import (  # noqa: F401  (each module registers its family)
-    date, eng, finance, info, logical, lookup, math, stats, text,
+    date, eng, finance, info, logical, lookup, math, statfit, stats, text,
 )
 from workbook_gen.formula.functions.dialect import (
-    LIBREOFFICE_DIFFERENCES, Difference, dialect_of, libreoffice_result, numeric_deviation,
+    LIBREOFFICE_DIFFERENCES, Difference, dialect_of, libreoffice_error, libreoffice_result,
+    numeric_deviation,
 )
 from workbook_gen.formula.functions.math import power
 from workbook_gen.formula.functions.registry import (
@@ -46,4 +47,5 @@ def call(name: str, args: list, ctx: Context | str | None = None):
         deviation = numeric_deviation(name, args)
         if deviation is not None:
             return deviation
+        return libreoffice_error(name, _registry.call(name, args, ctx), args)
     return _registry.call(name, args, ctx)

@@ -169,6 +169,7 @@ _OPERATORS = ("<=", ">=", "<>", "=", "<", ">")
 
 @lru_cache(maxsize=512)
 def _criterion(kind: type, crit) -> "callable":
+    from_text = kind is str  # "=5" (text) also matches the text "5"; the number 5 doesn't
     if kind is str:
         op = next((o for o in _OPERATORS if crit.startswith(o)), "")
         body = crit[len(op):]
@@ -205,7 +206,7 @@ def _criterion(kind: type, crit) -> "callable":
     def match(v):
         if v is None or isinstance(v, ExcelError):
             return op == "<>"
-        if isinstance(v, str) and tr == 0 and op in ("=", "<>"):
+        if isinstance(v, str) and from_text and tr == 0 and op in ("=", "<>"):
             num = text_to_number(v)  # "=5" matches the text "5" as well as the number
             if not isinstance(num, ExcelError):
                 return tests(compare(num, target))

@@ -52,6 +52,36 @@ def dialect_of(application: str | None) -> str:
     return "libreoffice" if "libreoffice" in text or "openoffice" in text else "excel"
 
 
+# Errors LibreOffice 7.4 gives where Excel gives another (measured: its "invalid argument"
+# is saved as #VALUE!): function -> {Excel's error: LibreOffice's}.
+_INVALID = {ExcelError.NUM: ExcelError.VALUE}
+LIBREOFFICE_ERRORS: dict[str, dict[ExcelError, ExcelError]] = {
+    **{name: _INVALID for name in (
+        "LOG", "LOG10", "LN", "FACT", "ATANH", "ACOSH", "LARGE", "SMALL", "DEC2BIN", "DEC2OCT",
+        "DEC2HEX", "HEX2BIN", "HEX2OCT", "OCT2BIN", "BIN2DEC", "HEX2DEC", "OCT2DEC",
+        "BIN2HEX", "BIN2OCT", "OCT2HEX", "SQRT", "COMBIN", "PERMUT", "PERCENTILE",
+        "PERCENTILE.INC", "PERCENTILE.EXC", "QUARTILE", "QUARTILE.INC", "QUARTILE.EXC")},
+    "QUOTIENT": {ExcelError.DIV0: ExcelError.VALUE},
+    "MODE": {ExcelError.NA: ExcelError.VALUE},
+    "MODE.SNGL": {ExcelError.NA: ExcelError.VALUE},
+    "CONVERT": {ExcelError.NA: ExcelError.VALUE},
+    "VLOOKUP": {ExcelError.REF: ExcelError.VALUE},
+    "HLOOKUP": {ExcelError.REF: ExcelError.VALUE},
+    "INDEX": {ExcelError.REF: ExcelError.VALUE},
+}
+
+
+def libreoffice_error(name: str, result, args=()):
+    """LibreOffice's error for the error ``result`` that ``name`` raised itself (an error
+    passed on from an argument stays as it is); any other result unchanged."""
+    if not isinstance(result, ExcelError) or result not in LIBREOFFICE_ERRORS.get(name, {}):
+        return result
+    for a in args:
+        if not callable(a) and any(v is result for v in c.flat(a)):
+            return result  # propagated, not raised here
+    return LIBREOFFICE_ERRORS[name][result]
+
+
 NUMERIC_DEVIATIONS = frozenset({"SQRT", "ATAN2", "POWER", "LN"})
 
 

@@ -73,7 +73,7 @@ def _type(ctx, v):
     if isinstance(v, ExcelError):
         return 16.0
     if isinstance(v, bool):
-        return 4.0
+        return 1.0 if ctx.dialect == "libreoffice" else 4.0
     return 2.0 if isinstance(v, str) else 1.0
 
 

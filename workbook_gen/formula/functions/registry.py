@@ -138,4 +138,11 @@ def call(name: str, args: list, ctx: Context | None = None) -> Value | Range:
         return ExcelError.VALUE
     if not entry.lazy:
         args = [ctx.scalar(a) if entry.kind(i) == "scalar" else a for i, a in enumerate(args)]
-    return entry.fn(ctx, *args)
+        if ctx.dialect == "libreoffice":  # no boolean type there: TRUE is the number 1
+            args = [float(a) if isinstance(a, bool) else a for a in args]
+    try:
+        return entry.fn(ctx, *args)
+    except (ValueError, OverflowError):  # a math domain or range error of Python's
+        return ExcelError.NUM
+    except ZeroDivisionError:
+        return ExcelError.DIV0

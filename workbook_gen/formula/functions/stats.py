@@ -206,7 +206,7 @@ def _countif(ctx, rng, crit):
     return mask if isinstance(mask, ExcelError) else float(sum(mask))
 
 
-@register("COUNTIFS", "stats", 2, -1, ("range", "scalar"))
+@register("COUNTIFS", "stats", 2, -1, "range")
 def _countifs(ctx, *args):
     pairs = _ifs_pairs(args)
     if isinstance(pairs, ExcelError):
@@ -226,7 +226,7 @@ def _xifs(name, fn, empty):
         if isinstance(xs, ExcelError):
             return xs
         return c.result(fn(xs)) if xs else empty
-    register(name, "stats", 3, -1, ("range", "range", "scalar"))(scalar)
+    register(name, "stats", 3, -1, "range")(scalar)
 
 
 _xifs("SUMIFS", fsum, 0.0)
@@ -242,12 +242,14 @@ def _sumproduct(ctx, *args):
     if any(a.shape != shape for a in areas):
         return ExcelError.VALUE
     columns = [list(a.flat()) for a in areas]
+    lo = ctx.dialect == "libreoffice"  # a boolean is a number there
     total = []
     for row in zip(*columns):
         err = c.first_error(row)
         if err is not None:
             return err
-        total.append(math.prod(float(v) if c.is_number(v) else 0.0 for v in row))
+        total.append(math.prod(float(v) if c.is_number(v) or (lo and isinstance(v, bool))
+                               else 0.0 for v in row))
     return c.result(fsum(total))
 
 

@@ -79,11 +79,12 @@ def _concatenate(ctx, *args):
     return ts if isinstance(ts, ExcelError) else "".join(ts)
 
 
-def _flat_texts(args):
+def _flat_texts(args, ctx):
+    lo = ctx.dialect == "libreoffice"  # a boolean in a range is a number there
     out = []
     for a in args:
         for v in (c.flat(a) if isinstance(a, Range) else [a]):
-            t = c.to_text(v)
+            t = c.to_text(float(v) if lo and isinstance(v, bool) else v)
             if isinstance(t, ExcelError):
                 return t
             out.append(t)
@@ -92,7 +93,7 @@ def _flat_texts(args):
 
 @register("CONCAT", "text", 1, -1, "range")
 def _concat(ctx, *args):
-    ts = _flat_texts(args)
+    ts = _flat_texts(args, ctx)
     return ts if isinstance(ts, ExcelError) else "".join(ts)
 
 
@@ -103,7 +104,7 @@ def _textjoin(ctx, delim, ignore_empty, *args):
     for x in (d, skip):
         if isinstance(x, ExcelError):
             return x
-    ts = _flat_texts(args)
+    ts = _flat_texts(args, ctx)
     if isinstance(ts, ExcelError):
         return ts
     return d.join(t for t in ts if t or not skip)
@@ -252,7 +253,13 @@ def format_number(x: float, decimals: int, grouping: bool) -> str:
     return ("-" if r < 0 else "") + body
 
 
-_NUMERIC_FORMAT = re.compile(r"([#,0]*)(?:\.(0+|#+))?(%?)")
+_NUMERIC_CORE = re.compile(r"[#0,]*(?:\.[#0]*)?%?")
+
+
+def _literal(text: str) -> str:
+    """Literal characters of a format: quotes and backslash escapes removed."""
+    return re.sub(r'"([^"]*)"|\\(.)', lambda m: m.group(1) if m.group(1) is not None
+                  else m.group(2), text)
 
 
 def _format_section(x: float, fmt: str, ctx) -> str | ExcelError:
@@ -260,28 +267,31 @@ def _format_section(x: float, fmt: str, ctx) -> str | ExcelError:
     f = fmt.strip()
     if f.upper() in ("", "GENERAL"):
         return c.number_to_text(x)
-    if re.search(r"[dmyhs]", f, re.IGNORECASE) and not re.search(r"[0#]", f):
+    bare = re.sub(r'"[^"]*"', "", f)
+    if re.search(r"[dmyhs]", bare, re.IGNORECASE) and not re.search(r"[0#]", bare):
         return format_date(x, f)
-    m = _NUMERIC_FORMAT.fullmatch(f.replace('"', ""))
-    if m is None or not m.group(1) and not m.group(2):
-        return ExcelError.VALUE
-    decimals = len(m.group(2) or "")
-    if m.group(3):
+    start = next((i for i, ch in enumerate(f) if ch in "#0"), None)
+    if start is None:
+        return _literal(f)
+    while start > 0 and f[start - 1] in ",.":
+        start -= 1
+    core = _NUMERIC_CORE.match(f, start).group(0)
+    prefix, suffix = _literal(f[:start]), _literal(f[start + len(core):])
+    whole_part, _, frac_part = core.rstrip("%").partition(".")
+    decimals = len(frac_part)
+    if core.endswith("%") or "%" in suffix:
         x *= 100
-    text = format_number(x, decimals, "," in m.group(1))
-    if m.group(2) and m.group(2).startswith("#"):
+    text = format_number(x, decimals, "," in whole_part)
+    if frac_part.startswith("#"):
         text = text.rstrip("0").rstrip(".")
-    whole_zeros = m.group(1).replace(",", "").count("0")
-    if whole_zeros == 0 and text.lstrip("-").startswith("0") and "." in text:
-        text = text.replace("0.", ".", 1)
-    else:
-        sign = "-" if text.startswith("-") else ""
-        body = text.lstrip("-")
-        whole, dot, frac = body.partition(".")
-        if len(whole.replace(",", "")) < whole_zeros:
-            whole = whole.replace(",", "").zfill(whole_zeros)
-        text = sign + whole + dot + frac
-    return text + m.group(3)
+    whole_zeros = whole_part.replace(",", "").count("0")
+    sign = "-" if text.startswith("-") else ""
+    whole, dot, frac = text.lstrip("-").partition(".")
+    if whole_zeros == 0 and whole == "0":
+        whole = ""
+    elif len(whole.replace(",", "")) < whole_zeros:
+        whole = whole.replace(",", "").zfill(whole_zeros)
+    return sign + prefix + whole + dot + frac + ("%" if core.endswith("%") else "") + suffix
 
 
 @register("TEXT", "text", 2, 2)

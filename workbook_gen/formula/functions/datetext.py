@@ -1,0 +1,131 @@
+"""Dates as text: reading (DATEVALUE, VALUE, date arguments given as text) and TEXT's
+date and time formats. Serial numbers as in :mod:`.date`."""
+
+from __future__ import annotations
+
+import calendar
+import datetime as dt
+import math
+import re
+
+from workbook_gen.xlerror import ExcelError
+
+_EPOCH = dt.date(1899, 12, 30)
+
+
+def _to_serial(d: dt.date) -> float:
+    n = (d - _EPOCH).days
+    return float(n if n >= 61 else n - 1)
+
+
+_MONTHS = {m.lower(): i for i, m in enumerate(calendar.month_abbr) if m}
+_MONTHS.update({m.lower(): i for i, m in enumerate(calendar.month_name) if m})
+
+
+def _time_part(text: str) -> float | None:
+    m = re.fullmatch(r"(\d{1,2}):(\d{2})(?::(\d{2}(?:\.\d*)?))?\s*([AaPp][Mm])?", text.strip())
+    if m is None:
+        return None
+    h, mi, s = int(m.group(1)), int(m.group(2)), float(m.group(3) or 0)
+    if m.group(4):
+        h = h % 12 + (12 if m.group(4).lower() == "pm" else 0)
+    return (h * 3600 + mi * 60 + s) / 86400.0
+
+
+def parse_date_text(text: str) -> float | ExcelError:
+    """DATEVALUE-style reading: ISO ``2020-01-31``, US ``1/31/2020``, ``31-Jan-2020``,
+    ``Jan 31, 2020``, optionally followed by a time; a time alone is a fraction."""
+    t = text.strip()
+    frac = _time_part(t)
+    if frac is not None:
+        return frac
+    time = 0.0
+    m = re.fullmatch(r"(.*?)\s+(\d{1,2}:\d{2}(?::\d{2}(?:\.\d*)?)?\s*(?:[AaPp][Mm])?)", t)
+    if m:
+        t, time = m.group(1), _time_part(m.group(2)) or 0.0
+    parts = None
+    for pattern, order in ((r"(\d{4})-(\d{1,2})-(\d{1,2})", "ymd"),
+                           (r"(\d{4})/(\d{1,2})/(\d{1,2})", "ymd"),
+                           (r"(\d{1,2})/(\d{1,2})/(\d{2,4})", "mdy"),
+                           (r"(\d{1,2})[- ]([A-Za-z]+)[- ,]+(\d{2,4})", "dMy"),
+                           (r"([A-Za-z]+)[- ](\d{1,2}),?[- ](\d{2,4})", "Mdy")):
+        mm = re.fullmatch(pattern, t)
+        if mm:
+            parts = dict(zip(order, mm.groups()))
+            break
+    if parts is None:
+        return ExcelError.VALUE
+    month = parts.get("m") or _MONTHS.get(parts.get("M", "").lower())
+    if not month:
+        return ExcelError.VALUE
+    year = int(parts["y"])
+    if year < 100:
+        year += 2000 if year < 30 else 1900
+    try:
+        d = dt.date(year, int(month), int(parts["d"]))
+    except ValueError:
+        return ExcelError.VALUE
+    return _to_serial(d) + time
+
+
+# -- TEXT's date formats ------------------------------------------------------------------
+
+_DATE_TOKENS = re.compile(r"yyyy|yy|mmmm|mmm|mm|m|dddd|ddd|dd|d|hh|h|ss|s|am/pm|a/p|\"[^\"]*\"|.",
+                          re.IGNORECASE)
+
+
+def format_date(x: float, fmt: str) -> str | ExcelError:
+    from workbook_gen.formula.functions.date import _ymd_date, from_serial
+    ymd = from_serial(x)
+    if isinstance(ymd, ExcelError):
+        return ymd
+    y, m, d = ymd
+    wd = _ymd_date(ymd).weekday()
+    secs = int(round((x - math.floor(x)) * 86400.0)) % 86400
+    hh, mi, ss = secs // 3600, secs // 60 % 60, secs % 60
+    tokens = _DATE_TOKENS.findall(fmt)
+    ampm = any(t.lower() in ("am/pm", "a/p") for t in tokens)
+    out = []
+    for i, tok in enumerate(tokens):
+        low = tok.lower()
+        prev = next((t.lower() for t in reversed(tokens[:i]) if t.isalpha()), "")
+        nxt = next((t.lower() for t in tokens[i + 1:] if t.isalpha()), "")
+        minute = low in ("m", "mm") and (prev.startswith("h") or nxt.startswith("s"))
+        if low == "yyyy":
+            out.append(f"{y:04d}")
+        elif low == "yy":
+            out.append(f"{y % 100:02d}")
+        elif minute:
+            out.append(f"{mi:02d}" if low == "mm" else str(mi))
+        elif low == "mmmm":
+            out.append(calendar.month_name[m])
+        elif low == "mmm":
+            out.append(calendar.month_abbr[m])
+        elif low == "mm":
+            out.append(f"{m:02d}")
+        elif low == "m":
+            out.append(str(m))
+        elif low == "dddd":
+            out.append(calendar.day_name[wd])
+        elif low == "ddd":
+            out.append(calendar.day_abbr[wd])
+        elif low == "dd":
+            out.append(f"{d:02d}")
+        elif low == "d":
+            out.append(str(d))
+        elif low in ("hh", "h"):
+            h = (hh % 12 or 12) if ampm else hh
+            out.append(f"{h:02d}" if low == "hh" else str(h))
+        elif low in ("ss", "s"):
+            out.append(f"{ss:02d}" if low == "ss" else str(ss))
+        elif low == "am/pm":
+            out.append("AM" if hh < 12 else "PM")
+        elif low == "a/p":
+            out.append("A" if hh < 12 else "P")
+        elif tok.startswith('"'):
+            out.append(tok[1:-1])
+        elif tok == "\\":
+            continue
+        else:
+            out.append(tok)
+    return "".join(out)

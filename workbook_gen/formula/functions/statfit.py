@@ -1,0 +1,285 @@
+"""More statistics: regression (SLOPE, INTERCEPT, FORECAST, RSQ, CORREL, COVARIANCE, STEYX),
+spread (DEVSQ, AVEDEV, VARA, STDEVA), quantiles (PERCENTILE, QUARTILE), the normal
+distribution, SUBTOTAL and AGGREGATE (functions 1-13, 14-19 as LARGE..QUARTILE.EXC)."""
+
+from __future__ import annotations
+
+import math
+from statistics import NormalDist
+
+from workbook_gen.formula.functions import coerce as c
+from workbook_gen.formula.functions.math import fsum
+from workbook_gen.formula.functions.registry import REGISTRY, register
+from workbook_gen.formula.values import Range
+from workbook_gen.xlerror import ExcelError
+
+
+def _pairs(ys, xs):
+    """Paired numbers of two equal-sized areas (pairs with a non-number skipped)."""
+    a, b = c.flat(c.as_area(ys)), c.flat(c.as_area(xs))
+    if len(a) != len(b):
+        return ExcelError.NA
+    out = []
+    for y, x in zip(a, b):
+        for v in (y, x):
+            if isinstance(v, ExcelError):
+                return v
+        if c.is_number(y) and c.is_number(x):
+            out.append((float(y), float(x)))
+    return out
+
+
+def _moments(pairs):
+    n = len(pairs)
+    my = fsum([y for y, _ in pairs]) / n
+    mx = fsum([x for _, x in pairs]) / n
+    sxy = fsum([(x - mx) * (y - my) for y, x in pairs])
+    sxx = fsum([(x - mx) ** 2 for _, x in pairs])
+    syy = fsum([(y - my) ** 2 for y, _ in pairs])
+    return n, my, mx, sxy, sxx, syy
+
+
+def _fit(kind):
+    def fn(ctx, ys, xs):
+        pairs = _pairs(ys, xs)
+        if isinstance(pairs, ExcelError):
+            return pairs
+        if len(pairs) < (3 if kind == "steyx" else 1):
+            return ExcelError.DIV0
+        n, my, mx, sxy, sxx, syy = _moments(pairs)
+        if kind == "cov_p":
+            return c.result(sxy / n)
+        if kind == "cov_s":
+            return ExcelError.DIV0 if n < 2 else c.result(sxy / (n - 1))
+        if sxx == 0:
+            return ExcelError.DIV0
+        if kind == "slope":
+            return c.result(sxy / sxx)
+        if kind == "intercept":
+            return c.result(my - sxy / sxx * mx)
+        if syy == 0:
+            return ExcelError.DIV0
+        if kind == "correl":
+            return c.result(sxy / math.sqrt(sxx * syy))
+        if kind == "rsq":
+            return c.result(sxy * sxy / (sxx * syy))
+        return c.result(math.sqrt((syy - sxy * sxy / sxx) / (n - 2)))
+    return fn
+
+
+for _names, _kind in ((("SLOPE",), "slope"), (("INTERCEPT",), "intercept"),
+                      (("CORREL", "PEARSON"), "correl"), (("RSQ",), "rsq"),
+                      (("STEYX",), "steyx"), (("COVAR", "COVARIANCE.P"), "cov_p"),
+                      (("COVARIANCE.S",), "cov_s")):
+    register(_names[0], "stats", 2, 2, "range", aliases=_names[1:])(_fit(_kind))
+
+
+@register("FORECAST", "stats", 3, 3, ("scalar", "range", "range"), aliases=("FORECAST.LINEAR",))
+def _forecast(ctx, x, ys, xs):
+    x = c.to_number(x)
+    if isinstance(x, ExcelError):
+        return x
+    pairs = _pairs(ys, xs)
+    if isinstance(pairs, ExcelError):
+        return pairs
+    if not pairs:
+        return ExcelError.DIV0
+    n, my, mx, sxy, sxx, _ = _moments(pairs)
+    return ExcelError.DIV0 if sxx == 0 else c.result(my + sxy / sxx * (x - mx))
+
+
+def _numbers_stat(name, fn, empty=ExcelError.DIV0):
+    def scalar(ctx, *args):
+        xs = c.numbers(args, ctx)
+        if isinstance(xs, ExcelError):
+            return xs
+        return c.result(fn(xs)) if xs else empty
+    register(name, "stats", 1, -1, "range")(scalar)
+
+
+def _devsq(xs):
+    m = fsum(xs) / len(xs)
+    return fsum([(x - m) ** 2 for x in xs])
+
+
+_numbers_stat("DEVSQ", _devsq, ExcelError.NUM)
+_numbers_stat("AVEDEV", lambda xs: fsum([abs(x - fsum(xs) / len(xs)) for x in xs]) / len(xs),
+              ExcelError.NUM)
+
+
+def _values_a(args):
+    """VARA-style: in ranges text is 0 and booleans 1/0; empties skipped."""
+    out = []
+    for a in args:
+        for v in (c.flat(a) if isinstance(a, Range) else [a]):
+            if isinstance(v, ExcelError):
+                return v
+            if v is None:
+                continue
+            if isinstance(a, Range):
+                out.append(0.0 if isinstance(v, str) else float(v))
+            else:
+                x = c.to_number(v)
+                if isinstance(x, ExcelError):
+                    return x
+                out.append(x)
+    return out
+
+
+def _var_a(name, sample, root):
+    def scalar(ctx, *args):
+        xs = _values_a(args)
+        if isinstance(xs, ExcelError):
+            return xs
+        if len(xs) - sample <= 0:
+            return ExcelError.DIV0
+        v = _devsq(xs) / (len(xs) - sample)
+        return c.result(math.sqrt(v) if root else v)
+    register(name, "stats", 1, -1, "range")(scalar)
+
+
+_var_a("VARA", True, False)
+_var_a("VARPA", False, False)
+_var_a("STDEVA", True, True)
+_var_a("STDEVPA", False, True)
+
+
+def percentile(xs: list[float], p: float, exclusive: bool):
+    xs = sorted(xs)
+    n = len(xs)
+    if exclusive:
+        rank = p * (n + 1)
+        if rank < 1 or rank > n:
+            return ExcelError.NUM
+        rank -= 1
+    else:
+        if not 0 <= p <= 1:
+            return ExcelError.NUM
+        rank = p * (n - 1)
+    lo = int(math.floor(rank))
+    if lo + 1 >= n:
+        return xs[-1]
+    return xs[lo] + (rank - lo) * (xs[lo + 1] - xs[lo])
+
+
+def _quantile(name, exclusive, quart):
+    def scalar(ctx, area, k):
+        xs = c.numbers([c.as_area(area)], ctx)
+        p = c.to_number(k)
+        for v in (xs, p):
+            if isinstance(v, ExcelError):
+                return v
+        if not xs:
+            return ExcelError.NUM
+        if quart:
+            q = int(p)
+            if not (1 if exclusive else 0) <= q <= (3 if exclusive else 4):
+                return ExcelError.NUM
+            p = q / 4
+        return c.result(percentile(xs, p, exclusive))
+    register(name, "stats", 2, 2, ("range", "scalar"))(scalar)
+
+
+for _name, _exc, _q in (("PERCENTILE", False, False), ("PERCENTILE.INC", False, False),
+                        ("PERCENTILE.EXC", True, False), ("QUARTILE", False, True),
+                        ("QUARTILE.INC", False, True), ("QUARTILE.EXC", True, True)):
+    _quantile(_name, _exc, _q)
+
+
+# -- the normal distribution --------------------------------------------------------------
+
+def _norm_args(*vs):
+    xs = [c.to_number(v) for v in vs]
+    bad = next((x for x in xs if isinstance(x, ExcelError)), None)
+    return bad if bad is not None else xs
+
+
+@register("NORM.DIST", "stats", 4, 4, aliases=("NORMDIST",))
+def _norm_dist(ctx, x, mean, sd, cumulative):
+    xs = _norm_args(x, mean, sd)
+    cum = c.to_bool(cumulative)
+    for v in (xs, cum):
+        if isinstance(v, ExcelError):
+            return v
+    x, m, s = xs
+    if s <= 0:
+        return ExcelError.NUM
+    d = NormalDist(m, s)
+    return c.result(d.cdf(x) if cum else d.pdf(x))
+
+
+@register("NORM.S.DIST", "stats", 1, 2)
+def _norm_s_dist(ctx, z, cumulative=True):
+    return _norm_dist(ctx, z, 0.0, 1.0, cumulative)
+
+
+register("NORMSDIST", "stats", 1, 1)(lambda ctx, z: _norm_dist(ctx, z, 0.0, 1.0, True))
+
+
+@register("NORM.INV", "stats", 3, 3, aliases=("NORMINV",))
+def _norm_inv(ctx, p, mean, sd):
+    xs = _norm_args(p, mean, sd)
+    if isinstance(xs, ExcelError):
+        return xs
+    p, m, s = xs
+    if not 0 < p < 1 or s <= 0:
+        return ExcelError.NUM
+    return c.result(NormalDist(m, s).inv_cdf(p))
+
+
+register("NORM.S.INV", "stats", 1, 1, aliases=("NORMSINV",))(
+    lambda ctx, p: _norm_inv(ctx, p, 0.0, 1.0))
+
+
+@register("STANDARDIZE", "stats", 3, 3)
+def _standardize(ctx, x, mean, sd):
+    xs = _norm_args(x, mean, sd)
+    if isinstance(xs, ExcelError):
+        return xs
+    return ExcelError.NUM if xs[2] <= 0 else c.result((xs[0] - xs[1]) / xs[2])
+
+
+# -- SUBTOTAL and AGGREGATE ---------------------------------------------------------------
+
+_SUBTOTAL = {1: "AVERAGE", 2: "COUNT", 3: "COUNTA", 4: "MAX", 5: "MIN", 6: "PRODUCT",
+             7: "STDEV", 8: "STDEVP", 9: "SUM", 10: "VAR", 11: "VARP"}
+_AGGREGATE = {**_SUBTOTAL, 12: "MEDIAN", 13: "MODE.SNGL", 14: "LARGE", 15: "SMALL",
+              16: "PERCENTILE.INC", 17: "QUARTILE.INC", 18: "PERCENTILE.EXC",
+              19: "QUARTILE.EXC"}
+
+
+def _without_errors(area):
+    if not isinstance(area, Range):
+        return area
+    return Range.array_of([[None if isinstance(v, ExcelError) else v for v in row]
+                           for row in area.rows])
+
+
+@register("SUBTOTAL", "stats", 2, -1, ("scalar", "range"))
+def _subtotal(ctx, which, *refs):
+    k = c.to_number(which)
+    if isinstance(k, ExcelError):
+        return k
+    name = _SUBTOTAL.get(int(k) % 100)  # 101-111: also skip hidden rows (none known here)
+    if name is None:
+        return ExcelError.VALUE
+    return REGISTRY[name].fn(ctx, *refs)
+
+
+@register("AGGREGATE", "stats", 3, -1, ("scalar", "scalar", "range"))
+def _aggregate(ctx, which, options, *args):
+    k, opt = c.to_number(which), c.to_number(options)
+    for v in (k, opt):
+        if isinstance(v, ExcelError):
+            return v
+    name = _AGGREGATE.get(int(k))
+    if name is None or not 0 <= int(opt) <= 7:
+        return ExcelError.VALUE
+    if int(opt) in (2, 3, 6, 7):  # ignore error values
+        args = tuple(_without_errors(a) for a in (args if int(k) < 14 else args[:1])) + (
+            args[1:] if int(k) >= 14 else ())
+    if int(k) >= 14:
+        if len(args) != 2:
+            return ExcelError.VALUE
+        return REGISTRY[name].fn(ctx, args[0], c.scalar_of(args[1]))
+    return REGISTRY[name].fn(ctx, *args)
