@@ -17,7 +17,7 @@ alpha_2 = (q'' h - q' h') / h^2.
 
 from __future__ import annotations
 
-from ..expr import Node, asin, atan2, cos, degrees, eq, if_, iserror, radians, root, sin, sqrt
+from ..expr import Node, atan2, cos, degrees, eq, if_, iserror, radians, root, sin, sqrt
 from .angles import cos_deg, reduced_input, sin_deg, sin_half_squared
 from .base import Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span, Template
 from .base import quantity_vars, speed_scale, symbols
@@ -114,8 +114,21 @@ def _links() -> tuple[Link, ...]:
     )
 
 
-TIME_RATIO: Node = (180 + degrees(asin(e / (l_BC - l_AB)) - asin(e / (l_BC + l_AB)))) / (
-    180 - degrees(asin(e / (l_BC - l_AB)) - asin(e / (l_BC + l_AB))))
+def _time_ratio() -> Node:
+    """Working over return stroke time, (180 + D) / (180 - D) with D the crank angle
+    between the dead centres beyond 180 deg: D = asin(e/(l - r)) - asin(e/(l + r)).
+
+    ASIN of a ratio near 1 keeps half its digits (the ratio's rounding is a square-rooted
+    error there); instead, with h1, h2 the rod's reach past the offset at the two dead
+    centres, h = sqrt((d - e)(d + e)) for d = l -+ r (factored: no cancellation),
+    asin(e/d1) - asin(e/d2) = ATAN2(h1 h2 + e^2, e (h2 - h1)) and h2 - h1 = 4 l r/(h1 + h2)."""
+    h1 = sqrt((l_BC - l_AB - e) * (l_BC - l_AB + e))
+    h2 = sqrt((l_BC + l_AB - e) * (l_BC + l_AB + e))
+    between = degrees(atan2(h1 * h2 + e ** 2, 4 * e * l_BC * l_AB / (h1 + h2)))
+    return (180 + between) / (180 - between)
+
+
+TIME_RATIO: Node = _time_ratio()
 
 TEMPLATE = Template(
     id="slider_crank",
