@@ -3,9 +3,10 @@
     python scripts/render_chart.py outputs/sewing_machine.xlsx docs/sewing_machine_charts.png
     python scripts/render_chart.py out/sewing_machine_tradeoff.xlsx docs/x.png --sheet Charts
 
-The script copies the workbook with every other sheet hidden (the given file is left as
-it is), has LibreOffice export the copy to PDF and turns the first page into a PNG with
-pdftoppm (Debian's poppler-utils).
+The script copies the workbook with every other sheet hidden and the sheet scaled to fit
+one page (the given file is left as it is: its own page setup prints the charts over
+several pages), has LibreOffice export the copy to PDF and turns that page into a PNG
+with pdftoppm (Debian's poppler-utils).
 """
 
 from __future__ import annotations
@@ -22,8 +23,27 @@ from pathlib import Path
 from workbook_gen.engines.libreoffice import find_soffice
 
 
+ONE_PAGE = '<pageSetup orientation="landscape" fitToWidth="1" fitToHeight="1"/>'
+
+
+def fit_one_page(xml: str) -> str:
+    """A worksheet's XML scaled to print on one page (the whole sheet in the PNG)."""
+    xml = re.sub(r"<pageSetup [^>]*/>", "", xml)
+    xml = re.sub(r"<sheetPr>(.*?)</sheetPr>|<sheetPr/>", "", xml, flags=re.S)
+    xml = re.sub(r"(<worksheet [^>]*>)", r'\1<sheetPr><pageSetUpPr fitToPage="1"/></sheetPr>',
+                 xml, count=1)
+    if "<pageMargins " in xml:
+        return re.sub(r"(<pageMargins [^>]*/>)", r"\1" + ONE_PAGE, xml, count=1)
+    return re.sub(r"(<drawing |</worksheet>)", ONE_PAGE + r"\1", xml, count=1)
+
+
 def single_sheet_copy(src: Path, dst: Path, sheet: str) -> None:
     with zipfile.ZipFile(src) as zin, zipfile.ZipFile(dst, "w", zipfile.ZIP_DEFLATED) as zout:
+        rels = zin.read("xl/_rels/workbook.xml.rels").decode()
+        book = zin.read("xl/workbook.xml").decode()
+        rid = re.search(rf'<sheet name="{re.escape(sheet)}" [^>]*r:id="([^"]+)"', book)
+        target = re.search(rf'Id="{rid.group(1)}"[^>]*Target="([^"]+)"', rels) if rid else None
+        part = "xl/" + target.group(1).lstrip("/").removeprefix("xl/") if target else None
         for item in zin.infolist():
             data = zin.read(item.filename)
             if item.filename == "xl/workbook.xml":
@@ -42,6 +62,8 @@ def single_sheet_copy(src: Path, dst: Path, sheet: str) -> None:
                 data = text.encode()
             elif item.filename.startswith("xl/worksheets/sheet"):
                 data = data.replace(b' tabSelected="1"', b"")
+                if item.filename == part:
+                    data = fit_one_page(data.decode()).encode()
             zout.writestr(item, data)
 
 

@@ -1,9 +1,12 @@
 """The Tradeoff workbook: the measured rows, the per-quantity errors, and one
-scatter chart per dimension of error against time, both axes logarithmic."""
+scatter chart per dimension, both axes logarithmic: error against the step (time on a
+second axis: measured time is noisy and would make an error-against-time line run
+backwards) where the setting has a step, else error against time."""
 
 from __future__ import annotations
 
 import datetime as dt
+import re
 from pathlib import Path
 
 import xlsxwriter
@@ -13,7 +16,10 @@ from ..version import VERSION
 from .measure import DIMENSIONS, Tradeoff
 
 DOCUMENT_DATE = dt.datetime(2024, 1, 1)
-HEAD = ("dimension", "setting", "max error", "seconds", "cells", "bytes", "rows", "note")
+HEAD = ("dimension", "setting", "max error", "seconds", "cells", "bytes", "rows", "note",
+        "step")
+STEP_COL = 8
+_STEP = re.compile(r"([0-9.]+(?:e-?[0-9]+)?)(?: deg)?$")
 _COLORS = ("#1F77B4", "#D62728", "#2CA02C", "#9467BD", "#FF7F0E")
 
 
@@ -38,6 +44,14 @@ def _short(setting: str) -> str:
 
 def output_path(scene, out_dir: str | Path) -> Path:
     return Path(out_dir) / f"{scene.name}_tradeoff.xlsx"
+
+
+def step_of(row) -> float | None:
+    """The sweep step of a step or derivative row ("central, 0.5 deg" -> 0.5), else None."""
+    if row.dimension not in ("step", "derivative"):
+        return None
+    match = _STEP.search(row.setting.split(", ")[-1])
+    return float(match.group(1)) if match else None
 
 
 def _positive(x):
@@ -70,6 +84,8 @@ def _build(path: Path, result: Tradeoff) -> None:
             if value is not None:
                 sheet.write_number(i, col, value, fmt)
         sheet.write_string(i, 7, r.note)
+        if step_of(r) is not None:
+            sheet.write_number(i, STEP_COL, step_of(r))
     sheet.set_column(0, 0, 11)
     sheet.set_column(1, 1, 30)
     sheet.set_column(2, 6, 12)
@@ -107,23 +123,42 @@ def _build(path: Path, result: Tradeoff) -> None:
         groups: dict[str, list[int]] = {}
         for i in idx:
             groups.setdefault(series(rows[i - 1]), []).append(i)
+        by_step = all(step_of(rows[i - 1]) for i in idx)
+        x_col = STEP_COL if by_step else 3
         for k, (name, members) in enumerate(groups.items()):
             first, last = members[0], members[-1]  # contiguous: rows are sorted by family
             color = _COLORS[k % len(_COLORS)]
-            chart.add_series({
+            spec = {
                 "name": name,
-                "categories": ["Tradeoff", first, 3, last, 3],
+                "categories": ["Tradeoff", first, x_col, last, x_col],
                 "values": ["Tradeoff", first, 2, last, 2],
                 "marker": {"type": "circle", "size": 6, "fill": {"color": color},
                            "border": {"color": color}},
                 "line": {"color": color, "width": 1.25},
-                "data_labels": {"custom": [{"value": _short(rows[i - 1].setting)}
-                                           for i in range(first, last + 1)],
-                                "position": "right", "font": {"size": 8}},
+            }
+            if not by_step:  # against time: label each point with its setting
+                spec["data_labels"] = {"custom": [{"value": _short(rows[i - 1].setting)}
+                                                  for i in range(first, last + 1)],
+                                       "position": "right", "font": {"size": 8}}
+            chart.add_series(spec)
+        if by_step:  # time on a second axis, against the same steps
+            first, last = idx[0], idx[-1]
+            if dimension == "derivative":  # one time per step: the analytic family's
+                members = groups.get("analytic") or next(iter(groups.values()))
+                first, last = members[0], members[-1]
+            chart.add_series({
+                "name": "seconds (generate + audit)",
+                "categories": ["Tradeoff", first, STEP_COL, last, STEP_COL],
+                "values": ["Tradeoff", first, 3, last, 3],
+                "y2_axis": True,
+                "marker": {"type": "square", "size": 5, "fill": {"color": "#7F7F7F"},
+                           "border": {"color": "#7F7F7F"}},
+                "line": {"color": "#7F7F7F", "width": 1, "dash_type": "dash"},
             })
+            chart.set_y2_axis({"name": "seconds", "log_base": 10})
         grid = {"visible": True, "line": {"color": "#D9D9D9"}}
-        x_title = ("seconds (evaluate the table)" if dimension == "precision"
-                   else "seconds (generate + audit)")
+        x_title = ("step" if by_step else "seconds (evaluate the table)"
+                   if dimension == "precision" else "seconds (generate + audit)")
         chart.set_x_axis({"name": x_title, "log_base": 10,
                           "major_gridlines": grid, "crossing": "min",
                           "label_position": "low"})
