@@ -139,6 +139,7 @@ def test_cli_json_and_workbook_with_log_charts(tmp_path, capsys):
     with zipfile.ZipFile(path) as z:
         charts = [n for n in z.namelist() if n.startswith("xl/charts/chart")]
         assert len(charts) >= 3
-        xml = z.read(charts[0]).decode()
-        assert xml.count("<c:logBase") == 2
+        xml = z.read(charts[0]).decode()  # the step chart: error against the step, and
+        assert xml.count("<c:logBase") == 3  # seconds on a second axis (issue 12 item 12)
+        assert "Tradeoff!$I$" in xml and "seconds (generate + audit)" in xml
     assert main(["tradeoff", "templates/slider_crank.toml", "--out", str(tmp_path)]) == 2
