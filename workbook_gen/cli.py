@@ -86,7 +86,11 @@ def _audit(args: argparse.Namespace) -> int:
     if args.annotate:
         from .auditor.annotate import check_target
         check_target(args.paths[0], args.annotate, force=args.force)  # before the work
-    report = audit(args.paths[0], engine=args.engine)
+    from .auditor import PHASES
+    from .progress import Progress
+    phases = len(PHASES) - (0 if args.engine else 1)
+    with Progress(total=phases, desc="audit", unit="phase", delay=1.0) as bar:
+        report = audit(args.paths[0], engine=args.engine, progress=bar)
     if args.json:
         print(json.dumps(report.to_json(), allow_nan=False))
     else:

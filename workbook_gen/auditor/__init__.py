@@ -83,6 +83,7 @@ def _libreoffice_explains(inputs: AuditInputs, key, value_of, cached) -> bool:
     return compare(cached, value, 0.0).agree
 
 
+PHASES = ("read", "evaluate", "compare", "reference", "findings", "engine")
 MAX_ROOT_SEARCH = 5000  # mismatches beyond this are all listed as roots
 
 
@@ -161,12 +162,18 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: st
                           dialect=dialect, book=inputs.book_info())
 
 
-def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True) -> AuditReport:
-    """Recompute and check every formula cell of the workbook at ``path``."""
+def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True,
+          progress=None) -> AuditReport:
+    """Recompute and check every formula cell of the workbook at ``path``.
+
+    ``progress(label)`` is called as each of the PHASES ends (the last only with
+    ``engine``)."""
+    step = progress or (lambda label: None)
     started = time.perf_counter()
     timings: dict[str, float] = {}
     inputs = read_inputs(path)
     timings["read"] = time.perf_counter() - started
+    step("read")
     t = time.perf_counter()
     semantics = dialect_of(inputs.book.application)  # the engine that saved the file
     evaluation = evaluate_cells(inputs.formulas, inputs.constants, inputs.book.defined_names,
@@ -184,6 +191,7 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
     phases = [evaluation.seconds, local.seconds]
     timings["parse"] = sum(p.get("grouping", 0.0) for p in phases)
     timings["evaluate"] = sum(p.get(k, 0.0) for p in phases for k in ("graph", "vector", "scalar"))
+    step("evaluate")
 
     def value_of(sheet: str, row: int, col: int):
         key = (sheet, row, col)
@@ -243,15 +251,20 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
               and not compare(inputs.cached[k], values[k], evaluation.operands_scale[k]).agree}
     _mark_roots(inputs, mismatches, differ)
     timings["compare"] = time.perf_counter() - t
+    step("compare")
     t = time.perf_counter()
     mechanics = check_mechanics(inputs.book, value_of, evaluation.store.column_values)
     timings["reference"] = time.perf_counter() - t
+    step("reference")
     findings = check_structure(inputs, evaluation, _cell_name)
     t = time.perf_counter()
     findings += find_findings(inputs, evaluation.runs, _cell_name)
     timings["findings"] = time.perf_counter() - t
+    step("findings")
     engine_result = (_engine(path, engine, inputs, value_of, evaluation.operands_scale, skipped)
                      if engine else None)
+    if engine:
+        step("engine")
     not_checked = {_cell_name(k): reason for k, reason in sorted(skipped.items())
                    if inputs.is_formula(k)}
     return AuditReport(
