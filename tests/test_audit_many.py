@@ -132,3 +132,16 @@ def test_audit_draws_a_bar_on_a_terminal(folder, many):
     assert os.WEXITSTATUS(status) == (1 if many else 0), text
     assert ("/3 [" if many else "/5 [") in text, text  # 3 files; 5 phases without --engine
     assert ("file/s" if many else "phase/s") in text, text
+
+
+def test_engine_lines_truncate_long_values(folder):
+    """--engine libreoffice prints a disagreement's formula and values cut to a line."""
+    from workbook_gen.auditor.report import EngineResult, Mismatch
+    report = audit(folder / "a_good.xlsx")
+    long = "x" * 5000
+    report.engine = EngineResult("libreoffice", 1, [Mismatch(
+        "Sheet1!A3", f'REPT("{long}",2)', long * 2, long + "y")], 0, 0.1)
+    lines = format_report(report).splitlines()
+    shown = [line for line in lines if "Sheet1!A3" in line]
+    assert shown and all(len(line) < 400 for line in lines)
+    assert "..." in shown[0]
