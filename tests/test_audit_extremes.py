@@ -24,6 +24,7 @@ EXTREMES = [
     ("slider_crank", {"l_AB": 1e-75, "l_BC": 1e75}),
     ("slider_crank", {"l_BC": 50.0, "e": 10.0, "phi_slide": 90.0}),  # rod = crank + offset
     ("slider_crank", {"omega_1": 1e6}),
+    ("slider_crank", {"phi_slide": 8.8e-249, "e": 1e-300}),  # tiny angle and offset
     ("sewing_machine", {"l_AB": 100.0, "l_BC": 10.0}),    # assembles only at 90 and 270 deg
     ("sewing_machine", {"l_BC": 32.0}),                   # rod = crank
     ("sewing_machine", {"l_AB": 1e-6}),                   # h_BC: the model cancels y_B - y_C
@@ -55,8 +56,16 @@ def test_template_at_a_legal_extreme_audits_clean(tmp_path, template, overrides)
 
 @pytest.mark.parametrize("value", [5e-324, 1e-300, 1e300])
 def test_lengths_without_relative_precision_are_refused(value):
-    with pytest.raises(SceneError, match=r"parameters\.l_AB must be 0 or of magnitude"):
+    with pytest.raises(SceneError, match=r"parameters\.l_AB must be of magnitude 1e-75\.\."):
         load_scene(TEMPLATES / "slider_crank.toml", overrides={"l_AB": value})
+
+
+def test_a_tiny_angle_or_offset_is_legal_and_a_huge_one_is_not():
+    scene = load_scene(TEMPLATES / "slider_crank.toml",
+                       overrides={"phi_slide": 8.8e-249, "e": 1e-300})
+    assert scene.parameters["phi_slide"] == 8.8e-249
+    with pytest.raises(SceneError, match=r"parameters\.e must be of magnitude at most 1e\+75"):
+        load_scene(TEMPLATES / "slider_crank.toml", overrides={"e": -1e80})
 
 
 def test_rounding_noise_of_the_operands_is_not_an_error():

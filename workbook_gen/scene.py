@@ -26,9 +26,10 @@ _STEM = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.-]*$")
 MAX_STEM = 100
 # Windows refuses these as file names whatever the extension.
 _RESERVED = re.compile(r"^(CON|PRN|AUX|NUL|COM[0-9]|LPT[0-9])(\..*)?$", re.IGNORECASE)
-# A parameter's magnitude, unless 0: the formulas multiply up to four of them (a residual
-# over omega^2 l_AB l_BC), which must neither underflow nor overflow; a subnormal length
-# (5e-324) has no relative precision at all.
+# A length that must be > 0 sets a scale the formulas divide by and multiply up to four of
+# (a residual over omega^2 l_AB l_BC): it must neither underflow nor overflow (a subnormal
+# 5e-324 has no relative precision at all).  Any parameter is at most 1e75 in magnitude;
+# a tiny offset or angle is harmless (it only adds to larger terms).
 MAGNITUDE = (1e-75, 1e75)
 MIN_ROWS = 3  # rates and extremes need a neighbour on each side
 
@@ -104,9 +105,10 @@ def _parameters(source: str, template: Template, given: dict) -> dict[str, float
         number = _number(source, f"parameters.{key}", value)
         if specs[key].positive and number <= 0:
             raise _fail(source, f"parameters.{key}", "must be > 0", value)
-        if number and not MAGNITUDE[0] <= abs(number) <= MAGNITUDE[1]:
-            raise _fail(source, f"parameters.{key}", f"must be 0 or of magnitude "
-                        f"{MAGNITUDE[0]:g}..{MAGNITUDE[1]:g}", value)
+        if abs(number) > MAGNITUDE[1] or specs[key].positive and number < MAGNITUDE[0]:
+            low = f"{MAGNITUDE[0]:g}.." if specs[key].positive else "at most "
+            raise _fail(source, f"parameters.{key}", f"must be of magnitude {low}"
+                        f"{MAGNITUDE[1]:g}", value)
         values[key] = number
     for name in values:
         check_name(name, f"{source}: parameters.{name}")
