@@ -19,7 +19,7 @@ from typing import Sequence
 import xlsxwriter
 from xlsxwriter.utility import xl_col_to_name
 
-from ..files import write_bytes_atomically
+from ..files import write_atomically, write_bytes_atomically
 from ..version import VERSION
 from .rows import figure_columns, snake
 from .table import Table, number_texts
@@ -31,12 +31,17 @@ _CHART_COLUMNS = 2
 
 
 def write_csv(table: Table, path: Path) -> Path:
-    text = io.StringIO()
-    writer = csv.writer(text, lineterminator="\n")
-    writer.writerow(table.columns)
-    columns = [table.csv_column(name) for name in table.columns]
-    writer.writerows(zip(*columns))
-    return write_bytes_atomically(path, text.getvalue().encode("utf-8"), force=True)
+    """summary.csv, written block by block (memory stays bounded for 100,000 rows)."""
+    def build(temp: Path) -> None:
+        with temp.open("w", encoding="utf-8", newline="") as handle:
+            writer = csv.writer(handle, lineterminator="\n")
+            writer.writerow(table.columns)
+            size = len(table.design)
+            for lo in range(0, size, _ROWS_PER_WRITE):
+                hi = min(size, lo + _ROWS_PER_WRITE)
+                writer.writerows(zip(*(table.csv_column(name, lo, hi)
+                                       for name in table.columns)))
+    return write_atomically(path, build, force=True)
 
 
 def write_xlsx(table: Table, path: Path, about: Sequence[tuple[str, str]]) -> Path:

@@ -38,6 +38,7 @@ class Table:
             for i, variant in enumerate(self.design.variants):
                 column[i] = dict(variant.values).get(name, self.defaults[name])
         self._filled = [False] * size
+        self._kinds: dict[str, str] = {}
         self._figures = set(figure_columns(self.model)) - {snake(s.label) for s in self.model.spans}
 
     def put(self, variant: Variant, row: Mapping[str, object]) -> None:
@@ -61,7 +62,14 @@ class Table:
 
     def kind(self, name: str) -> str:
         """``text``, ``number`` (floats, NaN or None for none) or ``mixed`` (a figure
-        that is a number for some variants and a text for others)."""
+        that is a number for some variants and a text for others); asked once the
+        table is complete."""
+        kind = self._kinds.get(name)
+        if kind is None:
+            kind = self._kinds[name] = self._kind(name)
+        return kind
+
+    def _kind(self, name: str) -> str:
         if name in ("variant", "file", "status", "audit"):
             return "text"
         if name in self.design.names or name not in self._figures:
@@ -99,12 +107,13 @@ class Table:
             frame["rows_not_assembled"] = frame["rows_not_assembled"].astype("Int64")
         return frame
 
-    def csv_column(self, name: str) -> list[str]:
-        """The column's CSV cells: floats as Python's shortest round-trip text (``repr``),
-        no number as empty."""
+    def csv_column(self, name: str, lo: int = 0, hi: int | None = None) -> list[str]:
+        """The column's CSV cells (rows ``lo:hi``): floats as Python's shortest
+        round-trip text (``repr``), no number as empty."""
+        values = self.data[name][lo:hi]
         if self.kind(name) == "number":
-            return number_texts(self.data[name])
-        return [cell_text(v) for v in self.data[name]]
+            return number_texts(values)
+        return [cell_text(v) for v in values]
 
 
 def number_texts(values: list) -> list[str]:
