@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import datetime as dt
 import io
+import math
 from pathlib import Path
 from typing import Callable
 
@@ -34,7 +35,9 @@ def cells_of(scene: Scene) -> int:
     the header, the other sheets), known before anything is computed."""
     model = select(scene.template, scene.outputs)
     terms, _ = plan(model)
-    per_row = len(model.names) + 3 + len(model.checks) + len(terms)
+    # Table: the input and every column; Checks: its row label, status and input
+    # columns, every check and every term
+    per_row = 1 + len(model.names) + 3 + len(model.checks) + len(terms)
     return (scene.sweep.rows + 1) * per_row + OTHER_CELLS
 
 
@@ -47,6 +50,8 @@ def refuse_unauditable(scene: Scene) -> None:
     per_row = (cells - OTHER_CELLS) / (sweep.rows + 1)
     rows = int((MAX_CELLS - OTHER_CELLS) / per_row) - 1
     least = (sweep.stop - sweep.start) / max(rows - 1, 1)
+    unit = 10.0 ** (math.floor(math.log10(least)) - 2)
+    least = math.ceil(least / unit) * unit  # 3 digits, rounded up: that step is allowed
     raise SceneError(f"{scene.source}: step {sweep.step:g} gives {sweep.rows:,} rows, a "
                      f"workbook of about {cells:,} cells: more than the {MAX_CELLS:,} that "
                      f"'workbook-gen audit' reads in its time and memory bounds; use a step "
