@@ -84,6 +84,12 @@ def _libreoffice_explains(inputs: AuditInputs, key, value_of, cached) -> bool:
 
 
 PHASES = ("read", "evaluate", "compare", "reference", "findings", "engine")
+
+
+def _number_if_bool(v):
+    return float(v) if isinstance(v, bool) else v
+
+
 MAX_ROOT_SEARCH = 5000  # mismatches beyond this are all listed as roots
 
 
@@ -235,6 +241,8 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
             cached = inputs.cached[key]
             source = local if key in local.values else evaluation
             recomputed = source.values[key]
+            if semantics == "libreoffice":  # no boolean type there: TRUE is stored as 1
+                cached, recomputed = _number_if_bool(cached), _number_if_bool(recomputed)
             verdict = compare(cached, recomputed, source.operands_scale.get(key, 0.0))
             if not verdict.agree and _libreoffice_explains(inputs, key, value_of, cached):
                 explained += 1

@@ -28,7 +28,7 @@ def to_serial(d: dt.date) -> float:
 
 def from_serial(x: float) -> tuple[int, int, int] | ExcelError:
     """(year, month, day) of a serial; 0 is 1900-01-00 and 60 is 1900-02-29, as in Excel."""
-    if x < 0 or x > MAX_SERIAL + 1:
+    if x < 0 or x >= MAX_SERIAL + 1:
         return ExcelError.NUM
     n = int(math.floor(x))
     if n == 0:
@@ -97,7 +97,7 @@ def _seconds(v):
     x = serial_arg(v)
     if isinstance(x, ExcelError):
         return x
-    return int(round((x - math.floor(x)) * 86400.0, 6) + 1e-9) % 86400
+    return int(round((x - math.floor(x)) * 86400.0)) % 86400  # to the nearest second
 
 
 register("HOUR", "date", 1, 1)(lambda ctx, v: c.result(_map(_seconds(v), lambda s: s // 3600)))
@@ -137,6 +137,8 @@ def _ymd_date(ymd) -> dt.date:
 
 
 def _add_months(v, months, end_of_month: bool):
+    if isinstance(v, bool) or isinstance(months, bool):  # Analysis ToolPak: no booleans
+        return ExcelError.VALUE
     ymd = _date(v)
     k = c.to_number(months)
     for x in (ymd, k):
@@ -168,6 +170,10 @@ def _is_leap(y: int) -> bool:
     return calendar.isleap(y)
 
 
+def _end_of_feb(y: int, m: int, d: int) -> bool:
+    return m == 2 and d == (29 if y == 1900 else calendar.monthrange(y, 2)[1])
+
+
 def _last_of_feb(d: dt.date) -> bool:
     return d.month == 2 and d.day == calendar.monthrange(d.year, 2)[1]
 
@@ -175,14 +181,16 @@ def _last_of_feb(d: dt.date) -> bool:
 def yearfrac(s: float, e: float, basis: int) -> float | ExcelError:
     if s > e:
         s, e = e, s
-    d1, d2 = _ymd_date(from_serial(s)), _ymd_date(from_serial(e))
-    if basis in (0, 4):
-        y1, m1, t1 = d1.year, d1.month, d1.day
-        y2, m2, t2 = d2.year, d2.month, d2.day
+    for x in (s, e):
+        if isinstance(from_serial(x), ExcelError):
+            return ExcelError.NUM
+    if basis in (0, 4):  # on Excel's own calendar: serial 0 is 1900-01-00, 60 is 02-29
+        (y1, m1, t1), (y2, m2, t2) = from_serial(s), from_serial(e)
         if basis == 0:
-            if _last_of_feb(d1) and _last_of_feb(d2):
+            feb1, feb2 = _end_of_feb(y1, m1, t1), _end_of_feb(y2, m2, t2)
+            if feb1 and feb2:
                 t2 = 30
-            if _last_of_feb(d1):
+            if feb1:
                 t1 = 30
             if t2 == 31 and t1 >= 30:
                 t2 = 30
@@ -191,6 +199,7 @@ def yearfrac(s: float, e: float, basis: int) -> float | ExcelError:
         else:
             t1, t2 = min(t1, 30), min(t2, 30)
         return ((y2 - y1) * 360 + (m2 - m1) * 30 + (t2 - t1)) / 360.0
+    d1, d2 = _ymd_date(from_serial(s)), _ymd_date(from_serial(e))
     days = e - s
     if basis == 2:
         return days / 360.0
@@ -210,14 +219,18 @@ def yearfrac(s: float, e: float, basis: int) -> float | ExcelError:
 
 @register("YEARFRAC", "date", 2, 3)
 def _yearfrac(ctx, a, b, basis=0.0):
-    se = _two_dates(a, b)
-    k = c.to_number(basis)
-    for x in (se, k):
-        if isinstance(x, ExcelError):
-            return x
-    k = int(k)
-    if k not in (0, 1, 2, 3, 4):
+    # the basis is checked first, and booleans are #VALUE! (pycel's yearfrac.xlsx)
+    k = ExcelError.VALUE if isinstance(basis, bool) else c.to_number(basis)
+    if isinstance(k, ExcelError):
+        return k
+    if int(k) not in (0, 1, 2, 3, 4):
         return ExcelError.NUM
+    if isinstance(a, bool) or isinstance(b, bool):
+        return ExcelError.VALUE
+    se = _two_dates(a, b)
+    if isinstance(se, ExcelError):
+        return se
+    k = int(k)
     return c.result(yearfrac(se[0], se[1], k))
 
 
@@ -288,7 +301,7 @@ def _weekday(ctx, v, kind=1.0):
     for x in (ymd, k):
         if isinstance(x, ExcelError):
             return x
-    wd = _ymd_date(ymd).weekday() if ymd[2] else 5  # Monday 0; serial 0 is a Saturday
+    wd = (int(serial_arg(v)) + 5) % 7  # Monday 0, from the serial: 1900 has its 29 February
     k = int(k)
     if k == 1 or k == 17:
         return float((wd + 1) % 7 + 1)

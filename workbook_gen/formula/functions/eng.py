@@ -134,24 +134,28 @@ def _dec2(base_name):
     base, bits = _BASES[base_name]
 
     def fn(ctx, v, places=None):
+        p = None
+        if places is not None:  # Excel checks the places first (xlcalculator's BASES.xlsx)
+            p = c.to_number(places)
+            if isinstance(p, ExcelError):
+                return p
+            p = int(p)
+            if not 1 <= p <= 10:
+                return ExcelError.NUM
+        if isinstance(v, bool):
+            return ExcelError.VALUE
         x = c.to_number(v)
         if isinstance(x, ExcelError):
-            return x
+            return ExcelError.NUM if isinstance(v, str) else x
         n = int(x)
         if not -(2 ** bits) <= n < 2 ** bits:
             return ExcelError.NUM
-        if n < 0:
+        if n < 0:  # ten digits of two's complement; places ignored
             return _digits(n + 2 ** (bits + 1), base)
         text = _digits(n, base)
-        if places is None:
+        if p is None:
             return text
-        p = c.to_number(places)
-        if isinstance(p, ExcelError):
-            return p
-        p = int(p)
-        if p < len(text) or p > 10:
-            return ExcelError.NUM
-        return text.zfill(p)
+        return ExcelError.NUM if p < len(text) else text.zfill(p)
     register(f"DEC2{base_name}", "eng", 1, 2)(fn)
 
 

@@ -40,6 +40,8 @@ def _isref(ctx, v):
 
 
 def _parity(ctx, v, odd):
+    if isinstance(v, bool):
+        return ExcelError.VALUE
     x = c.integer(v)
     if isinstance(x, ExcelError):
         return x

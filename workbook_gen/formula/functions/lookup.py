@@ -176,7 +176,9 @@ def _lookup(ctx, lookup, where, result=None):
             keys, out = [r[0] for r in area.rows], [r[-1] for r in area.rows]
     else:
         keys, out = _vector(area), _vector(c.as_area(result))
-        if keys is None or out is None:
+        if keys is None:  # a 2-D lookup area: its first column, or first row if wider
+            keys = [r[0] for r in area.rows] if nrows >= ncols else list(area.rows[0])
+        if out is None:
             return ExcelError.NA
     i = find(lookup, keys, 1)
     if i is None:
