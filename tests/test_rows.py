@@ -4,7 +4,6 @@ cell by cell with write_formula / write_number."""
 from __future__ import annotations
 
 import io
-import re
 import zipfile
 
 import pytest

@@ -9,7 +9,7 @@ import pandas as pd
 
 from . import xlmath as xm
 from .errors import CannotAssembleError
-from .expr.numeric import compile_numpy
+from .expr.numeric import compiled
 from .model import Model, select
 from .scene import Scene
 
@@ -42,8 +42,8 @@ def evaluate(scene: Scene) -> Evaluated:
     n = len(inputs)
     columns = {scene.template.input.name: xm.array(inputs)}
     for quantity in model.columns:
-        columns[quantity.name] = compile_numpy(quantity.expr)(columns, params, n)
-    status = compile_numpy(model.status)(columns, params, n)
+        columns[quantity.name] = compiled(quantity.expr)(columns, params, n)
+    status = compiled(model.status)(columns, params, n)
     texts = np.where(status.err != 0, "cannot assemble", status.val).astype(object)
     if not np.any(texts != "cannot assemble"):
         raise CannotAssembleError(
@@ -57,7 +57,7 @@ def derived_values(scene: Scene) -> dict[str, float]:
     """The scene's parameters with the template's derived values (NaN where an error)."""
     params = dict(scene.parameters)
     for item in scene.template.derived:
-        value = compile_numpy(item.expr)({}, params, 1)
+        value = compiled(item.expr)({}, params, 1)
         params[item.name] = float(value.val[0])
     return params
 

@@ -10,13 +10,12 @@ a balanced four-bar, sum m_i a_i = 1e-16 N from terms near 1 N, has m near 1 N.
 
 from __future__ import annotations
 
-from functools import lru_cache
 from typing import Mapping
 
 import numpy as np
 
 from .. import xlmath as xm
-from .numeric import compile_numpy
+from .numeric import compiled
 from .tree import Bin, Call, Neg, Node, Num, Param, Var, children
 
 _DERIVATIVE = {
@@ -54,7 +53,7 @@ class _Scope(Mapping):
 
 
 _PLACEHOLDERS = tuple(Var(f"\x00{i}") for i in range(256))
-_compiled = lru_cache(maxsize=1024)(compile_numpy)
+_compiled = compiled
 
 
 def _shell(node: Node) -> Node:

@@ -7,6 +7,7 @@ parameter names to floats.  Used for the cached values and ``compute()``.
 
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import Callable, Mapping
 
 import numpy as np
@@ -79,3 +80,8 @@ def _compile_call(node: Call) -> Compiled:
         return lambda cols, params, n: f2(a(cols, params, n), b(cols, params, n))
     fm = _MANY[fn]
     return lambda cols, params, n: fm(*(a(cols, params, n) for a in args))
+
+
+#: ``compile_numpy`` once per tree in a process (trees are hashable, their hash cached):
+#: a batch evaluates the same template's trees for every variant.
+compiled = lru_cache(maxsize=4096)(compile_numpy)

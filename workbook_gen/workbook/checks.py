@@ -8,7 +8,6 @@ flags, guarded the same way, that the residuals refer to.
 
 from __future__ import annotations
 
-from functools import lru_cache
 
 import numpy as np
 from xlsxwriter.utility import xl_col_to_name
@@ -17,7 +16,7 @@ from .. import xlmath as xm
 from ..compute import Evaluated
 from ..expr import Node, Var, eq, if_
 from ..expr.excel import to_excel
-from ..expr.numeric import compile_numpy
+from ..expr.numeric import compiled
 from .conditions import write_conditions
 from ..xlerror import ExcelError
 from .layout import CHECK_FIRST_ROW, CHECKS, STATUS, TableLayout, add_sheet, print_wide
@@ -25,7 +24,6 @@ from .rows import Column
 from .table import cached_values
 from .terms import Term, common_terms
 
-compiled = lru_cache(maxsize=1024)(compile_numpy)  # trees are hashable: compiled once
 
 TOLERANCE = 1e-9
 TOLERANCE_NAME = "check_tol"
