@@ -80,33 +80,45 @@ def main() -> None:
     parser.add_argument("--variants", type=int, default=1000, help="file batch size (x10)")
     parser.add_argument("--summary", type=int, default=100_000, help="summary-only size (x100)")
     parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--parts", default="123", help="which figures (default: all three)")
     args = parser.parse_args()
     print(f"machine: {platform.machine()}, {os.cpu_count()} cores, Python "
           f"{platform.python_version()}, {platform.system()} {platform.release()}")
     n = args.variants
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
-        pool = file_batch(tmp / "pool", n, jobs=args.jobs)
-        print(f"1. {n:,} variants at 10 deg, --jobs {args.jobs}: {pool:.1f} s "
-              f"({n / pool:.1f} variants/s)")
-        single = loop(tmp / "loop", n)
-        print(f"   loop of write_workbook in one process: {single:.1f} s "
-              f"({n / single:.1f} variants/s); --jobs {args.jobs} is {single / pool:.2f}x faster")
-        shutil.rmtree(tmp / "loop")
-        seconds, parent, workers = summary_only(tmp / "summary", args.summary, args.jobs)
-        rate = args.summary / seconds
-        print(f"2. --summary-only, {args.summary:,} variants, --jobs {args.jobs}: {seconds:.1f} s "
-              f"({rate:,.0f} variants/s, {rate / (n / pool):.0f}x the file batch's); peak "
-              f"memory {parent:.0f} MB (command), {workers:.0f} MB (largest worker)")
-        from distributed import Client, LocalCluster
-        os.environ["PYTHONPATH"] = os.pathsep.join(
-            [str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])
-        with LocalCluster(n_workers=2, processes=True, threads_per_worker=1,
-                          dashboard_address=":0") as cluster, Client(cluster) as client:
-            dask = file_batch(tmp / "dask", n, client=client)
-        print(f"3. Dask LocalCluster, 2 worker processes: {dask:.1f} s for {n:,} variants, "
-              f"{dask / pool:.2f}x the time of --jobs {args.jobs} "
-              f"(overhead {(dask - pool) / n * 1000:+.1f} ms per variant)")
+        pool = None
+        if "1" in args.parts:
+            pool = file_batch(tmp / "pool", n, jobs=args.jobs)
+            print(f"1. {n:,} variants at 10 deg, --jobs {args.jobs}: {pool:.1f} s "
+                  f"({n / pool:.1f} variants/s)", flush=True)
+            single = loop(tmp / "loop", n)
+            print(f"   loop of write_workbook in one process: {single:.1f} s ({n / single:.1f} "
+                  f"variants/s); --jobs {args.jobs} is {single / pool:.2f}x faster", flush=True)
+            shutil.rmtree(tmp / "loop")
+        if "2" in args.parts:
+            seconds, parent, workers = summary_only(tmp / "summary", args.summary, args.jobs)
+            rate = args.summary / seconds
+            versus = f", {rate / (n / pool):.0f}x the file batch's" if pool else ""
+            print(f"2. --summary-only, {args.summary:,} variants, --jobs {args.jobs}: "
+                  f"{seconds:.1f} s ({rate:,.0f} variants/s{versus}); peak memory "
+                  f"{parent:.0f} MB (command), {workers:.0f} MB (largest worker)", flush=True)
+        if "3" in args.parts:
+            from distributed import Client, LocalCluster
+            os.environ["PYTHONPATH"] = os.pathsep.join(
+                [str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep)
+                               if p])
+            with LocalCluster(n_workers=2, processes=True, threads_per_worker=1,
+                              dashboard_address=":0") as cluster, Client(cluster) as client:
+                # --jobs 2 just before and just after: the same load on a shared machine.
+                before = file_batch(tmp / "before", n, jobs=args.jobs)
+                dask = file_batch(tmp / "dask", n, client=client)
+                after = file_batch(tmp / "after", n, jobs=args.jobs)
+            local = (before + after) / 2
+            print(f"3. Dask LocalCluster, 2 worker processes: {dask:.1f} s for {n:,} variants; "
+                  f"--jobs {args.jobs} before and after: {before:.1f} s, {after:.1f} s; Dask takes "
+                  f"{dask / local:.2f}x the time (overhead {(dask - local) / n * 1000:+.1f} ms "
+                  f"per variant)", flush=True)
 
 
 if __name__ == "__main__":

@@ -18,7 +18,7 @@ from typing import Sequence
 import numpy as np
 
 from ..errors import SceneError
-from ..scene import Scene, parse_scene
+from ..scene import MAGNITUDE, Scene, parse_scene
 from .broadcast import Plan
 from .job import JobSpec, refused_reason, unassembled_reason, variant_scene
 from .rows import figure_values, status_texts, summarise, value_columns
@@ -34,9 +34,11 @@ def _screen(base: Scene, spec: JobSpec, variants: Sequence[Variant],
     rule), by position, with the reason ``generate`` would give."""
     template = base.template
     suspect = np.zeros(len(variants), dtype=bool)
-    for p in template.parameters:
+    for p in template.parameters:  # parse_scene's rules, widened: it has the last word
+        column = values[p.name]
+        suspect |= np.abs(column) > MAGNITUDE[1]
         if p.positive:
-            suspect |= values[p.name] <= 0
+            suspect |= column < MAGNITUDE[0]
     names = list(values)
     columns = [values[n].tolist() for n in names]
     for i, row in enumerate(zip(*columns)):
