@@ -325,3 +325,23 @@ def test_progress_bar_shows_done_rate_and_time_left(tmp_path, capsys):
 def test_audit_with_summary_only_is_a_bad_spec():
     with pytest.raises(SceneError, match="makes none"):
         batch(SEWING, vary=["l_AB=30,32"], summary_only=True, audit=True)
+
+
+def test_audit_column_records_fail_for_a_workbook_whose_cached_value_is_wrong(sewing_batch):
+    """What --audit records, on a real workbook with one cached value changed by hand."""
+    import io
+    import re
+    from workbook_gen.batching.job import _audit
+    frame, folder = sewing_batch
+    data = (folder / "sewing_machine-0005.xlsx").read_bytes()
+    assert _audit(data, "good") == "ok"
+    source, target = zipfile.ZipFile(io.BytesIO(data)), io.BytesIO()
+    with zipfile.ZipFile(target, "w", zipfile.ZIP_DEFLATED) as out:
+        for item in source.infolist():
+            body = source.read(item.filename)
+            if item.filename == "xl/worksheets/sheet1.xml":  # the Table: a formula's value
+                body, count = re.subn(rb"(<f>[^<]*</f><v>)([-0-9.E]+)(</v>)",
+                                      rb"\g<1>12345.5\g<3>", body, count=1)
+                assert count == 1
+            out.writestr(item, body)
+    assert _audit(target.getvalue(), "tampered") == "fail"
