@@ -101,11 +101,13 @@ class _Checks:
         """What a cell is, for comparing neighbours: a formula's R1C1 form or its kind;
         None for an empty cell."""
         grid = self.grid
+        if key in grid.array:
+            return (FORMULA, key)  # a cell an array formula fills: equal to nothing
         run = grid.run_index(key)
         if run is not None:
             return (FORMULA, grid.key_of_run[run])
-        if key in grid.formulas or key in grid.array:
-            return (FORMULA, key)  # unparsed or an array formula: equal to nothing
+        if key in grid.formulas:
+            return (FORMULA, key)  # unparsed: equal to nothing
         if key in grid.constants:
             return (value_kind(grid.constants[key]),)
         return None
@@ -123,7 +125,7 @@ class _Checks:
             columns[(key[0], key[2])].append([key[1], key[1], (FORMULA, key)])
         candidates = [(run.sheet, run.first, run.col) for run in grid.runs
                       if run.first == run.last]
-        for key, value in grid.constants.items():
+        for key in grid.constants:
             token = self.token(key)
             columns[(key[0], key[2])].append([key[1], key[1], token])
             if token[0] == NUMBER:
@@ -279,6 +281,9 @@ class _Checks:
                 continue
             if any(_inside(beyond, r) and not _inside(end, r) for r in ranges):
                 continue  # another aggregate reads from there: the sheet's own blocks
+            if any(other.sheet == s and _inside(beyond, (other.r1, other.c1, other.r2, other.c2))
+                   for other in self.grid.refs(key) if other.node is not ref.node):
+                continue  # the formula reads it another way (=MAX(C1:H1,I1))
             span = (f"{column_letters(ref.c1)}{r1}:{column_letters(ref.c2)}{r2}")
             self.add("formula_omits_adjacent_cells", key,
                      f"{self.text(key)} reads {span}, which stops next to "

@@ -58,9 +58,10 @@ class Grid:
         self.formulas = inputs.formulas
         self.cached = inputs.cached
         self.constants = inputs.constants
-        self.array = set(inputs.array_cells)
+        # cells an array formula fills (its master included): compared with nothing
+        self.array = set(inputs.array_cells) | set(getattr(inputs, "array_master", ()))
         self.sheets = {s.lower(): s for s in inputs.book.sheet_names}
-        self.runs = list(runs)
+        self.runs = [r for r in runs if (r.sheet, r.first, r.col) in self.formulas]
         self.key_of_run = [ast.to_relative(run.node, run.first, run.col) for run in self.runs]
         by_column: dict[tuple[str, int], list[tuple[int, int]]] = {}
         for i, run in enumerate(self.runs):
