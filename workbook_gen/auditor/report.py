@@ -250,7 +250,8 @@ def _mechanics_line(m: MechanicsReport) -> list[str]:
 
 def _mechanics_lines(m: MechanicsReport) -> list[str]:
     lines = ["", f"  against the independent reference model of {m.mechanism} "
-                 f"(tolerance {REFERENCE_TOLERANCE:g} of each column's magnitude):"]
+                 f"(tolerance {REFERENCE_TOLERANCE:g} of each column's magnitude or row's "
+                 f"rounding noise; rows flagged singular not compared):"]
     for q in m.quantities:
         where = f" at {q.worst_row_input:g}" if q.worst_row_input is not None else ""
         lines.append(f"    {q.name:<10}{q.rows:>7} rows  max error {q.max_error:.2e}{where}"
