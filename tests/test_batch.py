@@ -345,3 +345,20 @@ def test_audit_column_records_fail_for_a_workbook_whose_cached_value_is_wrong(se
                 assert count == 1
             out.writestr(item, body)
     assert _audit(target.getvalue(), "tampered") == "fail"
+
+
+def test_design_file_batch_names_rows_and_keeps_the_scene_value_of_empty_cells(tmp_path,
+                                                                             capsys):
+    design = tmp_path / "table.csv"
+    design.write_text("variant,l_AB,l_BC\nbaseline,,\nlong rod,,120\nbig crank,40,\n")
+    code = cli.main(["batch", SEWING, "--design", str(design), "--step", "30", "--out",
+                     str(tmp_path / "out"), "--jobs", "1", "--quiet"])
+    assert code == 0
+    rows = _read_csv(tmp_path / "out" / "sewing_machine-batch" / "summary.csv")
+    assert [(r["variant"], r["file"], r["l_AB"], r["l_BC"]) for r in rows] == [
+        ("baseline", "sewing_machine-0001.xlsx", "32.0", "100.0"),
+        ("long rod", "sewing_machine-0002.xlsx", "32.0", "120.0"),
+        ("big crank", "sewing_machine-0003.xlsx", "40.0", "100.0")]
+    for row in rows:  # the closed form again: C highest at 90 deg
+        assert float(row["y_C_max"]) == pytest.approx(float(row["l_AB"]) - float(row["l_BC"]),
+                                                      abs=1e-12)
