@@ -105,3 +105,29 @@ def test_packaging_in_memory_or_through_files_gives_the_same_parts():
     assert parts[0].keys() == parts[1].keys() and len(parts[0]) > 10
     for name in parts[0]:
         assert parts[0][name] == parts[1][name], name
+
+
+def _deflated_size(data: bytes, level: int) -> int:
+    import zlib
+    packer = zlib.compressobj(level, zlib.DEFLATED, -15)
+    return len(packer.compress(data) + packer.flush())
+
+
+def test_package_is_deflated_at_our_level_and_other_workbooks_at_xlsxwriters():
+    """package.py sets the zlib level of our workbooks' archive (COMPRESSLEVEL); any
+    other XlsxWriter workbook in the process keeps zlib's default."""
+    from workbook_gen.scene import load_scene
+    from workbook_gen.workbook import workbook_bytes
+    from workbook_gen.workbook.package import COMPRESSLEVEL
+
+    ours = workbook_bytes(load_scene("templates/slider_crank.toml"), "x.xlsx")
+    assert ours == workbook_bytes(load_scene("templates/slider_crank.toml"), "x.xlsx")
+    plain = io.BytesIO()
+    book = xlsxwriter.Workbook(plain)
+    book.add_worksheet().write_column(0, 0, [f"row {i} " * 20 for i in range(300)])
+    book.close()
+    for data, level in ((ours, COMPRESSLEVEL), (plain.getvalue(), 6)):
+        with zipfile.ZipFile(io.BytesIO(data)) as z:
+            big = max(z.infolist(), key=lambda i: i.file_size)
+            assert big.compress_size == _deflated_size(z.read(big), level), level
+            assert big.compress_size != _deflated_size(z.read(big), 9 - level)

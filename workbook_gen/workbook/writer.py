@@ -18,7 +18,7 @@ from ..version import VERSION
 from .charts import write_charts
 from .checks import plan, write_checks
 from .layout import FORMATS, TableLayout
-from .package import IN_MEMORY_CELLS, Book
+from .package import IN_MEMORY_CELLS, Book, Stream
 from .sheets import write_about, write_parameters
 from .summary import write_summary
 from .table import write_table
@@ -101,7 +101,7 @@ def workbook_bytes(scene: Scene, filename: str | Path, result: Evaluated | None 
     refuse_unauditable(scene)
     if result is None:
         result = evaluate(scene)
-    stream = io.BytesIO()
+    stream = Stream()
     _build(stream, result, str(filename), progress=progress)
     return stream.getvalue()
 
