@@ -293,8 +293,9 @@ def five_bar(p, phi_deg):
         out[f"S_y_l{i + 1}"] = None if singular else sx[1]
     # Clearance: C re-solved with one coupler end moved (exact, not linearised).
     r = mpf(p["r_clear"])
-    for joint, (end, turn) in {"A": ("B", 0), "B": ("B", 0), "C": ("D", 180),
-                               "D": ("D", 0), "E": ("D", 0)}.items():
+    # issue 12's convention: A/E +r u (B resp. D moves by +r u), B -r u, C and D: D by -r u
+    for joint, (end, turn) in {"A": ("B", 0), "B": ("B", 180), "C": ("D", 180),
+                               "D": ("D", 180), "E": ("D", 0)}.items():
         for alpha in (0, 90, 180, 270):
             al = mpmath.radians(alpha + turn)
             dlt = (r * mpmath.cos(al), r * mpmath.sin(al))
@@ -307,8 +308,11 @@ def five_bar(p, phi_deg):
             try:
                 c2 = mpmath.findroot(moved_c, [cx, cy], tol=mpf(10) ** -90)
                 out[f"dC_{joint}_{alpha}"] = mpmath.hypot(c2[0] - cx, c2[1] - cy)
+                out[f"dx_C_{joint}_{alpha}"] = c2[0] - cx
+                out[f"dy_C_{joint}_{alpha}"] = c2[1] - cy
             except (ValueError, ZeroDivisionError):
-                out[f"dC_{joint}_{alpha}"] = None
+                for name in ("dC", "dx_C", "dy_C"):
+                    out[f"{name}_{joint}_{alpha}"] = None
     return out, singular
 
 
