@@ -218,9 +218,9 @@ def _criterion(kind: type, crit) -> "callable":
 
 def criterion(crit: Value):
     """A predicate for COUNTIF-style criteria: ``5``, ``">=5"``, ``"a*"``, ``"<>pear"``,
-    ``""`` (empty cells), ``"<>"`` (non-empty). An error criterion is returned as is."""
-    if isinstance(crit, ExcelError):
-        return crit
+    ``""`` (empty cells), ``"<>"`` (non-empty), an error value (cells holding it)."""
+    if isinstance(crit, ExcelError):  # counts the cells holding that error
+        return lambda v: v is crit
     if crit is None:
         crit = 0.0
     if isinstance(crit, int) and not isinstance(crit, bool):

@@ -1,13 +1,12 @@
-"""Lookup and reference: INDEX, MATCH, VLOOKUP, HLOOKUP, LOOKUP, XLOOKUP, XMATCH, CHOOSE,
-ROW, COLUMN, ROWS, COLUMNS, OFFSET, INDIRECT, ADDRESS, TRANSPOSE.
+"""Lookup: INDEX, MATCH, VLOOKUP, HLOOKUP, LOOKUP, XLOOKUP, XMATCH, CHOOSE (the functions
+of references themselves, ROW .. INDIRECT, are in :mod:`.reference`).
 
-Approximate lookups scan sorted data as Excel's binary search does on sorted data: the
-last position not past the lookup value (unsorted data is the user's error in Excel too).
+Approximate lookups bisect, as Excel does: on sorted data the last position not past the
+lookup value; on unsorted data where the bisection lands (descending data for MATCH's -1
+is scanned, as Excel's results on pycel's lookup.xlsx show).
 """
 
 from __future__ import annotations
-
-import re
 
 from workbook_gen.formula.functions import coerce as c
 from workbook_gen.formula.functions.registry import register
@@ -38,15 +37,52 @@ def find(lookup, values: list, mode: int, wildcards: bool = True, reverse: bool 
         return None
     if lookup is None:
         lookup = 0.0
-    want = (0, -1) if mode > 0 else (0, 1)
-    found = None
+    if mode > 0:
+        return _bisect(lookup, values)
+    found = None  # descending data: Excel's results on pycel's lookup.xlsx are a linear scan
     for i, v in enumerate(values):
-        if v is None or isinstance(v, ExcelError) or c.rank(v) != c.rank(lookup):
+        if not _comparable(v, lookup):
             continue
-        if c.compare(v, lookup) in want:
+        if c.compare(v, lookup) >= 0:
             found = i
         else:
             break
+    return found
+
+
+def _comparable(v, lookup) -> bool:
+    return v is not None and not isinstance(v, ExcelError) and c.rank(v) == c.rank(lookup)
+
+
+def _bisect(lookup, values: list, typed: bool = False):
+    """Excel's approximate search, a bisection: on ascending data the last position not
+    past ``lookup``; on unsorted data the position its bisection lands on, as Excel's
+    (sheetjs' and POI's test files). An equal value ends the search at the last of its run.
+    Empty cells are stepped over, and values of another type too unless ``typed`` (then
+    Excel's order numbers < text < booleans decides, as XLOOKUP's binary search)."""
+    def usable(v):
+        if typed:
+            return v is not None and not isinstance(v, ExcelError)
+        return _comparable(v, lookup)
+    lo, hi, found = 0, len(values) - 1, None
+    while lo <= hi:
+        mid = (lo + hi) // 2
+        probe = mid
+        while probe >= lo and not usable(values[probe]):
+            probe -= 1
+        if probe < lo:
+            lo = mid + 1
+            continue
+        cmp = c.compare(values[probe], lookup)
+        if cmp == 0:
+            while probe + 1 < len(values) and usable(values[probe + 1]) and (
+                    c.compare(values[probe + 1], lookup) == 0):
+                probe += 1
+            return probe
+        if cmp < 0:
+            found, lo = probe, mid + 1
+        else:
+            hi = probe - 1
     return found
 
 
@@ -112,13 +148,13 @@ def _sub(area: Range, r1: int, c1: int, r2: int, c2: int) -> Range:
 @register("INDEX", "lookup", 2, 4, ("ref", "scalar"))
 def _index(ctx, area, row, col=None, part=1.0):
     area = c.as_area(area)
-    idx = [c.to_number(v) for v in (row, col, part) if v is not None]
-    bad = next((x for x in idx if isinstance(x, ExcelError)), None)
+    r, k = c.to_number(row), (c.to_number(col) if col is not None else None)
+    bad = next((x for x in (r, k) if isinstance(x, ExcelError)), None)
     if bad is not None:
         return bad
     nrows, ncols = area.shape
-    r = int(idx[0])
-    k = int(idx[1]) if col is not None else None
+    r = int(r)
+    k = int(k) if k is not None else None
     if k is None:
         if nrows == 1 and ncols > 1:
             r, k = 1, r  # one index into a single row selects a column
@@ -187,6 +223,16 @@ def _lookup(ctx, lookup, where, result=None):
 
 
 def _xfind(lookup, values, match_mode: int, search_mode: int):
+    if search_mode == 2 and match_mode != 2:  # binary search over ascending data
+        i = _bisect(lookup, values, typed=True)
+        if i is not None and c.compare(values[i], lookup) == 0:
+            return i
+        if match_mode == 0:
+            return None
+        if match_mode < 0:
+            return i
+        j = 0 if i is None else i + 1
+        return j if j < len(values) else None
     reverse = search_mode in (-1, -2)
     if match_mode == 0:
         return find(lookup, values, 0, wildcards=False, reverse=reverse)
@@ -250,132 +296,3 @@ def _choose(ctx, index, *options):
         return i
     i = int(i)
     return options[i - 1]() if 1 <= i <= len(options) else ExcelError.VALUE
-
-
-# -- the reference itself ------------------------------------------------------------------
-
-def _position(ctx, v, axis: int):
-    if v is None:
-        if ctx.cell is None:
-            return ExcelError.VALUE
-        return float(ctx.cell[1 + axis])
-    if not isinstance(v, Range) or v.ref is None:
-        return ExcelError.VALUE
-    ref = v.ref
-    lo, hi = (ref.row1, ref.row2) if axis == 0 else (ref.col1, ref.col2)
-    if lo == hi:
-        return float(lo)
-    values = [[float(i)] for i in range(lo, hi + 1)]
-    return Range.array_of(values if axis == 0 else [sum(values, [])])
-
-
-register("ROW", "lookup", 0, 1, "ref", position=True)(
-    lambda ctx, v=None: _position(ctx, v, 0))
-register("COLUMN", "lookup", 0, 1, "ref", position=True)(
-    lambda ctx, v=None: _position(ctx, v, 1))
-
-
-def _extent(v, axis):
-    if isinstance(v, ExcelError):
-        return v
-    return float(v.shape[axis]) if isinstance(v, Range) else 1.0
-
-
-register("ROWS", "lookup", 1, 1, "ref")(lambda ctx, v: _extent(v, 0))
-register("COLUMNS", "lookup", 1, 1, "ref")(lambda ctx, v: _extent(v, 1))
-
-
-@register("OFFSET", "lookup", 3, 5, ("ref", "scalar"), volatile=True)
-def _offset(ctx, base, rows, cols, height=None, width=None):
-    if isinstance(base, ExcelError):
-        return base
-    if not isinstance(base, Range) or base.ref is None:
-        return ExcelError.VALUE
-    ref = base.ref
-    nums = [c.to_number(v) for v in (rows, cols)]
-    h = c.to_number(height) if height is not None else float(ref.shape[0])
-    w = c.to_number(width) if width is not None else float(ref.shape[1])
-    bad = next((x for x in (*nums, h, w) if isinstance(x, ExcelError)), None)
-    if bad is not None:
-        return bad
-    dr, dc, h, w = int(nums[0]), int(nums[1]), int(h), int(w)
-    if h == 0 or w == 0:
-        return ExcelError.REF
-    r1, c1 = ref.row1 + dr, ref.col1 + dc
-    r2, c2 = r1 + h - 1, c1 + w - 1
-    r1, r2 = sorted((r1, r2))
-    c1, c2 = sorted((c1, c2))
-    return ctx.read(Ref(ref.sheet, r1, c1, r2, c2))
-
-
-_R1C1 = re.compile(r"(?:'((?:[^']|'')+)'!|([^!'\[\]]+)!)?R(\d+)C(\d+)(?::R(\d+)C(\d+))?",
-                   re.IGNORECASE)
-
-
-def _r1c1_ref(text: str) -> Ref | None:
-    m = _R1C1.fullmatch(text.strip())
-    if m is None:
-        return None
-    sheet = m.group(1).replace("''", "'") if m.group(1) else m.group(2)
-    r1, c1 = int(m.group(3)), int(m.group(4))
-    r2, c2 = (int(m.group(5)), int(m.group(6))) if m.group(5) else (r1, c1)
-    return Ref(sheet, min(r1, r2), min(c1, c2), max(r1, r2), max(c1, c2))
-
-
-@register("INDIRECT", "lookup", 1, 2, volatile=True)
-def _indirect(ctx, text, a1=True):
-    t = c.to_text(text)
-    if isinstance(t, ExcelError):
-        return t
-    style = c.to_bool(a1)
-    if isinstance(style, ExcelError):
-        return style
-    if not style:
-        target = _r1c1_ref(t)
-    else:
-        target = ctx.parse_ref(t) if ctx.parse_ref is not None else None
-    if target is None:
-        return ExcelError.REF
-    return target if isinstance(target, (Range, ExcelError)) else ctx.read(target)
-
-
-def _column_letters(col: int) -> str:
-    out = ""
-    while col:
-        col, rem = divmod(col - 1, 26)
-        out = chr(65 + rem) + out
-    return out
-
-
-@register("ADDRESS", "lookup", 2, 5)
-def _address(ctx, row, col, absolute=1.0, a1=True, sheet=None):
-    r, k, a = c.to_number(row), c.to_number(col), c.to_number(absolute)
-    bad = next((x for x in (r, k, a) if isinstance(x, ExcelError)), None)
-    if bad is not None:
-        return bad
-    style = c.to_bool(a1)
-    if isinstance(style, ExcelError):
-        return style
-    r, k, a = int(r), int(k), int(a)
-    if not (1 <= r <= 1_048_576 and 1 <= k <= 16_384) or a not in (1, 2, 3, 4):
-        return ExcelError.VALUE
-    row_abs, col_abs = a in (1, 2), a in (1, 3)
-    if style:
-        text = ("$" if col_abs else "") + _column_letters(k) + ("$" if row_abs else "") + str(r)
-    else:
-        text = (f"R{r}" if row_abs else f"R[{r}]") + (f"C{k}" if col_abs else f"C[{k}]")
-    if sheet is not None:
-        s = c.to_text(sheet)
-        if isinstance(s, ExcelError):
-            return s
-        if s:
-            quoted = s if re.fullmatch(r"[A-Za-z_][A-Za-z0-9_.]*", s) else (
-                "'" + s.replace("'", "''") + "'")
-            text = f"{quoted}!{text}"
-    return text
-
-
-@register("TRANSPOSE", "lookup", 1, 1, "range")
-def _transpose(ctx, v):
-    area = c.as_area(v)
-    return Range.array_of(zip(*area.rows)) if area.rows else area

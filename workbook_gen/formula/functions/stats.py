@@ -134,7 +134,18 @@ def _countblank(ctx, a):
 
 # -- conditional aggregates ------------------------------------------------------------
 
-def _matches(pairs) -> list[bool] | ExcelError:
+def _criterion_value(ctx, crit):
+    """A criteria range: the cell it shares with the formula's row or column, else its
+    first cell (POI's FormulaEvalTestData)."""
+    if not isinstance(crit, Range):
+        return crit
+    v = ctx.scalar(crit) if ctx is not None else ExcelError.VALUE
+    if v is ExcelError.VALUE and crit.shape != (1, 1):
+        return crit.rows[0][0] if crit.rows and crit.rows[0] else None
+    return v
+
+
+def _matches(pairs, ctx=None) -> list[bool] | ExcelError:
     """Per cell of the first range, whether every (range, criterion) pair holds."""
     shape = None
     mask = None
@@ -144,7 +155,7 @@ def _matches(pairs) -> list[bool] | ExcelError:
             shape = area.shape
         elif area.shape != shape:
             return ExcelError.VALUE
-        pred = c.criterion(c.scalar_of(crit))
+        pred = c.criterion(_criterion_value(ctx, crit))
         if isinstance(pred, ExcelError):
             return pred
         hits = [pred(v) for v in area.flat()]
@@ -164,7 +175,7 @@ def _resized(area: Range, shape, ctx) -> list:
 
 
 def _picked(ctx, target, pairs):
-    mask = _matches(pairs)
+    mask = _matches(pairs, ctx)
     if isinstance(mask, ExcelError):
         return mask
     area = c.as_area(target)
@@ -186,13 +197,13 @@ def _ifs_pairs(args):
     return [(args[i], args[i + 1]) for i in range(0, len(args), 2)]
 
 
-@register("SUMIF", "stats", 2, 3, ("range", "scalar", "range"))
+@register("SUMIF", "stats", 2, 3, "range")
 def _sumif(ctx, rng, crit, target=None):
     xs = _picked(ctx, rng if target is None else target, [(rng, crit)])
     return xs if isinstance(xs, ExcelError) else c.result(fsum(xs))
 
 
-@register("AVERAGEIF", "stats", 2, 3, ("range", "scalar", "range"))
+@register("AVERAGEIF", "stats", 2, 3, "range")
 def _averageif(ctx, rng, crit, target=None):
     xs = _picked(ctx, rng if target is None else target, [(rng, crit)])
     if isinstance(xs, ExcelError):
@@ -200,9 +211,9 @@ def _averageif(ctx, rng, crit, target=None):
     return c.result(fsum(xs) / len(xs)) if xs else ExcelError.DIV0
 
 
-@register("COUNTIF", "stats", 2, 2, ("range", "scalar"))
+@register("COUNTIF", "stats", 2, 2, "range")
 def _countif(ctx, rng, crit):
-    mask = _matches([(rng, crit)])
+    mask = _matches([(rng, crit)], ctx)
     return mask if isinstance(mask, ExcelError) else float(sum(mask))
 
 
@@ -211,7 +222,7 @@ def _countifs(ctx, *args):
     pairs = _ifs_pairs(args)
     if isinstance(pairs, ExcelError):
         return pairs
-    mask = _matches(pairs)
+    mask = _matches(pairs, ctx)
     return mask if isinstance(mask, ExcelError) else float(sum(mask))
 
 
@@ -254,7 +265,7 @@ def _sumproduct(ctx, *args):
 
 
 def _kth(ctx, area, kth, largest: bool):
-    xs = c.numbers([c.as_area(area)], ctx)
+    xs = c.numbers([area], ctx)  # a direct argument converts: LARGE("2.3",1) is 2.3
     if isinstance(xs, ExcelError):
         return xs
     kk = c.to_number(kth)

@@ -40,7 +40,7 @@ def _side(take_left: bool):
                 return x
         if k < 0:
             return ExcelError.VALUE
-        return t[:k] if take_left else (t[len(t) - k:] if k else "")
+        return t[:k] if take_left else (t[max(len(t) - k, 0):] if k else "")
     return fn
 
 
@@ -218,8 +218,11 @@ def _value(ctx, v):
     if isinstance(v, bool):
         return ExcelError.VALUE
     from workbook_gen.formula.functions.date import parse_date_text
-    x = c.text_to_number(v.replace(",", "") if re.fullmatch(r"[\s\-+]*\d{1,3}(,\d{3})+(\.\d*)?\s*",
-                                                            v) else v)
+    t = v.strip()
+    if t[:1] == "$" or t[:2] in ("-$", "+$"):  # a currency sign, as Excel's VALUE("$1,000")
+        t = t.replace("$", "", 1)
+    x = c.text_to_number(t.replace(",", "") if re.fullmatch(
+        r"[\s\-+]*\d{1,3}(,\d{3})+(\.\d*)?\s*", t) else t)
     if isinstance(x, ExcelError):
         x = parse_date_text(v)
     return x
