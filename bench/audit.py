@@ -2,8 +2,9 @@
 
 For the workbook generated at 10, 1 and 0.1 degree steps (37, 361, 3601 rows), in one
 run: our audit (best of REPEAT; total and its evaluate phase), LibreOffice headless
-recalculating the file (one run, start-up included), the ``formulas`` package (load +
-compile, calculate; one run), ``pycel`` in its own virtual environment (Table and Checks
+recalculating the file (one run, start-up included), ``formualizer`` (a Rust engine:
+``load_workbook(path).evaluate_all()``, load and evaluate; one run), the ``formulas``
+package (load + compile, calculate; one run), ``pycel`` in its own virtual environment (Table and Checks
 formula cells; one run) and plain numpy evaluating the closed form (best of 5). Prints
 absolute times and ratios against our audit. A peer that fails or times out is reported
 as such; a peer run whose predicted time (per-cell time of the largest finished size x
@@ -63,6 +64,17 @@ def formulas_runner(path: str) -> None:
                       "solution": len(solution)}))
 
 
+def formualizer_runner(path: str) -> None:
+    """Child process: time formualizer's load and evaluate_all, print JSON."""
+    import formualizer
+    start = time.perf_counter()
+    book = formualizer.load_workbook(path)
+    loaded = time.perf_counter()
+    book.evaluate_all()
+    done = time.perf_counter()
+    print(json.dumps({"load": loaded - start, "evaluate": done - loaded}))
+
+
 def _child(cmd: list[str], timeout: float) -> dict:
     """Run a timing child; its last stdout line is JSON. Raises TimeoutError/RuntimeError."""
     try:
@@ -87,6 +99,15 @@ def ensure_pycel() -> Path:
     subprocess.run([str(python), "-m", "pip", "install", "-q", "pycel", "openpyxl<3.1"],
                    check=True)
     return python
+
+
+def ensure_formualizer() -> None:
+    try:
+        import formualizer  # noqa: F401
+    except ImportError:
+        print("installing formualizer ...", flush=True)
+        subprocess.run([sys.executable, "-m", "pip", "install", "-q", "formualizer"],
+                       check=True)
 
 
 def ensure_formulas() -> None:
@@ -156,6 +177,13 @@ def measure(step: float, tmp: Path, args, prev: dict) -> dict:
         row["lo"] = Peer({"total": time.perf_counter() - start}, cells)
     except WorkbookGenError as exc:
         row["lo"] = Peer(status="failed", note=str(exc))
+
+    if args.formualizer_ok:
+        row["formualizer"] = run_peer(
+            "formualizer", [sys.executable, __file__, "--formualizer-runner", str(path)], cells,
+            ("load", "evaluate"), args.timeout, prev.get("formualizer"), cells)
+    else:
+        row["formualizer"] = Peer(status="failed", note=args.formualizer_why)
 
     if args.formulas_ok:
         row["formulas"] = run_peer(
@@ -237,6 +265,9 @@ def print_table(rows: list[dict]) -> None:
     add("our audit, total [s]", [f"{r['ours'].total:.3f}" for r in rows])
     add("  of which evaluate [s]", [f"{r['ours_eval']:.3f}" for r in rows])
     add("LibreOffice recalc [s] (1)", [_secs(r["lo"]) for r in rows])
+    add("formualizer load [s]", [_secs(r["formualizer"], "load") for r in rows])
+    add("formualizer evaluate_all [s]", [_secs(r["formualizer"], "evaluate") for r in rows])
+    add("formualizer total [s]", [_secs(r["formualizer"]) for r in rows])
     add("formulas load+compile [s]", [_secs(r["formulas"], "load") for r in rows])
     add("formulas calculate [s]", [_secs(r["formulas"], "calculate") for r in rows])
     add("formulas total [s]", [_secs(r["formulas"]) for r in rows])
@@ -248,8 +279,10 @@ def print_table(rows: list[dict]) -> None:
     add("  formulas", [_per_cell(r["formulas"]) for r in rows])
     add("  pycel", [_per_cell(r["pycel"]) for r in rows])
     add("ratios", [""] * len(rows))
-    add("LibreOffice / our audit (>=2)", [_ratio(r["lo"].total, r["ours"].total, r["lo"])
+    add("LibreOffice / our audit (>=4)", [_ratio(r["lo"].total, r["ours"].total, r["lo"])
                                           for r in rows])
+    add("formualizer / our audit (>1)", [_ratio(r["formualizer"].total, r["ours"].total,
+                                                r["formualizer"]) for r in rows])
     add("our evaluate / numpy (<=20)", [_ratio(r["ours_eval"], r["numpy"]) for r in rows])
     add("formulas / ours per cell (>=100)",
         [_ratio(r["formulas"].per_cell, r["ours"].per_cell, r["formulas"]) for r in rows])
@@ -263,7 +296,7 @@ def print_table(rows: list[dict]) -> None:
     print("~ extrapolated linearly in cells from the largest size that ran (see notes; per-cell")
     print("  times grow with size, so these are likely underestimates); > lower bound (timed out)")
     for r in rows:
-        for name in ("lo", "formulas", "pycel"):
+        for name in ("lo", "formualizer", "formulas", "pycel"):
             if r[name].note:
                 print(f"note {r['step']:g} deg, {name}: {r[name].note}")
 
@@ -274,21 +307,36 @@ def main() -> None:
     parser.add_argument("--timeout", type=float, default=600, help="per peer run [s]")
     parser.add_argument("--repeat", type=int, default=3, help="runs of our audit (best)")
     parser.add_argument("--formulas-runner", metavar="FILE", help=argparse.SUPPRESS)
+    parser.add_argument("--formualizer-runner", metavar="FILE", help=argparse.SUPPRESS)
+    parser.add_argument("--only", choices=["lo-formualizer"],
+                        help="lo-formualizer: our audit, LibreOffice and formualizer only")
     args = parser.parse_args()
     if args.formulas_runner:
         formulas_runner(args.formulas_runner)
         return
+    if args.formualizer_runner:
+        formualizer_runner(args.formualizer_runner)
+        return
+    args.formualizer_ok, args.formualizer_why = True, ""
+    try:
+        ensure_formualizer()
+    except (subprocess.CalledProcessError, OSError) as exc:
+        args.formualizer_ok, args.formualizer_why = False, f"cannot install formualizer: {exc}"
 
     args.formulas_ok, args.formulas_why = True, ""
-    try:
-        ensure_formulas()
-    except (subprocess.CalledProcessError, OSError) as exc:
-        args.formulas_ok, args.formulas_why = False, f"cannot install formulas: {exc}"
     args.pycel_python, args.pycel_why = None, ""
-    try:
-        args.pycel_python = ensure_pycel()
-    except (subprocess.CalledProcessError, OSError) as exc:
-        args.pycel_why = f"cannot set up pycel's venv: {exc}"
+    if args.only:
+        args.formulas_ok, args.formulas_why = False, "not run (--only)"
+        args.pycel_why = "not run (--only)"
+    else:
+        try:
+            ensure_formulas()
+        except (subprocess.CalledProcessError, OSError) as exc:
+            args.formulas_ok, args.formulas_why = False, f"cannot install formulas: {exc}"
+        try:
+            args.pycel_python = ensure_pycel()
+        except (subprocess.CalledProcessError, OSError) as exc:
+            args.pycel_why = f"cannot set up pycel's venv: {exc}"
 
     print(machine())
     print(f"scene: {SCENE.relative_to(ROOT)}; timeout per peer run {args.timeout:g} s; "
@@ -299,7 +347,7 @@ def main() -> None:
             print(f"  measuring {step:g} deg ...", file=sys.stderr, flush=True)
             row = measure(step, Path(tmp), args, prev)
             rows.append(row)
-            for name in ("formulas", "pycel"):
+            for name in ("formualizer", "formulas", "pycel"):
                 if row[name].status == "ok":
                     prev[name] = (row[name], step, row["cells"])
     print()

@@ -79,7 +79,10 @@ def _libreoffice_explains(inputs: AuditInputs, key, value_of, cached) -> bool:
         return False
     resolver = _Resolver(value_of, inputs.book.defined_names, key[0],
                          getattr(value_of, "clip", None))
-    value = evaluate_scalar(node, resolver, dialect="libreoffice")
+    try:
+        value = evaluate_scalar(node, resolver, dialect="libreoffice")
+    except (ArithmeticError, ValueError, TypeError, IndexError, KeyError, RecursionError):
+        return False  # the re-check is a courtesy: a defect in it must not lose the file
     return compare(cached, value, 0.0).agree
 
 

@@ -210,7 +210,15 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
             if taint or shapes[u][1] or head in result.unsupported or head in result.volatile:
                 _spread(units[u], shapes[u], taint, result)
             clock = time.perf_counter()
-            _evaluate(units[u], store, name_table, dialect)
+            try:
+                _evaluate(units[u], store, name_table, dialect)
+            except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
+                    AttributeError, RecursionError) as exc:  # a defect must not lose the file
+                log.warning("evaluator failure at %s: %r", _where(units[u].cells()[0]), exc)
+                for cell in units[u].cells():
+                    store.put(*cell, ExcelError.VALUE)
+                    _source(result, taint, cell, cell,
+                            f"evaluator failure: {type(exc).__name__}: {exc}")
             spent["vector" if units[u].block is not None else "scalar"] += (
                 time.perf_counter() - clock)
     result.seconds.update(spent)

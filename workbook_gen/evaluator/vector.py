@@ -168,6 +168,9 @@ class _Compiler:
             return (lambda env: Const(fx.ExcelError.NAME)), False
         if name in ("IF", "IFERROR"):
             return self._lazy(node)
+        if name in ("INDIRECT", "OFFSET"):  # a reference per row: the cell-by-cell path
+            raise NotVectorizable(f"{name} gives a reference")  # (#REF! per row otherwise:
+            # poi__StructuredRefs-lots-with-lookups.xlsx, INDIRECT("A"&ROW(...)-1))
         if entry.lazy:
             raise NotVectorizable(f"{name} is evaluated lazily, cell by cell")
         if name in ("ROW", "COLUMN") and len(node.args) <= 1:

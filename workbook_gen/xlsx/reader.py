@@ -17,7 +17,7 @@ import logging
 import posixpath
 import re
 from pathlib import Path
-from xml.etree.ElementTree import Element
+from xml.etree.ElementTree import Element, ParseError, fromstring
 
 from workbook_gen.errors import WorkbookReadError
 from workbook_gen.xlerror import ExcelError
@@ -230,12 +230,7 @@ def _read_sheet(pkg: Package, part: str, sheet: Sheet, strings: list[str], budge
     count = row_no = n_rows = 0
     pending: list[Cell] = []
     arrays: list[Cell] = []
-    for row in pkg.iter_xml(part):
-        tag = local.get(row.tag)
-        if tag != "row":
-            if tag == "dimension":
-                sheet.dimension = row.get("ref")
-            continue
+    for row in _rows(pkg, part, sheet):
         n_rows += 1
         r = row.get("r")
         row_no = int(r) if r and r.isdigit() else row_no + 1
@@ -296,6 +291,88 @@ def _read_sheet(pkg: Package, part: str, sheet: Sheet, strings: list[str], budge
         cell.shared_master = shared[cell.shared_index].master
     _mark_arrays(sheet, arrays)
     return count
+
+
+_SHEET_DATA = re.compile(rb"<(?:([A-Za-z_][\w.-]*):)?sheetData\b[^>]*?(/?)>")
+_DIMENSION = re.compile(rb"<(?:[A-Za-z_][\w.-]*:)?dimension\b[^>]*?\bref=\"([^\"]*)\"")
+_ROOT_TAG = re.compile(rb"<(?!\?|!)((?:[A-Za-z_][\w.-]*:)?[A-Za-z_][\w.-]*)\b[^>]*>")
+_BATCH = 1 << 20
+
+
+def _rows(pkg: Package, part: str, sheet: Sheet):
+    """The <row> elements of a worksheet part, in order.
+
+    Fast path: the part's bytes are cut after a ``</row>`` about every megabyte and each
+    batch of rows is parsed whole (in C) inside a copy of the root's start tag, so that
+    no Python code runs per XML element. The prolog is checked first (no DOCTYPE); a part
+    that is not plain UTF-8 or that this cutting cannot handle is read element by element.
+    """
+    chunks = pkg._chunks(part)
+    head = b""
+    for chunk in chunks:
+        head += chunk
+        if _SHEET_DATA.search(head) or len(head) > 4 * _BATCH:
+            break
+    ok = not head.startswith((b"\xff\xfe", b"\xfe\xff")) and head[:2].find(b"\0") < 0
+    m = _SHEET_DATA.search(head) if ok else None
+    root = _ROOT_TAG.search(head) if m else None
+    if m is None or root is None or b"<![CDATA[" in head or not _safe(pkg, part, head):
+        yield from _slow_rows(pkg, part, sheet)
+        return
+    dim = _DIMENSION.search(head, 0, m.start())
+    if dim is not None:
+        sheet.dimension = dim.group(1).decode("utf-8", "replace")
+    if m.group(2):  # <sheetData/>
+        return
+    prefix = m.group(1) + b":" if m.group(1) else b""
+    start_tag = head[root.start():root.end()]
+    if start_tag.endswith(b"/>"):
+        yield from _slow_rows(pkg, part, sheet)
+        return
+    close_root = b"</" + root.group(1) + b">"
+    end_data = b"</" + prefix + b"sheetData>"
+    row_end = b"</" + prefix + b"row>"
+    buf = head[m.end():]
+    done = False
+    while True:
+        stop = buf.find(end_data)
+        if stop >= 0:
+            batch, buf, done = buf[:stop], b"", True
+        else:
+            cut = buf.rfind(row_end) if len(buf) >= _BATCH else -1
+            if cut < 0:
+                chunk = next(chunks, None)
+                if chunk is None:
+                    raise pkg.error(part, "broken XML: the sheet data does not end")
+                if b"<![CDATA[" in chunk:
+                    raise pkg.error(part, "CDATA in sheet data is not read")
+                buf += chunk
+                continue
+            cut += len(row_end)
+            batch, buf = buf[:cut], buf[cut:]
+        try:
+            wrapper = fromstring(start_tag + batch + close_root)
+        except ParseError as exc:
+            raise pkg.error(part, f"broken XML: {exc}") from None
+        yield from wrapper
+        if done:
+            for _ in chunks:  # the rest of the part still counts against the budget
+                pass
+            return
+
+
+def _safe(pkg: Package, part: str, head: bytes) -> bool:
+    from workbook_gen.xlsx.limits import _prolog_is_safe
+    return _prolog_is_safe(head, part, pkg, final=True)
+
+
+def _slow_rows(pkg: Package, part: str, sheet: Sheet):
+    for el in pkg.iter_xml(part):
+        tag = _LOCAL.get(el.tag)
+        if tag == "row":
+            yield el
+        elif tag == "dimension":
+            sheet.dimension = el.get("ref")
 
 
 def _value(kind: str, v: str | None, inline: Element | None, strings: list[str]) -> Value:
