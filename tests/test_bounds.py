@@ -85,3 +85,31 @@ def test_generate_refuses_a_sweep_its_audit_would_refuse(tmp_path):
     least = float(result.stderr.rsplit("at least", 1)[1])
     assert cells_of(load_scene("templates/sewing_machine.toml", step=least)) \
         <= MAX_CELLS
+
+
+def test_formulas_that_each_differ_are_refused_beyond_the_time_budget(tmp_path, monkeypatch):
+    """The cost model (36 us a cell of a run, 0.5 ms a formula parsed on its own) bounds
+    the audit's time: refused while grouping, before the long part; runs are cheap."""
+    from workbook_gen.errors import WorkbookReadError
+    from workbook_gen.evaluator import grouping
+    n = 1000
+    distinct = {("S", r, 2): f"A{r}*{r}+1" for r in range(1, n + 1)}
+    filled = {("S", r, 2): f"A{r}*2+1" for r in range(1, n + 1)}
+    budget = grouping.COST_CELL * n + grouping.COST_PARSED * 500  # 500 formulas parsed
+    with pytest.raises(WorkbookReadError, match="differ from the cell above"):
+        grouping.group_formulas(distinct, budget)
+    runs, _ = grouping.group_formulas(filled, budget)
+    assert len(runs) == 1
+    path = tmp_path / "distinct.xlsx"
+    book = xlsxwriter.Workbook(path)
+    sheet = book.add_worksheet()
+    for r in range(1, 201):
+        sheet.write_number(r - 1, 0, r)
+        sheet.write_formula(r - 1, 1, f"=A{r}*{r}+1", None, r * r + 1)
+    book.close()
+    from workbook_gen import audit
+    assert audit(path).cells_agree == 200
+    monkeypatch.setattr(grouping, "BUDGET", grouping.COST_CELL * 200 + grouping.COST_PARSED * 100)
+    with pytest.raises(WorkbookReadError) as refused:
+        audit(path)
+    assert str(path) in str(refused.value)

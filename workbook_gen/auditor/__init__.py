@@ -185,10 +185,13 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
     step("read")
     t = time.perf_counter()
     semantics = dialect_of(inputs.book.application)  # the engine that saved the file
-    evaluation = evaluate_cells(inputs.formulas, inputs.constants, inputs.book.defined_names,
-                                vectorize=vectorize, uncheckable=inputs.uncheckable(),
-                                dialect=semantics, book=inputs.book_info(),
-                                arrays=inputs.arrays)
+    try:
+        evaluation = evaluate_cells(inputs.formulas, inputs.constants, inputs.book.defined_names,
+                                    vectorize=vectorize, uncheckable=inputs.uncheckable(),
+                                    dialect=semantics, book=inputs.book_info(),
+                                    arrays=inputs.arrays)
+    except WorkbookReadError as exc:  # the evaluator's refusal (cost), named by file
+        raise WorkbookReadError(f"{path}: {exc}") from None
     timings["evaluate_all"] = time.perf_counter() - t
     skipped = evaluation.not_checked
 

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from workbook_gen.errors import FormulaSyntaxError
+from workbook_gen.errors import FormulaSyntaxError, WorkbookReadError
 from workbook_gen.formula import ast
 from workbook_gen.formula import tokenizer as tk
 from workbook_gen.formula.parser import parse
@@ -66,14 +66,29 @@ def template(text: str) -> tuple[str, list[int]] | None:
     return "".join(pieces), rows
 
 
+# The audit's CPU cost on a 2-core machine (measured, see xlsx/limits.py): about 36 us a
+# formula cell of a run, and 0.5 ms more for each formula parsed and evaluated on its own
+# (100,000 formulas that each differ from the cell above: 53 s). A workbook whose cost
+# exceeds the budget is refused while it is being grouped, before the long part.
+COST_CELL, COST_PARSED, BUDGET = 36e-6, 5e-4, 60.0
+
+
 def find_runs(column: list[tuple[int, str]], sheet: str, col: int,
-              syntax_errors: dict) -> list[Run]:
+              syntax_errors: dict, allowed: list[int] | None = None) -> list[Run]:
     """Cut one column's formulas (sorted by row) into runs; formulas that do not parse
-    go to ``syntax_errors[(sheet, row, col)]`` and into no run."""
+    go to ``syntax_errors[(sheet, row, col)]`` and into no run. ``allowed[0]``: how many
+    more formulas may be parsed (WorkbookReadError beyond)."""
     runs = []
     i = 0
     while i < len(column):
         row, text = column[i]
+        if allowed is not None:
+            allowed[0] -= 1
+            if allowed[0] < 0:
+                raise WorkbookReadError(
+                    "too many formulas that differ from the cell above them (each is parsed "
+                    f"and evaluated on its own, about {COST_PARSED * 1e3:g} ms each): the "
+                    f"audit would take over {BUDGET:g} s of CPU")
         try:
             node = parse(text)
         except FormulaSyntaxError as exc:
@@ -94,8 +109,11 @@ def find_runs(column: list[tuple[int, str]], sheet: str, col: int,
     return runs
 
 
-def group_formulas(formulas) -> tuple[list[Run], dict]:
-    """Runs of every column of ``formulas`` {(sheet, row, col): text}, and syntax errors."""
+def group_formulas(formulas, budget: float | None = None) -> tuple[list[Run], dict]:
+    """Runs of every column of ``formulas`` {(sheet, row, col): text}, and syntax errors.
+    ``budget``: seconds of CPU the audit may cost (default: BUDGET)."""
+    budget = BUDGET if budget is None else budget
+    allowed = [int((budget - COST_CELL * len(formulas)) / COST_PARSED)]
     columns: dict[tuple[str, int], list[tuple[int, str]]] = {}
     for (sheet, row, col), text in formulas.items():
         columns.setdefault((sheet, col), []).append((row, text))
@@ -103,5 +121,5 @@ def group_formulas(formulas) -> tuple[list[Run], dict]:
     errors: dict = {}
     for (sheet, col), cells in columns.items():
         cells.sort()
-        runs.extend(find_runs(cells, sheet, col, errors))
+        runs.extend(find_runs(cells, sheet, col, errors, allowed))
     return runs, errors
