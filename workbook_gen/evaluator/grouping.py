@@ -66,11 +66,11 @@ def template(text: str) -> tuple[str, list[int]] | None:
     return "".join(pieces), rows
 
 
-# The audit's CPU cost on a 2-core machine (measured, see xlsx/limits.py): about 36 us a
+# The audit's CPU cost on a 2-core machine (measured, see xlsx/limits.py): up to 44 us a
 # formula cell of a run, and 0.5 ms more for each formula parsed and evaluated on its own
 # (100,000 formulas that each differ from the cell above: 53 s). A workbook whose cost
 # exceeds the budget is refused while it is being grouped, before the long part.
-COST_CELL, COST_PARSED, BUDGET = 36e-6, 5e-4, 60.0
+COST_CELL, COST_PARSED, BUDGET = 44e-6, 5e-4, 60.0
 
 
 def find_runs(column: list[tuple[int, str]], sheet: str, col: int,

@@ -24,13 +24,14 @@ from workbook_gen.errors import WorkbookReadError
 MiB = 1 << 20
 MAX_UNCOMPRESSED = 1024 * MiB
 """Default budget of inflated bytes for a whole workbook."""
-MAX_CELLS = 1_500_000
+MAX_CELLS = 1_200_000
 """Default ceiling of cells (<c> elements) read from a workbook, where the audit's time and
-memory hold on a 2-core machine: ~36 us of CPU and ~0.75 KB of memory a cell for formulas
-filled down (the sewing machine at 0.05 deg, 403k formula cells: 14.8 s, 349 MB), so
-1.5 M cells audit in ~55 s and under 1.2 GB. ``generate`` refuses a sweep whose workbook
-would exceed it. (Formulas that each differ from the next cost ~0.5 ms a cell: 100k of
-them take ~53 s.)"""
+memory hold on a 2-core machine (CPU time, ``/usr/bin/time``): the sewing machine at
+0.05 deg (403k formula cells) 14.8 s and 349 MB; parallel_4dof_balanced at 0.0352 deg
+(1.48 M formula cells, 1.50 M cells) 65.6 s and 1.18 GB, i.e. up to ~44 us and ~0.8 KB a
+cell: 1.2 M cells stay under ~55 s and ~1 GB. ``generate`` refuses a sweep whose workbook
+would exceed it; formulas that each differ cost more and are bounded by the grouping's
+cost model (evaluator/grouping.py)."""
 MAX_RATIO = 200.0
 """Default ceiling of uncompressed/compressed size for a part larger than RATIO_FLOOR."""
 RATIO_FLOOR = 1 * MiB
