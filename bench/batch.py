@@ -56,23 +56,24 @@ def loop(out: Path, count: int) -> float:
     return time.perf_counter() - start
 
 
-def summary_only(out: Path, count: int, jobs: int) -> tuple[float, float, float]:
-    """(seconds, peak MB of the command's process, peak MB of any worker) of
-    ``workbook-gen batch --summary-only`` in a child process."""
+def summary_only(out: Path, count: int, jobs: int) -> tuple[float, ...]:
+    """(seconds, peak MB of the command's process, peak MB of any worker, CPU seconds of
+    the command, CPU seconds of its workers) of ``batch --summary-only`` in a child."""
     rows = count // 100
     vary = [f"l_BC=95:{95 + (rows - 1) * 0.01:.2f}:0.01", "l_AB=30:31.98:0.02"]
     code = ("import resource, sys, time; from workbook_gen import batch; t = time.perf_counter(); "
             f"f = batch({SCENE!r}, vary={vary!r}, out={str(out)!r}, jobs={jobs}, "
             "summary_only=True, progress=False); s = time.perf_counter() - t; "
             f"assert len(f) == {count}; "
-            "print(s, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, "
-            "resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024)")
+            "me, kids = (resource.getrusage(w) for w in (resource.RUSAGE_SELF, "
+            "resource.RUSAGE_CHILDREN)); "
+            "print(s, me.ru_maxrss / 1024, kids.ru_maxrss / 1024, "
+            "me.ru_utime + me.ru_stime, kids.ru_utime + kids.ru_stime)")
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(
         [str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]))
     result = subprocess.run([sys.executable, "-c", code], env=env, check=True,
                             capture_output=True, text=True)
-    seconds, parent, workers = (float(x) for x in result.stdout.split())
-    return seconds, parent, workers
+    return tuple(float(x) for x in result.stdout.split())
 
 
 def main() -> None:
@@ -97,12 +98,14 @@ def main() -> None:
                   f"variants/s); --jobs {args.jobs} is {single / pool:.2f}x faster", flush=True)
             shutil.rmtree(tmp / "loop")
         if "2" in args.parts:
-            seconds, parent, workers = summary_only(tmp / "summary", args.summary, args.jobs)
+            seconds, parent, workers, cpu, cpu_workers = summary_only(
+                tmp / "summary", args.summary, args.jobs)
             rate = args.summary / seconds
             versus = f", {rate / (n / pool):.0f}x the file batch's" if pool else ""
             print(f"2. --summary-only, {args.summary:,} variants, --jobs {args.jobs}: "
                   f"{seconds:.1f} s ({rate:,.0f} variants/s{versus}); peak memory "
-                  f"{parent:.0f} MB (command), {workers:.0f} MB (largest worker)", flush=True)
+                  f"{parent:.0f} MB (command), {workers:.0f} MB (largest worker); CPU "
+                  f"{cpu:.1f} s (command) + {cpu_workers:.1f} s (workers)", flush=True)
         if "3" in args.parts:
             from distributed import Client, LocalCluster
             os.environ["PYTHONPATH"] = os.pathsep.join(
