@@ -71,7 +71,9 @@ ATAN2_YX = _exact(np.arctan2, math.atan2, 2)
 
 
 def first_error(*errs: np.ndarray) -> np.ndarray:
-    """Per element, the error of the leftmost operand that has one."""
+    """Per element, the error of the leftmost operand that has one (a new array)."""
+    if len(errs) == 2 and not errs[0].any():  # the common case: a clean left operand
+        return errs[1].astype(np.uint8)
     out = errs[-1].copy()
     for e in reversed(errs[:-1]):
         out = np.where(e != 0, e, out)
@@ -80,6 +82,8 @@ def first_error(*errs: np.ndarray) -> np.ndarray:
 
 def finish(val: np.ndarray, err: np.ndarray, fresh=None, code: int = NUM):
     """Fresh ``code`` where ``fresh`` and no earlier error; inf/NaN -> #NUM!; no -0."""
+    if (fresh is None or not fresh.any()) and not err.any() and np.isfinite(val).all():
+        return val + 0.0, err.copy()  # nothing to mark: the same values and codes
     err = err.copy()
     if fresh is not None:
         err[(err == 0) & fresh] = code
