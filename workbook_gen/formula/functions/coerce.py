@@ -18,13 +18,13 @@ import re
 from functools import lru_cache
 
 from workbook_gen.formula.values import (
-    Range, Value, checked, compare, rank, scalar_of, text_to_number, to_bool, to_number,
-    to_text,
+    Range, Value, checked, compare, number_to_text, rank, scalar_of, text_to_number, to_bool,
+    to_number, to_text,
 )
 from workbook_gen.xlerror import ExcelError
 
 __all__ = [
-    "Range", "Value", "checked", "compare", "rank", "scalar_of", "text_to_number",
+    "Range", "Value", "checked", "compare", "number_to_text", "rank", "scalar_of", "text_to_number",
     "to_bool", "to_number", "to_text", "is_error", "is_number", "flat", "number",
     "integer", "text", "numbers", "logicals", "result", "wildcard", "criterion",
     "as_area", "first_error",

@@ -163,6 +163,8 @@ def _two_dates(a, b):
     for v in (x, y):
         if isinstance(v, ExcelError):
             return v
+        if isinstance(from_serial(v), ExcelError):  # before 1900 or after 9999
+            return ExcelError.NUM
     return math.floor(x), math.floor(y)
 
 

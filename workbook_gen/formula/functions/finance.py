@@ -46,7 +46,8 @@ def pv(r, n, p, fv_=0.0, when=0.0):
 
 def _safe(fn, *xs):
     try:
-        return c.result(float(fn(*xs)))
+        y = fn(*xs)
+        return y if isinstance(y, ExcelError) else c.result(float(y))
     except (OverflowError, ZeroDivisionError, ValueError):
         return ExcelError.NUM
 

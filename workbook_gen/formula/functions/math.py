@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import math
 import random
-from decimal import ROUND_CEILING, ROUND_DOWN, ROUND_FLOOR, ROUND_HALF_UP, ROUND_UP, Decimal
+from decimal import (
+    ROUND_CEILING, ROUND_DOWN, ROUND_FLOOR, ROUND_HALF_UP, ROUND_UP, Decimal, localcontext,
+)
 
 from workbook_gen.formula.functions import coerce as c
 from workbook_gen.formula.functions.registry import register
@@ -153,12 +155,14 @@ def _decimal(x: float) -> Decimal:
 
 
 def _round(x: float, digits: float, mode) -> float:
-    d = int(digits)
-    if d > 15:
+    d = int(max(min(digits, 400.0), -400.0))
+    if d > 15 or x == 0:
         return x
     q = Decimal(1).scaleb(-d)
-    return float(_decimal(x).quantize(q, rounding=mode) if d >= 0 else
-                 (_decimal(x) / q).quantize(Decimal(1), rounding=mode) * q)
+    with localcontext() as ctx:
+        ctx.prec = 800  # quantize must not run out of digits (1E300 to 15 places)
+        return float(_decimal(x).quantize(q, rounding=mode) if d >= 0 else
+                     (_decimal(x) / q).quantize(Decimal(1), rounding=mode) * q)
 
 
 def _rounder(name, mode):
@@ -178,8 +182,10 @@ _rounder("TRUNC", ROUND_DOWN)
 def _multiple(x: float, m: float, mode) -> float:
     if m == 0:
         return 0.0
-    q = (_decimal(x) / _decimal(m)).quantize(Decimal(1), rounding=mode)
-    return float(q * _decimal(m))
+    with localcontext() as ctx:
+        ctx.prec = 800
+        q = (_decimal(x) / _decimal(m)).quantize(Decimal(1), rounding=mode)
+        return float(q * _decimal(m))
 
 
 @register("MROUND", "math", 2, 2)

@@ -142,7 +142,7 @@ def call(name: str, args: list, ctx: Context | None = None) -> Value | Range:
             args = [float(a) if isinstance(a, bool) else a for a in args]
     try:
         return entry.fn(ctx, *args)
-    except (ValueError, OverflowError):  # a math domain or range error of Python's
-        return ExcelError.NUM
     except ZeroDivisionError:
         return ExcelError.DIV0
+    except (ValueError, ArithmeticError):  # a math domain or range error, decimal's too
+        return ExcelError.NUM

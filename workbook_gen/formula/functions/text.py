@@ -19,7 +19,8 @@ def _texts(*vs):
     return bad if bad is not None else out
 
 
-def _count(v, default=None):
+def _count(v, default=0):
+    """An integer argument (truncated); ``default`` when it is omitted or empty."""
     if v is None:
         return default
     x = c.to_number(v)
@@ -285,8 +286,8 @@ def _format_section(x: float, fmt: str, ctx) -> str | ExcelError:
     if core.endswith("%") or "%" in suffix:
         x *= 100
     text = format_number(x, decimals, "," in whole_part)
-    if frac_part.startswith("#"):
-        text = text.rstrip("0").rstrip(".")
+    if frac_part.startswith("#"):  # optional digits: "1." for 1 with "#.###", as Excel
+        text = text.rstrip("0")
     whole_zeros = whole_part.replace(",", "").count("0")
     sign = "-" if text.startswith("-") else ""
     whole, dot, frac = text.lstrip("-").partition(".")
@@ -302,8 +303,8 @@ def _text(ctx, v, fmt):
     f = c.to_text(fmt)
     if isinstance(f, ExcelError):
         return f
-    if isinstance(v, ExcelError):
-        return v
+    if isinstance(v, (ExcelError, bool)):  # TEXT(TRUE,...) is "TRUE" (pycel's text.xlsx)
+        return c.to_text(v)
     if isinstance(v, str):
         x = c.text_to_number(v)
         if isinstance(x, ExcelError):
