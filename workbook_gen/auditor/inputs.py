@@ -61,15 +61,16 @@ class AuditInputs:
     @property
     def formula_count(self) -> int:
         """Formula cells as the file stores them: an array formula counts once."""
+        # array masters, and the cells of an array's area that the file gives an empty <f/>
         masters = sum(1 for k in self.array_cells
-                      if self.book.sheet(k[0]).cell(k[1], k[2]).is_array)
+                      if self.book.sheet(k[0]).cell(k[1], k[2]).has_formula)
         return len(self.formulas) + len(self.broken) + masters
 
     def is_formula(self, key: Key) -> bool:
         if key in self.formulas or key in self.broken:
             return True
         cell = self.book.sheet(key[0]).cell(key[1], key[2])
-        return cell is not None and cell.is_array
+        return cell is not None and cell.has_formula
 
     @staticmethod
     def ref(key: Key) -> str:
@@ -107,7 +108,7 @@ def read_inputs(path: str | Path) -> AuditInputs:
     for sheet in book.sheets:
         for cell in sheet.cells.values():
             key = (sheet.name, cell.row, cell.col)
-            if cell.is_array or (cell.array_master and not cell.has_formula):
+            if cell.is_array or (cell.array_master and cell.formula is None):
                 inputs.array_cells.append(key)
                 inputs.constants[key] = cell.value
                 inputs.cached[key] = cell.value
