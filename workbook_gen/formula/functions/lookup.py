@@ -50,6 +50,35 @@ def find(lookup, values: list, mode: int, wildcards: bool = True, reverse: bool 
     return found
 
 
+_INDEXES: dict[int, tuple] = {}  # id(rows) -> (rows, {key: first row}); rows are cached
+
+
+def _key(v):
+    """What exact lookup compares: type rank and value (text without case); None for
+    blanks and errors, which never match."""
+    if v is None or isinstance(v, ExcelError):
+        return None
+    rank = c.rank(v)
+    return (rank, v.lower() if rank == 1 else bool(v) if rank == 2 else float(v))
+
+
+def _exact_index(rows) -> dict:
+    """{key: first row} of the first column of a table, built once per table (a table read
+    from the workbook is one cached object): VLOOKUP(x, T, n, FALSE) x 10,000 stays linear."""
+    hit = _INDEXES.get(id(rows))
+    if hit is not None and hit[0] is rows:
+        return hit[1]
+    index: dict = {}
+    for i, row in enumerate(rows):
+        k = _key(row[0]) if row else None
+        if k is not None and k not in index:
+            index[k] = i
+    if len(_INDEXES) > 256:
+        _INDEXES.clear()
+    _INDEXES[id(rows)] = (rows, index)
+    return index
+
+
 def _comparable(v, lookup) -> bool:
     return v is not None and not isinstance(v, ExcelError) and c.rank(v) == c.rank(lookup)
 
@@ -185,7 +214,10 @@ def _table_lookup(ctx, lookup, table, index, approx, by_rows: bool):
         return ExcelError.VALUE
     if not rows or n > len(rows[0]):
         return ExcelError.REF
-    i = find(lookup, [r[0] for r in rows], 1 if approx else 0)
+    if not approx and not by_rows and _exact_pattern(lookup) is None and lookup is not None:
+        i = _exact_index(rows).get(_key(lookup))  # the first equal key: find()'s answer
+    else:
+        i = find(lookup, [r[0] for r in rows], 1 if approx else 0)
     return ExcelError.NA if i is None else rows[i][n - 1]
 
 
