@@ -101,12 +101,20 @@ def text_to_number(text: str) -> float | ExcelError:
     if s.endswith("%"):
         s, scale = s[:-1].strip(), 0.01
     if not s or not all(c in "0123456789.eE+-" for c in s):  # rejects inf, nan, 0x..
-        return ExcelError.VALUE
+        return _date_text(text)
     try:
         x = float(s) * scale
     except ValueError:
-        return ExcelError.VALUE
+        return _date_text(text)
     return x if math.isfinite(x) else ExcelError.VALUE  # "1E999" is text to Excel
+
+
+def _date_text(text: str) -> float | ExcelError:
+    """Text that reads as a date or a time is its serial number ("2020-03-01" + 0)."""
+    if not any(ch.isdigit() for ch in text):
+        return ExcelError.VALUE
+    from workbook_gen.formula.functions.datetext import parse_date_text
+    return parse_date_text(text)
 
 
 def to_bool(v: Value) -> bool | ExcelError:

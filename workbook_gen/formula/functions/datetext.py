@@ -61,10 +61,20 @@ def parse_date_text(text: str) -> float | ExcelError:
     year = int(parts["y"])
     if year < 100:
         year += 2000 if year < 30 else 1900
+    day = int(parts["d"])
+    if (year, int(month), day) == (1900, 2, 29):  # the day Excel counts, serial 60
+        return 60.0 + time
     try:
-        d = dt.date(year, int(month), int(parts["d"]))
+        d = dt.date(year, int(month), day)
     except ValueError:
-        return ExcelError.VALUE
+        if "m" not in parts or "d" not in parts or int(month) <= 12:
+            return ExcelError.VALUE
+        try:  # "29/02/1900": day first, as a European Excel reads it
+            if (year, day, int(month)) == (1900, 2, 29):
+                return 60.0 + time
+            d = dt.date(year, day, int(month))
+        except ValueError:
+            return ExcelError.VALUE
     return _to_serial(d) + time
 
 

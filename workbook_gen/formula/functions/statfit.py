@@ -164,9 +164,9 @@ def percentile(xs: list[float], p: float, exclusive: bool):
 
 def _quantile(name, exclusive, quart):
     def scalar(ctx, area, k):
-        xs = c.numbers([c.as_area(area)], ctx)
         p = c.to_number(k)
-        for v in (xs, p):
+        xs = c.numbers([c.as_area(area)], ctx)
+        for v in (p, xs):  # the k argument's error first (formulas' test.xlsx)
             if isinstance(v, ExcelError):
                 return v
         if not xs:
