@@ -23,7 +23,7 @@ from ..version import VERSION
 from . import runners
 from .folder import Folder, digest
 from .job import JobSpec, run_chunk
-from .summary import write_csv, write_xlsx
+from .summary import write_summaries
 from .summary_only import block_size, summary_block
 from .table import Table
 from .variants import Design, from_design, from_specs
@@ -140,8 +140,7 @@ def batch(scene: str | Path | Scene, vary: Sequence[str] | None = None,
              ("statuses", _counts(table)), ("workbooks", "none (--summary-only)" if summary_only
                                             else f"{base.name}-{'0' * (width - 1)}1.xlsx ..."),
              ("scene as given", text)]
-    write_csv(table, folder_path / "summary.csv")
-    write_xlsx(table, folder_path / "summary.xlsx", about)
+    write_summaries(table, folder_path / "summary.csv", folder_path / "summary.xlsx", about)
     frame = table.frame()
     frame.attrs["folder"] = str(folder_path)
     frame.attrs["failed"] = sum(table.failed())
