@@ -29,6 +29,7 @@ from .table import Table
 from .variants import Design, from_design, from_specs
 
 log = logging.getLogger(__name__)
+_FIRST_BLOCK = 32   # variants in the first --summary-only block
 
 
 def _read(scene: str | Path | Scene) -> tuple[str, str, dict, float | None]:
@@ -158,7 +159,13 @@ def _counts(table: Table) -> str:
 def _summaries_only(spec: JobSpec, plan: Design, table: Table, runner, progress) -> None:
     bar = _progress(len(plan), 0, progress)
     try:
-        parts = runners.chunks(plan.variants, block_size(spec))
+        # A small first block: a local pool runs it in this process to warm the caches
+        # its forked workers inherit, before they start (a block's numbers do not depend
+        # on how the variants are cut into blocks).
+        size = block_size(spec)
+        first = min(size, _FIRST_BLOCK, len(plan.variants))
+        parts = ([plan.variants[:first]] if first else []) + runners.chunks(
+            plan.variants[first:], size)
         for part, block in runner.run(summary_block, spec, parts):
             table.put_block(part, block)
             if bar is not None:
