@@ -119,7 +119,12 @@ class Table:
 def number_texts(values: list) -> list[str]:
     """``repr`` of each number ('' for None and NaN), formatted in C: ``repr`` of a list
     formats its floats as ``repr`` of each does."""
-    texts = repr(values)[1:-1].split(", ") if values else []
+    if not values:
+        return []
+    text = repr(values)[1:-1]
+    texts = text.split(", ")
+    if "nan" not in text and "None" not in text:  # every row a number: nothing to blank
+        return texts
     return ["" if t in ("nan", "None") else t for t in texts]
 
 
