@@ -184,8 +184,9 @@ def _multiple(x: float, m: float, mode) -> float:
         return 0.0
     with localcontext() as ctx:
         ctx.prec = 800
-        q = (_decimal(x) / _decimal(m)).quantize(Decimal(1), rounding=mode)
-        return float(q * _decimal(m))
+        ratio = Decimal(format(_decimal(x) / _decimal(m), ".15g"))  # 15 digits, as Excel
+        q = ratio.quantize(Decimal(1), rounding=mode)
+        return float(format(q * _decimal(m), ".15g"))
 
 
 @register("MROUND", "math", 2, 2)
