@@ -73,6 +73,8 @@ class _Values:
     def __init__(self, columns, params, n):
         self.columns, self.params, self.n = columns, params, n
         self.memo: dict[int, tuple[Node, xm.XArray]] = {}
+        self.floats: dict[int, np.ndarray] = {}   # __call__'s, by the memo's node ids
+        self.magnitudes: dict[int, tuple[Node, np.ndarray]] = {}   # _m's
 
     def xarray(self, node: Node) -> xm.XArray:
         found = self.memo.get(id(node))
@@ -88,12 +90,27 @@ class _Values:
         return value
 
     def __call__(self, node: Node) -> np.ndarray:
-        result = self.xarray(node)
-        return np.where(result.err != 0, np.nan, np.asarray(result.val, dtype=float)) \
+        found = self.floats.get(id(node))
+        if found is not None:
+            return found
+        result = self.xarray(node)  # keeps the node alive in the memo
+        value = np.where(result.err != 0, np.nan, np.asarray(result.val, dtype=float)) \
             if not result.is_text else np.zeros(self.n)
+        self.floats[id(node)] = value
+        return value
 
 
 def _m(node: Node, value: _Values) -> np.ndarray:
+    """The magnitude of ``node``, once per subtree (a tree shares subtrees)."""
+    found = value.magnitudes.get(id(node))
+    if found is not None:
+        return found[1]
+    m = _magnitude(node, value)
+    value.magnitudes[id(node)] = (node, m)
+    return m
+
+
+def _magnitude(node: Node, value: _Values) -> np.ndarray:
     if isinstance(node, (Num, Param, Var)):
         return np.abs(value(node))
     if isinstance(node, Neg):
