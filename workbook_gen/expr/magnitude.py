@@ -29,10 +29,18 @@ _DERIVATIVE = {
 
 
 def magnitude(node: Node, columns: Mapping[str, xm.XArray], params: Mapping[str, float],
-              n: int) -> np.ndarray:
-    """Per row, the magnitude of what ``node`` adds and cancels (NaN where an error)."""
+              n: int, shared: "_Values | None" = None) -> np.ndarray:
+    """Per row, the magnitude of what ``node`` adds and cancels (NaN where an error).
+    ``shared``: a ``scope(columns, params, n)`` over which several trees that share
+    subtrees are measured, each subtree once."""
+    values = _Values(columns, params, n) if shared is None else shared
     with np.errstate(all="ignore"):
-        return np.abs(_m(node, _Values(columns, params, n)))
+        return np.abs(_m(node, values))
+
+
+def scope(columns: Mapping[str, xm.XArray], params: Mapping[str, float], n: int) -> "_Values":
+    """The values and magnitudes of the subtrees measured over these columns, kept."""
+    return _Values(columns, params, n)
 
 
 class _Scope(Mapping):

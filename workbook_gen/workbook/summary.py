@@ -9,7 +9,7 @@ import numpy as np
 from .. import xlmath as xm
 from ..compute import Evaluated
 from ..expr.excel import to_excel
-from ..expr.magnitude import magnitude
+from ..expr.magnitude import magnitude, scope
 from ..expr.numeric import compile_numpy
 from ..xlerror import ExcelError
 from .table import cached_values
@@ -35,10 +35,11 @@ TIE_ULPS = 4096
 TIE = "tie"
 
 
-def tie_threshold(result: Evaluated, name: str) -> float:
-    """Largest max - min that is rounding noise for quantity ``name`` (0 if none)."""
+def tie_threshold(result: Evaluated, name: str, shared=None) -> float:
+    """Largest max - min that is rounding noise for quantity ``name`` (0 if none).
+    ``shared``: a magnitude ``scope`` of ``result`` kept over its outputs."""
     quantity = result.model.template.quantity(name)
-    m = magnitude(quantity.expr, result.columns, result.params, result.rows)
+    m = magnitude(quantity.expr, result.columns, result.params, result.rows, shared)
     m = m[np.isfinite(m)]
     bound = TIE_ULPS * np.finfo(float).eps * float(m.max()) if m.size else 0.0
     return float(f"{bound:.3g}")  # as written in the formula
@@ -66,12 +67,13 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
     inputs_abs = layout.column(spec.name, absolute=True)
     extremes: dict[str, tuple[int, object, object]] = {}
     row = 1
+    shared = scope(result.columns, result.params, result.rows)  # outputs share subtrees
     for q in result.model.outputs():
         column = result.columns[q.name]
         rng = layout.column(q.name)
         hi, at_hi = _extreme(column, result.inputs, np.argmax)
         lo, at_lo = _extreme(column, result.inputs, np.argmin)
-        tie = tie_threshold(result, q.name)
+        tie = tie_threshold(result, q.name, shared)
         tied = isinstance(hi, float) and isinstance(lo, float) and hi - lo <= tie
         if tied:
             at_hi = at_lo = TIE
