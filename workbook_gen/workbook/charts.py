@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import io
+from functools import partial
+
 from ..compute import Evaluated
 from .layout import A4, CHARTS, FIRST_ROW, TABLE, TableLayout, add_sheet
 
@@ -14,6 +17,30 @@ _COLS_PER_CHART = 9
 # chart is cut by a page break.  No fit-to-page: Excel ignores manual page breaks then.
 _PRINT_SCALE = 65
 _CHART_ROWS_PER_PAGE = 2
+
+
+# The XML of a chart is a function of what it was given (series, axes, title, ...) and of
+# its id in the workbook (its axis ids): the same for every design variant of a scene
+# (the sheet's cells are not cached in the chart in constant_memory mode).  Each
+# process keeps the XML it assembled, by those, instead of assembling it again.
+_XML: dict[tuple[str, int], str] = {}
+_XML_LIMIT = 512
+
+
+def _assemble_cached(chart, key: str) -> None:
+    """``chart._assemble_xml_file()``, from the XML kept for ``key`` and its id."""
+    found = _XML.get((key, chart.id))
+    if found is None:
+        fh, internal = chart.fh, chart.internal_fh
+        chart.fh, chart.internal_fh = io.StringIO(), False
+        type(chart)._assemble_xml_file(chart)
+        found = chart.fh.getvalue()
+        chart.fh, chart.internal_fh = fh, internal
+        if len(_XML) >= _XML_LIMIT:
+            _XML.clear()
+        _XML[(key, chart.id)] = found
+    chart.fh.write(found)
+    chart._xml_close()
 
 
 def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
@@ -30,15 +57,17 @@ def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
     index = {name: i for i, name in enumerate(model.names)}
     template = model.template
     for n, spec in enumerate(model.charts):
-        chart = workbook.add_chart({"type": "scatter", "subtype": "straight"})
+        kind = {"type": "scatter", "subtype": "straight"}
+        chart = workbook.add_chart(kind)
         x = index[spec.x]
-        for y in spec.ys:
-            chart.add_series({
-                "name": template.quantity(y).header,
-                "categories": [TABLE, first, x, last, x],
-                "values": [TABLE, first, index[y], last, index[y]],
-                "line": {"width": 1.75},
-            })
+        series = [{
+            "name": template.quantity(y).header,
+            "categories": [TABLE, first, x, last, x],
+            "values": [TABLE, first, index[y], last, index[y]],
+            "line": {"width": 1.75},
+        } for y in spec.ys]
+        for options in series:
+            chart.add_series(dict(options))
         x_title = (f"{spec.x} [{template.input.unit}]" if spec.x == template.input.name
                    else template.quantity(spec.x).header)
         x_axis = {"name": x_title, "label_position": "low", "major_gridlines": {"visible": True,
@@ -48,11 +77,17 @@ def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
             x_axis.update(min=sweep.start, max=result.inputs[-1])
             if sweep.stop - sweep.start == 360:
                 x_axis["major_unit"] = 30
+        y_axis = {"name": spec.y_title, "crossing": "min",
+                  "major_gridlines": {"visible": True, "line": {"color": "#D9D9D9"}}}
+        title = {"name": spec.title, "name_font": {"size": 12}}
+        legend, size = {"none": True}, {"width": 560, "height": 380}
+        # everything the chart is given, as text: its key in _XML (with its id)
+        key = repr((kind, series, x_axis, y_axis, title, legend, size))
         chart.set_x_axis(x_axis)
-        chart.set_y_axis({"name": spec.y_title, "crossing": "min",
-                          "major_gridlines": {"visible": True, "line": {"color": "#D9D9D9"}}})
-        chart.set_title({"name": spec.title, "name_font": {"size": 12}})
-        chart.set_legend({"none": True})
-        chart.set_size({"width": 560, "height": 380})
+        chart.set_y_axis(y_axis)
+        chart.set_title(title)
+        chart.set_legend(legend)
+        chart.set_size(size)
+        chart._assemble_xml_file = partial(_assemble_cached, chart, key)
         row, col = divmod(n, _COLUMNS)
         sheet.insert_chart(row * _ROWS_PER_CHART, col * _COLS_PER_CHART, chart)
