@@ -14,6 +14,7 @@ import csv
 import datetime as dt
 import io
 import math
+import re
 import threading
 from pathlib import Path
 from typing import Sequence
@@ -29,6 +30,7 @@ from .table import Table, cell_text, number_texts
 
 DOCUMENT_DATE = dt.datetime(2024, 1, 1)
 _ROWS_PER_WRITE = 2000
+_CSV_SPECIAL = re.compile(r'[,"\r\n]')
 MAX_SERIES_VALUES = 8       # a second grid parameter with more values: one scatter
 _CHART_COLUMNS = 2
 
@@ -88,8 +90,17 @@ def write_summaries(table: Table, csv_path: Path, xlsx_path: Path,
         with temp.open("w", encoding="utf-8", newline="") as handle:
             writer = csv.writer(handle, lineterminator="\n")
             writer.writerow(table.columns)
+
+            def csv_rows(columns: list[list[str]], texts: list[list[str]]) -> None:
+                # csv.writer (QUOTE_MINIMAL) writes a field without a delimiter, quote
+                # or line break as it is: a block with no such text is joined directly.
+                if any(_CSV_SPECIAL.search("\x00".join(column)) for column in texts):
+                    writer.writerows(zip(*columns))
+                else:
+                    handle.write("\n".join(map(",".join, zip(*columns))) + "\n")
+
             with _fast_deflate():
-                made["xlsx"] = _xlsx_bytes(table, about, writer.writerows)
+                made["xlsx"] = _xlsx_bytes(table, about, csv_rows)
 
     write_atomically(csv_path, build, force=True)
     write_bytes_atomically(xlsx_path, made["xlsx"], force=True)
@@ -145,8 +156,9 @@ def _cells(table: Table, name: str, col: int, lo: int, rows: range) -> list[str]
 
 
 def _variants_sheet(book, table: Table, csv_rows=None) -> None:
-    """The Variants sheet; ``csv_rows(rows)``, if given, receives each block's CSV rows
-    (the cells ``Table.csv_column`` gives) as the block is written."""
+    """The Variants sheet; ``csv_rows(columns, texts)``, if given, receives each block's
+    CSV cells column by column (what ``Table.csv_column`` gives; ``texts``: those of
+    the columns that are not numbers) as the block is written."""
     sheet = book.add_worksheet("Variants")
     header = book.add_format({"bold": True, "bottom": 1, "text_wrap": True, "valign": "top"})
     sheet.freeze_panes(1, 0)
@@ -178,7 +190,7 @@ def _variants_sheet(book, table: Table, csv_rows=None) -> None:
     for lo in range(0, size, _ROWS_PER_WRITE):
         hi = min(size, lo + _ROWS_PER_WRITE)
         rows = range(lo + 2, hi + 2)
-        template, slots, csv_columns = ['<row r="{0}">'], [], []
+        template, slots, csv_columns, csv_texts = ['<row r="{0}">'], [], [], []
         for c, name in enumerate(table.columns):
             if table.kind(name) == "number":
                 texts = number_texts(table.data[name][lo:hi])
@@ -193,6 +205,7 @@ def _variants_sheet(book, table: Table, csv_rows=None) -> None:
             else:
                 if csv_rows is not None:
                     csv_columns.append([cell_text(v) for v in table.data[name][lo:hi]])
+                    csv_texts.append(csv_columns[-1])
                 cells = _cells(table, name, c, lo, rows)
             template.append(f"{{{len(slots) + 1}}}")
             slots.append(cells)
@@ -200,7 +213,7 @@ def _variants_sheet(book, table: Table, csv_rows=None) -> None:
         row_xml = "".join(template).format
         sheet.fh.write("".join([row_xml(*cells) for cells in zip(rows, *slots)]))
         if csv_rows is not None:
-            csv_rows(zip(*csv_columns))
+            csv_rows(csv_columns, csv_texts)
     sheet.previous_row = size + 1
     sheet.table.clear()
 
