@@ -137,6 +137,18 @@ def _cells(table: Table, name: str, col: int, lo: int, rows: range) -> list[str]
     if table.kind(name) == "number":  # the full round-trip digits (XlsxWriter: 16)
         return [f'<c r="{letter}{r}"><v>{t}</v></c>' if t else ""
                 for r, t in zip(rows, number_texts(values))]
+    if name != "file" and table.kind(name) == "text":  # texts or None: each text's XML once
+        bodies: dict[str, str] = {}
+        out = []
+        for r, value in zip(rows, values):
+            if not value:
+                out.append("")
+                continue
+            body = bodies.get(value)
+            if body is None:
+                body = bodies[value] = _text_cell("", value)[len('<c r=""'):]
+            out.append(f'<c r="{letter}{r}"{body}')
+        return out
     out = []
     for r, value in zip(rows, values):
         ref = f"{letter}{r}"
