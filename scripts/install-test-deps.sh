@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Install what the test suite needs: LibreOffice Calc (the engine the tests recalculate
-# workbooks with) when soffice is missing, then this package with its test extras.
-# Idempotent; non-interactive (works with CI=true and no stdin). Debian/Ubuntu (apt-get).
+# workbooks with) and poppler-utils (pdftotext reads the PDF LibreOffice prints, in
+# tests/test_printing.py) when they are missing, then this package with its test extras
+# (pytest, hypothesis, dask and distributed). Idempotent; non-interactive (works with CI=true
+# and no stdin). Debian/Ubuntu (apt-get).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -10,42 +12,41 @@ have_soffice() {
         || [ -x /usr/lib/libreoffice/program/soffice ]
 }
 
-if have_soffice; then
-    echo "LibreOffice found: $(command -v soffice || command -v libreoffice || echo /usr/lib/libreoffice/program/soffice)"
-else
-    if ! command -v apt-get >/dev/null 2>&1; then
-        echo "LibreOffice (soffice) is missing and apt-get is not available: install LibreOffice Calc by hand" >&2
-        exit 1
-    fi
-    SUDO=""
-    if [ "$(id -u)" -ne 0 ]; then
-        SUDO="sudo -n"
-    fi
-    echo "Installing LibreOffice Calc with apt-get"
-    $SUDO apt-get update </dev/null
-    $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
-        libreoffice-calc </dev/null
-    if ! have_soffice; then
-        echo "libreoffice-calc installed but soffice is still not found" >&2
-        exit 1
-    fi
-fi
+have_pdftotext() {
+    command -v pdftotext >/dev/null 2>&1
+}
 
-# poppler-utils: pdftotext reads the PDF that LibreOffice prints (tests/test_printing.py)
-if ! command -v pdftotext >/dev/null 2>&1; then
+APT_UPDATED=""
+
+# ensure CHECK PACKAGE: install the Debian package PACKAGE with apt-get unless CHECK succeeds.
+ensure() {
+    local check="$1" package="$2"
+    if "$check"; then
+        return 0
+    fi
     if ! command -v apt-get >/dev/null 2>&1; then
-        echo "pdftotext is missing and apt-get is not available: install poppler-utils by hand" >&2
+        echo "$package is missing and apt-get is not available: install it by hand" >&2
         exit 1
     fi
-    SUDO=""
+    local sudo=""
     if [ "$(id -u)" -ne 0 ]; then
-        SUDO="sudo -n"
+        sudo="sudo -n"
     fi
-    echo "Installing poppler-utils with apt-get"
-    $SUDO apt-get update </dev/null
-    $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
-        poppler-utils </dev/null
-fi
+    echo "Installing $package with apt-get"
+    if [ -z "$APT_UPDATED" ]; then
+        $sudo apt-get update </dev/null
+        APT_UPDATED=1
+    fi
+    $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
+        "$package" </dev/null
+    if ! "$check"; then
+        echo "$package installed but still not found" >&2
+        exit 1
+    fi
+}
+
+ensure have_soffice libreoffice-calc
+ensure have_pdftotext poppler-utils
 
 PYTHON="${PYTHON:-python}"
 "$PYTHON" -m pip install -e '.[test]' </dev/null

@@ -102,34 +102,10 @@ def test_macros_are_named_as_not_checked(macro_book, folder):
 def test_audit_draws_a_bar_on_a_terminal(folder, many):
     """In a real pseudo-terminal the audit shows a bar on stderr (its delay set to 0: these
     audits take less than the 1 s the command line waits); not otherwise (tests above)."""
-    import os
-    import pty
+    from terminal import run_in_terminal
     target = folder if many else folder / "a_good.xlsx"
-    code = ("import fcntl, struct, sys, termios\n"
-            "fcntl.ioctl(2, termios.TIOCSWINSZ, struct.pack('HHHH', 24, 100, 0, 0))\n"
-            "import workbook_gen.progress as p\n"
-            "from workbook_gen.cli import main\n"
-            "real = p.Progress.__init__\n"
-            "def now(self, *a, **k):\n"
-            "    k['delay'] = 0.0\n"
-            "    real(self, *a, **k)\n"
-            "p.Progress.__init__ = now\n"
-            f"sys.exit(main(['audit', {str(target)!r}, '--jobs', '1']))\n")
-    pid, fd = pty.fork()
-    if pid == 0:
-        os.execv(sys.executable, [sys.executable, "-c", code])
-    chunks = []
-    while True:
-        try:
-            data = os.read(fd, 4096)
-        except OSError:
-            break
-        if not data:
-            break
-        chunks.append(data)
-    _, status = os.waitpid(pid, 0)
-    text = b"".join(chunks).decode(errors="replace")
-    assert os.WEXITSTATUS(status) == (1 if many else 0), text
+    status, text = run_in_terminal(['audit', str(target), '--jobs', '1'])
+    assert status == (1 if many else 0), text
     assert ("/3 [" if many else "/5 [") in text, text  # 3 files; 5 phases without --engine
     assert ("file/s" if many else "phase/s") in text, text
 

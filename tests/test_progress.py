@@ -67,31 +67,7 @@ def test_generate_prints_no_bar_when_stderr_is_not_a_terminal(tmp_path, capsys):
 def test_generate_draws_the_bar_on_a_terminal(tmp_path):
     """A real pseudo-terminal (100 columns): the bar appears on stderr (its delay set to 0
     here: a 10-degree workbook takes less than the 1 s the command line waits)."""
-    import os
-    import pty
-    code = ("import fcntl, struct, sys, termios\n"
-            "fcntl.ioctl(2, termios.TIOCSWINSZ, struct.pack('HHHH', 24, 100, 0, 0))\n"
-            "import workbook_gen.progress as p\n"
-            "from workbook_gen.cli import main\n"
-            "real = p.Progress.__init__\n"
-            "def slow(self, *a, **k):\n"
-            "    k['delay'] = 0.0\n"
-            "    real(self, *a, **k)\n"
-            "p.Progress.__init__ = slow\n"
-            f"sys.exit(main(['generate', 'templates/slider_crank.toml', '--out', {str(tmp_path)!r}]))\n")
-    pid, fd = pty.fork()
-    if pid == 0:
-        os.execv(sys.executable, [sys.executable, "-c", code])
-    chunks = []
-    while True:
-        try:
-            data = os.read(fd, 4096)
-        except OSError:
-            break
-        if not data:
-            break
-        chunks.append(data)
-    _, status = os.waitpid(pid, 0)
-    text = b"".join(chunks).decode(errors="replace")
-    assert os.WEXITSTATUS(status) == 0
+    from terminal import run_in_terminal
+    status, text = run_in_terminal(['generate', 'templates/slider_crank.toml', '--out', str(tmp_path)])
+    assert status == 0, text
     assert "slider_crank.xlsx" in text and "row" in text and "%" in text
