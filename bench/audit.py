@@ -152,7 +152,7 @@ def run_peer(name: str, cmd: list[str], cells: int, phases: tuple[str, ...], tim
 
 def measure(step: float, tmp: Path, args, prev: dict) -> dict:
     from workbook_gen import audit
-    from workbook_gen.compute import evaluate
+    from workbook_gen.tabulate import evaluate
     from workbook_gen.engines.libreoffice import recalculate
     from workbook_gen.errors import WorkbookGenError
     from workbook_gen.scene import load_scene

@@ -17,7 +17,7 @@ import time
 
 import openpyxl
 
-from workbook_gen.compute import evaluate
+from workbook_gen.tabulate import evaluate
 from workbook_gen.evaluator import evaluate_cells
 from workbook_gen.scene import load_scene
 from workbook_gen.workbook import write_workbook

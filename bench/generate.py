@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from workbook_gen.compute import evaluate
+from workbook_gen.tabulate import evaluate
 from workbook_gen.reference import solve
 from workbook_gen.scene import load_scene, parse_scene
 from workbook_gen.workbook import workbook_bytes, write_workbook

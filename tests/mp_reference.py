@@ -389,7 +389,7 @@ def measure(mechanism: str, params: Mapping[str, float], inputs, options=None,
 
     import numpy as np
 
-    from workbook_gen.compute import evaluate
+    from workbook_gen.tabulate import evaluate
 
     scene = scene_at(mechanism, params, inputs, options, outputs)
     ev = evaluate(scene)

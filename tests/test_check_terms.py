@@ -8,7 +8,7 @@ import openpyxl
 import pytest
 
 from workbook_gen import xlmath as xm
-from workbook_gen.compute import evaluate
+from workbook_gen.tabulate import evaluate
 from workbook_gen.expr import Var, walk
 from workbook_gen.expr.numeric import compile_numpy
 from workbook_gen.scene import load_scene

@@ -65,7 +65,7 @@ def test_sewing_very_large_and_tiny_cranks():
 def test_exact_angles_give_exact_zeros():
     """At 0/90/180/270/360 deg the crank pin's small coordinate is exactly 0 (not 1e-16)."""
     from mp_reference import scene_at
-    from workbook_gen.compute import evaluate
+    from workbook_gen.tabulate import evaluate
     ev = evaluate(scene_at("sewing_machine", {}, EXACT))
     assert np.array_equal(ev.columns["x_B"].val[[1, 3]], [0.0, 0.0])
     assert np.array_equal(ev.columns["y_B"].val[[0, 2, 4]], [0.0, 0.0, 0.0])

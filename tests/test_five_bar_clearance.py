@@ -10,7 +10,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from workbook_gen.compute import compute
+from workbook_gen.tabulate import compute
 from workbook_gen.scene import load_scene
 
 SCENE = Path(__file__).resolve().parent.parent / "templates" / "five_bar.toml"

@@ -88,7 +88,7 @@ def test_toggle_rows_say_so_and_hold_div0_rates(generate, scenes, branch):
 
 
 def _row(scene_path, theta: float) -> dict[str, float]:
-    from workbook_gen.compute import compute
+    from workbook_gen.tabulate import compute
     table = compute(load_scene(scene_path))
     row = table[table.iloc[:, 0] == theta].iloc[0]
     return {str(k).split(" ")[0]: v for k, v in row.items()}

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from workbook_gen.compute import compute
+from workbook_gen.tabulate import compute
 from workbook_gen.scene import load_scene
 
 

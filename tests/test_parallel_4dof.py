@@ -16,7 +16,7 @@ import pytest
 from test_libreoffice_recalc import compare_with_libreoffice
 from workbook_cells import as_float, column_error, table_columns
 from workbook_gen import audit
-from workbook_gen.compute import compute, derived_values, evaluate
+from workbook_gen.tabulate import compute, derived_values, evaluate
 from workbook_gen.engines.libreoffice import recalculated_values_many
 from workbook_gen.expr.numeric import compile_numpy
 from workbook_gen.model import select

@@ -90,7 +90,7 @@ def test_no_tree_function_is_one_xlsxwriter_rewrites():
 def test_packaging_in_memory_or_through_files_gives_the_same_parts():
     """Small workbooks are packaged in memory, very large ones through XlsxWriter's
     temporary files (package.py): every part must be the same either way."""
-    from workbook_gen.compute import evaluate
+    from workbook_gen.tabulate import evaluate
     from workbook_gen.scene import load_scene
     from workbook_gen.workbook import writer
 

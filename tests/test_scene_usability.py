@@ -189,7 +189,7 @@ def test_crossed_branch_by_set_equals_crossed_branch_in_the_scene(tmp_path):
     in_file = re.sub(r'branch = "open"', 'branch = "crossed"', text)
     assert 'branch = "crossed"' in in_file
     by_file = parse_scene(in_file, "x")
-    from workbook_gen.compute import compute
+    from workbook_gen.tabulate import compute
     assert compute(by_set).equals(compute(by_file))
     assert compute(by_set)["theta_3 [deg]"].iloc[4] != compute(load_scene(
         write(tmp_path, text, "b.toml")))["theta_3 [deg]"].iloc[4]

@@ -60,3 +60,16 @@ def test_templates_load_on_demand_and_know_their_ids():
     for template_id in TEMPLATES:
         assert get_template(template_id).id == template_id
     assert "nope" not in TEMPLATES
+
+
+def test_public_compute_stays_the_function_after_the_package_is_imported_whole():
+    """The README's ``from workbook_gen import compute`` gives the function, also once the
+    writer (which imports the module computing the columns) has been imported: no submodule
+    of that name may shadow it."""
+    code = ("import workbook_gen.workbook, workbook_gen.tradeoff, workbook_gen.batching\n"
+            "from workbook_gen import compute, load_scene\n"
+            "table = compute(load_scene('templates/slider_crank.toml'))\n"
+            "print(callable(compute), len(table))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.split()
+    assert out == ["True", "37"]

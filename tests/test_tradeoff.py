@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from workbook_gen.cli import main
-from workbook_gen.compute import evaluate
+from workbook_gen.tabulate import evaluate
 from workbook_gen.scene import load_scene
 from workbook_gen.tradeoff import measure
 from workbook_gen.tradeoff.common import floats, mp_diff, mp_floats, relative

@@ -9,7 +9,7 @@ import numpy as np
 import openpyxl
 import pandas as pd
 
-from workbook_gen.compute import compute, evaluate
+from workbook_gen.tabulate import compute, evaluate
 from workbook_gen.expr.excel import row_template
 from workbook_gen.formula import parse, render
 from workbook_gen.names import name_problem

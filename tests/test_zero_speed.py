@@ -10,7 +10,7 @@ import pytest
 
 from workbook_gen import audit
 from workbook_gen.cli import main
-from workbook_gen.compute import evaluate
+from workbook_gen.tabulate import evaluate
 from workbook_gen.reference import solve
 from workbook_gen.scene import load_scene
 from workbook_gen.workbook import write_workbook

@@ -9,7 +9,7 @@
 from .errors import WorkbookGenError
 from .version import VERSION as __version__
 
-_LAZY = {"compute": ".compute", "load_scene": ".scene", "write_workbook": ".workbook"}
+_LAZY = {"compute": ".tabulate", "load_scene": ".scene", "write_workbook": ".workbook"}
 
 
 def __getattr__(name):

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Mapping, Sequence
 
-from ..compute import evaluate
+from ..tabulate import evaluate
 from ..errors import CannotAssembleError, SceneError
 from ..scene import Scene, parse_scene
 from ..workbook import workbook_bytes

@@ -12,7 +12,7 @@ from typing import Callable
 import mpmath
 import numpy as np
 
-from ..compute import Evaluated
+from ..tabulate import Evaluated
 from ..scene import Scene
 
 #: progress(label): called once per finished unit of work.

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..compute import evaluate
+from ..tabulate import evaluate
 from ..mechanisms import get_template
 from ..scene import Scene
 from .common import Progress, Row, cost, floats, mp_diff, mp_floats, relative, worst

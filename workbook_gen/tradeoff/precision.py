@@ -14,7 +14,7 @@ import time
 import mpmath
 import numpy as np
 
-from ..compute import evaluate
+from ..tabulate import evaluate
 from ..scene import Scene
 from .common import Progress, Row, floats, mp_diff, mp_floats, relative, studied, worst
 from .reference50 import Extremes, Precise

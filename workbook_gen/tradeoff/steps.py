@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..compute import Evaluated, evaluate
+from ..tabulate import Evaluated, evaluate
 from ..scene import Scene
 from .common import Cost, Progress, Row, cost, floats, mp_diff, mp_floats, relative, studied, worst
 from .rates import chains_for, differences, position_factor, time_factor

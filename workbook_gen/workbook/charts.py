@@ -5,7 +5,7 @@ from __future__ import annotations
 import io
 from functools import partial
 
-from ..compute import Evaluated
+from ..tabulate import Evaluated
 from .layout import A4, CHARTS, FIRST_ROW, TABLE, TableLayout, add_sheet
 
 _COLUMNS = 2

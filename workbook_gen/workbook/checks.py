@@ -13,7 +13,7 @@ import numpy as np
 from xlsxwriter.utility import xl_col_to_name
 
 from .. import xlmath as xm
-from ..compute import Evaluated
+from ..tabulate import Evaluated
 from ..expr import Node, Var, eq, if_
 from ..expr.excel import to_excel
 from ..expr.numeric import compiled

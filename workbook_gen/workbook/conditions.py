@@ -8,7 +8,7 @@ the workbook: the auditor's closure residuals are the per-row columns above.
 
 from __future__ import annotations
 
-from ..compute import Evaluated
+from ..tabulate import Evaluated
 from ..expr.excel import to_excel
 from ..expr.numeric import compile_numpy
 from .table import cached_values

@@ -7,7 +7,7 @@ from functools import lru_cache
 
 from xlsxwriter.utility import xl_col_to_name
 
-from ..compute import Evaluated
+from ..tabulate import Evaluated
 from ..expr import Node
 from ..expr.excel import ROW, Piece, Row, RowTemplate, row_template
 from .rows import Sheet

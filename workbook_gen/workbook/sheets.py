@@ -7,7 +7,7 @@ import json
 import numpy as np
 
 from .. import xlmath as xm
-from ..compute import Evaluated
+from ..tabulate import Evaluated
 from ..expr.excel import to_excel
 from .table import cached_values
 from .layout import ABOUT, PARAMETERS, add_sheet, print_wide

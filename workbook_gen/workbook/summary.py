@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import xlmath as xm
-from ..compute import Evaluated
+from ..tabulate import Evaluated
 from ..expr.excel import to_excel
 from ..expr.magnitude import magnitude, scope
 from ..expr.numeric import compile_numpy

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..compute import Evaluated, headers
+from ..tabulate import Evaluated, headers
 from .. import xlmath as xm
 from .layout import FIRST_ROW, TABLE, TableLayout, add_sheet, print_wide
 from .rows import Column

@@ -8,7 +8,7 @@ import math
 from pathlib import Path
 from typing import Callable
 
-from ..compute import Evaluated, evaluate
+from ..tabulate import Evaluated, evaluate
 from ..errors import SceneError
 from ..model import select
 from ..xlsx.limits import MAX_CELLS
