@@ -65,18 +65,18 @@ def test_every_formula_parses_and_prints_back_to_the_same_text(sewing_workbook, 
 
 
 def test_pandas_sees_numbers_in_every_formula_column(sewing_workbook):
-    frame = pd.read_excel(sewing_workbook, sheet_name="Table")
+    frame = pd.read_excel(sewing_workbook, sheet_name="Table", engine="openpyxl")
     numeric = frame.drop(columns=["status", "theta_1 [deg]"])  # the input is not a formula
     assert all(pd.api.types.is_numeric_dtype(numeric[c]) for c in numeric.columns)
     assert not numeric.isna().any().any()
     assert set(frame["status"]) == {"ok"}
-    checks = pd.read_excel(sewing_workbook, sheet_name="Checks", header=6)
+    checks = pd.read_excel(sewing_workbook, sheet_name="Checks", header=6, engine="openpyxl")
     assert pd.api.types.is_float_dtype(checks["rod_length"])
 
 
 def test_compute_columns_are_exactly_the_table_headers(sewing_workbook):
     table = compute(load_scene("templates/sewing_machine.toml"))
-    frame = pd.read_excel(sewing_workbook, sheet_name="Table")
+    frame = pd.read_excel(sewing_workbook, sheet_name="Table", engine="openpyxl")
     assert list(table.columns) == list(frame.columns)
     numeric = [c for c in table.columns if c != "status"]
     np.testing.assert_array_equal(table[numeric].to_numpy(), frame[numeric].to_numpy())

@@ -72,7 +72,6 @@ ATAN2_YX = _exact(np.arctan2, math.atan2, 2)
 
 # ``np.count_nonzero`` is a C call; ``ndarray.any()`` goes through Python (numpy's
 # _methods), several times the cost on the short columns of a workbook.
-# ``val - val`` is 0 exactly where ``val`` is finite (NaN where inf or NaN).
 _count = np.count_nonzero
 
 
@@ -88,7 +87,8 @@ def first_error(*errs: np.ndarray) -> np.ndarray:
 
 def finish(val: np.ndarray, err: np.ndarray, fresh=None, code: int = NUM):
     """Fresh ``code`` where ``fresh`` and no earlier error; inf/NaN -> #NUM!; no -0."""
-    if (fresh is None or not _count(fresh)) and not _count(err) and not _count(val - val):
+    if (fresh is None or not _count(fresh)) and not _count(err) \
+            and _count(np.isfinite(val)) == val.size:
         return val + 0.0, err.copy()  # nothing to mark: the same values and codes
     err = err.copy()
     if fresh is not None:
