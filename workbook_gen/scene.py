@@ -356,11 +356,15 @@ def load_scene(path: str | Path, overrides: Mapping[str, Any] | None = None,
     the sweep, ``name`` the output file stem; the command line's --set, --start,
     --stop, --step and --name are these.  ``scene.warnings`` lists what is legal but
     probably unintended (a step that does not reach the sweep's stop)."""
-    source = str(path)
+    return parse_scene(read_scene_text(path), str(path), overrides, step,
+                       start=start, stop=stop, name=name)
+
+
+def read_scene_text(path: str | Path) -> str:
+    """The text of a scene file; a SceneError naming the file when it cannot be read."""
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        return Path(path).read_text(encoding="utf-8")
     except OSError as exc:
-        raise SceneError(f"{source}: cannot read: {exc.strerror}") from None
+        raise SceneError(f"{path}: cannot read: {exc.strerror}") from None
     except UnicodeDecodeError:
-        raise SceneError(f"{source}: not UTF-8 text") from None
-    return parse_scene(text, source, overrides, step, start=start, stop=stop, name=name)
+        raise SceneError(f"{path}: not UTF-8 text") from None

@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Mapping, Sequence
 
 from ..errors import SceneError
-from ..scene import Scene, parse_scene
+from ..scene import Scene, parse_scene, read_scene_text
 from ..files import write_bytes_atomically
 from ..model import select
 from ..version import VERSION
@@ -39,14 +39,7 @@ def _read(scene: str | Path | Scene) -> tuple[str, str, dict, float | None]:
         sets = dict(given.get("overrides", {})) if given else {
             k: float(v) for k, _, v in (o.partition("=") for o in scene.overrides)}
         return scene.text, scene.source, sets, scene.sweep.step
-    source = str(scene)
-    try:
-        text = Path(scene).read_text(encoding="utf-8")
-    except OSError as exc:
-        raise SceneError(f"{source}: cannot read: {exc.strerror}") from None
-    except UnicodeDecodeError:
-        raise SceneError(f"{source}: not UTF-8 text") from None
-    return text, source, {}, None
+    return read_scene_text(scene), str(scene), {}, None
 
 
 def _design(base: Scene, vary, design, sets, samples, seed) -> Design:
