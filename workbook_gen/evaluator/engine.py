@@ -77,6 +77,9 @@ class CellMap(Mapping):
             raise KeyError(key)
         return self._get(*key)
 
+    def __contains__(self, key):  # without reading the value (Mapping's would)
+        return key in self._keys
+
     def __iter__(self):
         return iter(self._keys)
 
