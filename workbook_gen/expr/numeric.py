@@ -13,6 +13,7 @@ from typing import Callable, Mapping
 import numpy as np
 
 from .. import xlmath as xm
+from . import fastnum
 from .tree import Bin, Call, Neg, Node, Num, Param, Text, Var
 
 Columns = Mapping[str, xm.XArray]
@@ -82,6 +83,7 @@ def _compile_call(node: Call) -> Compiled:
     return lambda cols, params, n: fm(*(a(cols, params, n) for a in args))
 
 
-#: ``compile_numpy`` once per tree in a process (trees are hashable, their hash cached):
-#: a batch evaluates the same template's trees for every variant.
-compiled = lru_cache(maxsize=4096)(compile_numpy)
+#: The tree as one generated function (``fastnum``: the same bits as ``compile_numpy``,
+#: which stays the reference), once per tree in a process (trees are hashable, their
+#: hash cached): a batch evaluates the same template's trees for every variant.
+compiled = lru_cache(maxsize=4096)(fastnum.generate)

@@ -1,0 +1,279 @@
+"""Print a tree as ONE generated Python function over numpy arrays (``compiled``).
+
+The same values and error codes as ``numeric.compile_numpy`` (the closure printer, the
+reference), bit for bit, at a fraction of the cost per variant: the function is
+generated once per tree and process (each distinct subtree computed once, ``np.errstate``
+entered once per call, not per operation), and every operation first tries a plain
+float path:
+
+    where no operand has an error (and none is text), an operation computes exactly
+    what its ``xlmath`` kernel computes (the same numpy or C-library call on the same
+    values); when the result is all finite, that kernel would mark nothing, so its
+    value (with -0 made +0, as ``kernels.finish`` does) is the kernel's, with no error.
+
+Anything else (an operand with an error or text, a non-finite result, a domain or
+division failure, a boolean compared with a number) goes to the ``xlmath`` function
+itself: the kernels stay the one definition of Excel's semantics.  Internally a value is
+``(val, err, boolean)`` with ``err`` None meaning "a float array with no error".
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Callable
+
+import numpy as np
+
+from .. import xlmath as xm
+from ..xlmath import kernels
+from .tree import Bin, Call, Neg, Node, Num, Param, Text, Var, children, walk
+
+try:  # the C function (``np.count_nonzero`` is a Python wrapper around it)
+    from numpy._core.multiarray import count_nonzero as _count
+except ImportError:  # pragma: no cover - numpy < 2
+    _count = np.count_nonzero
+
+_isfinite = np.isfinite
+_UINT8 = np.uint8
+
+
+def _finite(v: np.ndarray) -> bool:
+    return _count(_isfinite(v)) == v.size
+
+
+def _light(a: xm.XArray) -> tuple:
+    """An XArray as (val, err or None, boolean)."""
+    if a.val.dtype != object and not _count(a.err):
+        return a.val, None, a.boolean
+    return a.val, a.err, a.boolean
+
+
+def _heavy(a: tuple) -> xm.XArray:
+    val, err, boolean = a
+    return xm.XArray(val, np.zeros(val.shape, _UINT8) if err is None else err, boolean)
+
+
+def _slow(fn, *args: tuple) -> tuple:
+    """The ``xlmath`` function itself (errors, text, non-finite results)."""
+    return _light(fn(*(_heavy(a) for a in args)))
+
+
+def _const(value, n: int) -> tuple:
+    if isinstance(value, str):
+        return _light(xm.const(value, n))
+    return np.full(n, float(value)), None, False   # xm.const: no error, even for NaN
+
+
+def _var(a: xm.XArray) -> tuple:
+    return _light(a)
+
+
+def _arith(op: str, fn):
+    slow = {"+": xm.add, "-": xm.sub, "*": xm.mul, "/": xm.div}[op]
+
+    def apply(a: tuple, b: tuple) -> tuple:
+        # kernels.arith: first_error of two clean operands is clean; a division by zero
+        # gives +-inf or NaN, so an all-finite result had no fresh #DIV/0! either
+        if a[1] is None and b[1] is None:
+            v = fn(a[0], b[0])
+            if _finite(v):
+                v += 0.0
+                return v, None, False
+        return _slow(slow, a, b)
+    return apply
+
+
+ADD, SUB, MUL, DIV = (_arith(op, fn) for op, fn in
+                      (("+", np.add), ("-", np.subtract), ("*", np.multiply),
+                       ("/", np.true_divide)))
+
+
+def POW(a: tuple, b: tuple) -> tuple:
+    """kernels.power where no base is 0 and no negative base has a fractional exponent:
+    the valid mask is all true, so the value is POW(x, y)."""
+    if a[1] is None and b[1] is None:
+        x, y = a[0], b[0]
+        if not _count(x == 0) and not _count((x < 0) & (np.floor(y) != y)):
+            v = kernels.POW(x, y)
+            if _finite(v):
+                return v + 0.0, None, False
+    return _slow(xm.power, a, b)
+
+
+def NEG(a: tuple) -> tuple:
+    if a[1] is None:
+        v = -a[0]
+        if _finite(v):
+            v += 0.0
+            return v, None, False
+    return _slow(xm.neg, a)
+
+
+def _unary(name: str):
+    fn, slow = kernels.UNARY[name], getattr(xm, {"ABS": "abs_"}.get(name, name.lower()))
+
+    def apply(a: tuple) -> tuple:
+        # kernels.unary: a domain failure or a trig argument past the limit is NaN there
+        if a[1] is None:
+            v = fn(a[0])
+            if _finite(v):
+                return v + 0.0, None, False
+        return _slow(slow, a)
+    return apply
+
+
+UNARY = {name: _unary(name) for name in kernels.UNARY}
+
+
+def ATAN2(a: tuple, b: tuple) -> tuple:
+    if a[1] is None and b[1] is None:
+        x, y = a[0], b[0]
+        if not _count((x == 0) & (y == 0)):
+            v = kernels.ATAN2_YX(y, x)
+            if _finite(v):
+                return v + 0.0, None, False
+    return _slow(xm.atan2, a, b)
+
+
+def MOD(a: tuple, b: tuple) -> tuple:
+    if a[1] is None and b[1] is None:
+        x, y = a[0], b[0]
+        v = x - y * np.floor(x / y)   # y = 0 makes it NaN: the slow path marks #DIV/0!
+        if _finite(v):
+            v += 0.0
+            return v, None, False
+    return _slow(xm.mod, a, b)
+
+
+_COMPARE = {"=": np.equal, "<>": np.not_equal, "<": np.less, ">": np.greater,
+            "<=": np.less_equal, ">=": np.greater_equal}
+
+
+def _compare(op: str):
+    fn = _COMPARE[op]
+
+    def apply(a: tuple, b: tuple) -> tuple:
+        if a[1] is None and b[1] is None and a[2] == b[2]:
+            return np.asarray(fn(a[0], b[0]), dtype=float) + 0.0, None, True
+        return _slow(lambda p, q: xm.compare(op, p, q), a, b)
+    return apply
+
+
+COMPARE = {op: _compare(op) for op in _COMPARE}
+
+
+def IF(c: tuple, t: tuple, o: tuple) -> tuple:
+    """xm.where with a clean condition and clean numeric branches."""
+    if c[1] is None and t[1] is None and o[1] is None:
+        v = np.where(c[0] != 0, t[0], o[0])
+        if _finite(v):
+            v += 0.0
+            return v, None, t[2] and o[2]
+    return _slow(xm.where, c, t, o)
+
+
+def ISERROR(a: tuple) -> tuple:
+    if a[1] is None:
+        return np.zeros(a[0].shape), None, True
+    return _slow(xm.iserror, a)
+
+
+def NOT(a: tuple) -> tuple:
+    if a[1] is None:
+        return (a[0] == 0).astype(float) + 0.0, None, True
+    return _slow(xm.not_, a)
+
+
+def _logical(ufunc):
+    def apply(*args: tuple) -> tuple:
+        if all(a[1] is None for a in args):
+            r = ufunc.reduce(np.array([a[0] != 0 for a in args]), axis=0)
+            return r.astype(float) + 0.0, None, True
+        return _slow(lambda *xs: xm.logical(ufunc, *xs), *args)
+    return apply
+
+
+def _extreme(ufunc):
+    def apply(*args: tuple) -> tuple:
+        if all(a[1] is None for a in args):
+            v = ufunc.reduce(np.array([a[0] for a in args]), axis=0)
+            if _finite(v):
+                return v + 0.0, None, False
+        return _slow(lambda *xs: xm.extreme(ufunc, *xs), *args)
+    return apply
+
+
+def IFERROR(a: tuple, b: tuple) -> tuple:
+    return _slow(xm.iferror, a, b)
+
+
+_BINARY = {"+": "ADD", "-": "SUB", "*": "MUL", "/": "DIV", "^": "POW"}
+_CALLS = {"ATAN2": "ATAN2", "MOD": "MOD", "POWER": "POW", "IF": "IF", "ISERROR": "ISERROR",
+          "NOT": "NOT", "IFERROR": "IFERROR", "AND": "AND", "OR": "OR", "MIN": "MIN",
+          "MAX": "MAX"}
+_NAMESPACE = {
+    "np": np, "_errstate": np.errstate, "_const": _const, "_var": _var, "_heavy": _heavy,
+    "ADD": ADD, "SUB": SUB, "MUL": MUL, "DIV": DIV, "POW": POW, "NEG": NEG,
+    "UNARY": UNARY, "COMPARE": COMPARE, "ATAN2": ATAN2, "MOD": MOD, "IF": IF,
+    "ISERROR": ISERROR, "NOT": NOT, "IFERROR": IFERROR,
+    "AND": _logical(np.logical_and), "OR": _logical(np.logical_or),
+    "MIN": _extreme(np.minimum), "MAX": _extreme(np.maximum),
+}
+
+
+def source(tree: Node) -> str:
+    """The generated function's text: one line per distinct subtree, children first."""
+    names: dict[object, str] = {}
+    lines: list[str] = []
+    # Equal subtrees are computed once; Num(0.0) == Num(-0.0) but their columns differ
+    # in sign, so a tree holding a -0 literal is printed without sharing.
+    negative_zero = any(isinstance(k, Num) and math.copysign(1.0, k.value) < 0
+                        for k in walk(tree))
+    key = id if negative_zero else (lambda node: node)
+
+    def emit(node: Node) -> str:
+        found = names.get(key(node))
+        if found is not None:
+            return found
+        args = [emit(k) for k in children(node)]
+        if isinstance(node, Num):
+            expr = f"_const({node.value!r}, n)"
+        elif isinstance(node, Text):
+            expr = f"_const({node.value!r}, n)"
+        elif isinstance(node, Param):
+            expr = f"_const(params[{node.name!r}], n)"
+        elif isinstance(node, Var):
+            expr = f"_var(cols[{node.name!r}])"
+        elif isinstance(node, Neg):
+            expr = f"NEG({args[0]})"
+        elif isinstance(node, Bin) and node.op in _BINARY:
+            expr = f"{_BINARY[node.op]}({args[0]}, {args[1]})"
+        elif isinstance(node, Bin) and node.op in COMPARE:
+            expr = f"COMPARE[{node.op!r}]({args[0]}, {args[1]})"
+        elif isinstance(node, Bin):
+            raise NotImplementedError("text concatenation is not used in trees")
+        elif node.fn == "PI":
+            expr = "_const(np.pi, n)"
+        elif node.fn == "IF" and len(args) == 2:
+            expr = f"IF({args[0]}, {args[1]}, _const(0.0, n))"
+        elif node.fn in kernels.UNARY:
+            expr = f"UNARY[{node.fn!r}]({args[0]})"
+        else:
+            expr = f"{_CALLS[node.fn]}({', '.join(args)})"
+        name = f"t{len(names)}"
+        names[key(node)] = name
+        lines.append(f"        {name} = {expr}")
+        return name
+
+    if isinstance(tree, Var):  # the column itself, as compile_numpy gives it
+        return f"def f(cols, params, n):\n    return cols[{tree.name!r}]\n"
+    last = emit(tree)
+    return ("def f(cols, params, n):\n    with _errstate(all='ignore'):\n"
+            + "\n".join(lines) + f"\n    return _heavy({last})\n")
+
+
+def generate(tree: Node) -> Callable:
+    """``f(columns, params, n) -> XArray``, as ``numeric.compile_numpy(tree)``."""
+    scope = dict(_NAMESPACE)
+    exec(compile(source(tree), "<tree>", "exec"), scope)
+    return scope["f"]
