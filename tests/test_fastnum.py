@@ -125,3 +125,16 @@ def test_every_template_tree_gives_the_same_bits():
 
 def scene_step_ok(name: str) -> bool:
     return name not in ("actuator_linkage",)  # its sweep is shorter than 7 units
+
+
+def test_magnitudes_from_the_generated_subtree_values_are_the_node_by_node_ones():
+    from workbook_gen.expr.magnitude import magnitude, scope
+    for name, sets in SCENES[:8]:
+        result = evaluate(load_scene(f"templates/{name}.toml", overrides=sets))
+        fast = scope(result.columns, result.params, result.rows)
+        slow = scope(result.columns, result.params, result.rows)
+        slow.primed = None   # each subtree by its own compiled shell, as before
+        for q in result.model.outputs():
+            a = magnitude(q.expr, result.columns, result.params, result.rows, fast)
+            b = magnitude(q.expr, result.columns, result.params, result.rows, slow)
+            assert np.array_equal(a.view(np.int64), b.view(np.int64)), (name, q.name)

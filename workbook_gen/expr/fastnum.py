@@ -221,10 +221,12 @@ _NAMESPACE = {
 }
 
 
-def source(tree: Node) -> str:
-    """The generated function's text: one line per distinct subtree, children first."""
+def _print(tree: Node) -> tuple[list[str], list[Node], str]:
+    """One line per distinct subtree, children first: the lines, the subtrees in order
+    (None where a tree holds a -0 literal: see below) and the root's name."""
     names: dict[object, str] = {}
     lines: list[str] = []
+    nodes: list[Node] = []
     # Equal subtrees are computed once; Num(0.0) == Num(-0.0) but their columns differ
     # in sign, so a tree holding a -0 literal is printed without sharing.
     negative_zero = any(isinstance(k, Num) and math.copysign(1.0, k.value) < 0
@@ -236,9 +238,7 @@ def source(tree: Node) -> str:
         if found is not None:
             return found
         args = [emit(k) for k in children(node)]
-        if isinstance(node, Num):
-            expr = f"_const({node.value!r}, n)"
-        elif isinstance(node, Text):
+        if isinstance(node, (Num, Text)):
             expr = f"_const({node.value!r}, n)"
         elif isinstance(node, Param):
             expr = f"_const(params[{node.name!r}], n)"
@@ -262,18 +262,41 @@ def source(tree: Node) -> str:
             expr = f"{_CALLS[node.fn]}({', '.join(args)})"
         name = f"t{len(names)}"
         names[key(node)] = name
+        nodes.append(node)
         lines.append(f"        {name} = {expr}")
         return name
 
+    last = emit(tree)
+    return lines, (None if negative_zero else nodes), last
+
+
+def source(tree: Node) -> str:
+    """The generated function's text."""
     if isinstance(tree, Var):  # the column itself, as compile_numpy gives it
         return f"def f(cols, params, n):\n    return cols[{tree.name!r}]\n"
-    last = emit(tree)
+    lines, _, last = _print(tree)
     return ("def f(cols, params, n):\n    with _errstate(all='ignore'):\n"
             + "\n".join(lines) + f"\n    return _heavy({last})\n")
 
 
+def _compile(text: str) -> Callable:
+    scope = dict(_NAMESPACE)
+    exec(compile(text, "<tree>", "exec"), scope)
+    return scope["f"]
+
+
 def generate(tree: Node) -> Callable:
     """``f(columns, params, n) -> XArray``, as ``numeric.compile_numpy(tree)``."""
-    scope = dict(_NAMESPACE)
-    exec(compile(source(tree), "<tree>", "exec"), scope)
-    return scope["f"]
+    return _compile(source(tree))
+
+
+def generate_subtrees(tree: Node) -> tuple[Callable, list[Node]] | None:
+    """``f(columns, params, n)`` -> the (val, err or None, boolean) of every distinct
+    subtree of ``tree``, in the order of the list returned with it (each as
+    ``compile_numpy(subtree)`` gives it); None for a tree holding a -0 literal."""
+    lines, nodes, _ = _print(tree)
+    if nodes is None:
+        return None
+    names = ", ".join(f"t{i}" for i in range(len(nodes)))
+    return _compile("def f(cols, params, n):\n    with _errstate(all='ignore'):\n"
+                    + "\n".join(lines) + f"\n    return ({names},)\n"), nodes

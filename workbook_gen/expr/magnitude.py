@@ -15,6 +15,9 @@ from typing import Mapping
 import numpy as np
 
 from .. import xlmath as xm
+from functools import lru_cache
+
+from . import fastnum
 from .numeric import compiled
 from .tree import Bin, Call, Neg, Node, Num, Param, Var, children
 
@@ -34,6 +37,7 @@ def magnitude(node: Node, columns: Mapping[str, xm.XArray], params: Mapping[str,
     ``shared``: a ``scope(columns, params, n)`` over which several trees that share
     subtrees are measured, each subtree once."""
     values = _Values(columns, params, n) if shared is None else shared
+    values.prime(node)
     with np.errstate(all="ignore"):
         return np.abs(_m(node, values))
 
@@ -60,6 +64,10 @@ class _Scope(Mapping):
         return len(self.local) + len(self.columns)
 
 
+#: Every subtree's value of a tree by one generated function (the same bits as
+#: ``compile_numpy(subtree)``), once per tree in a process.
+_subtrees = lru_cache(maxsize=1024)(fastnum.generate_subtrees)
+
 _PLACEHOLDERS = tuple(Var(f"\x00{i}") for i in range(256))
 _compiled = compiled
 
@@ -81,8 +89,27 @@ class _Values:
     def __init__(self, columns, params, n):
         self.columns, self.params, self.n = columns, params, n
         self.memo: dict[int, tuple[Node, xm.XArray]] = {}
-        self.floats: dict[int, np.ndarray] = {}   # __call__'s, by the memo's node ids
+        self.floats: dict[int, tuple[Node, np.ndarray]] = {}   # __call__'s, by node id
+        self.primed: dict[Node, np.ndarray] | None = {}   # prime()'s, by subtree
         self.magnitudes: dict[int, tuple[Node, np.ndarray]] = {}   # _m's
+
+    def prime(self, tree: Node) -> None:
+        """Every subtree's value of ``tree``, in one call of its generated function."""
+        if self.primed is None or tree in self.primed:
+            return
+        generated = _subtrees(tree)
+        if generated is None:  # a -0 literal, equal to 0 as a key: subtree by subtree
+            self.primed = None
+            return
+        f, nodes = generated
+        for node, (val, err, _) in zip(nodes, f(self.columns, self.params, self.n)):
+            if val.dtype == object:
+                value = np.zeros(self.n)
+            elif err is None:
+                value = val
+            else:
+                value = np.where(err != 0, np.nan, val)
+            self.primed.setdefault(node, value)
 
     def xarray(self, node: Node) -> xm.XArray:
         found = self.memo.get(id(node))
@@ -100,11 +127,13 @@ class _Values:
     def __call__(self, node: Node) -> np.ndarray:
         found = self.floats.get(id(node))
         if found is not None:
-            return found
-        result = self.xarray(node)  # keeps the node alive in the memo
-        value = np.where(result.err != 0, np.nan, np.asarray(result.val, dtype=float)) \
-            if not result.is_text else np.zeros(self.n)
-        self.floats[id(node)] = value
+            return found[1]
+        value = None if self.primed is None else self.primed.get(node)
+        if value is None:
+            result = self.xarray(node)
+            value = np.where(result.err != 0, np.nan, np.asarray(result.val, dtype=float)) \
+                if not result.is_text else np.zeros(self.n)
+        self.floats[id(node)] = (node, value)  # the node kept alive: its id stays its own
         return value
 
 
