@@ -23,8 +23,8 @@ from ..version import VERSION
 from . import runners
 from .folder import Folder, digest
 from .job import JobSpec, run_chunk
-from .summary import write_summaries
-from .summary_only import block_size, summary_block
+from .summary import SummaryWriter
+from .summary_only import SummaryJob, block_size, summary_rows
 from .table import Table
 from .variants import Design, from_design, from_specs
 
@@ -117,15 +117,21 @@ def batch(scene: str | Path | Scene, vary: Sequence[str] | None = None,
     resume = folder.check(force)
     own = runners.connect(scheduler) if scheduler is not None and client is None else None
     command = _command(source, vary, design, sets, step, samples, seed, summary_only, audit)
+    writer = None
     try:
         folder_path.mkdir(parents=True, exist_ok=True)
         folder.start(resume, command)
         table = Table(plan, select(base.template, base.outputs), base.parameters)
+        writer = SummaryWriter(table, folder_path / "summary.csv", folder_path / "summary.xlsx")
         runner = runners.pick(jobs, client or own)
         if summary_only:
-            _summaries_only(spec, plan, table, runner, progress)
+            _summaries_only(spec, plan, table, runner, progress, writer)
         else:
             _workbooks(spec, plan, table, runner, folder, resume, progress)
+    except BaseException:
+        if writer is not None:
+            writer.abort()
+        raise
     finally:
         if own is not None:
             own.close()
@@ -134,7 +140,7 @@ def batch(scene: str | Path | Scene, vary: Sequence[str] | None = None,
              ("statuses", _counts(table)), ("workbooks", "none (--summary-only)" if summary_only
                                             else f"{base.name}-{'0' * (width - 1)}1.xlsx ..."),
              ("scene as given", text)]
-    write_summaries(table, folder_path / "summary.csv", folder_path / "summary.xlsx", about)
+    writer.finish(about)
     frame = table.frame()
     frame.attrs["folder"] = str(folder_path)
     frame.attrs["failed"] = sum(table.failed())
@@ -149,7 +155,8 @@ def _counts(table: Table) -> str:
             f"{refused}" + (f", audit failed {fails}" if fails else ""))
 
 
-def _summaries_only(spec: JobSpec, plan: Design, table: Table, runner, progress) -> None:
+def _summaries_only(spec: JobSpec, plan: Design, table: Table, runner, progress,
+                    writer: SummaryWriter) -> None:
     bar = _progress(len(plan), 0, progress)
     try:
         # A small first block: a local pool runs it in this process to warm the caches
@@ -159,8 +166,11 @@ def _summaries_only(spec: JobSpec, plan: Design, table: Table, runner, progress)
         first = min(size, _FIRST_BLOCK, len(plan.variants))
         parts = ([plan.variants[:first]] if first else []) + runners.chunks(
             plan.variants[first:], size)
-        for part, block in runner.run(summary_block, spec, parts):
+        job = SummaryJob(spec, plan.names)
+        for part, (block, text) in runner.run(summary_rows, job, parts):
             table.put_block(part, block)
+            if text is not None:  # formatted by the worker: written as soon as in order
+                writer.add(part[0].index, len(part), text)
             if bar is not None:
                 bar.update(len(part))
     finally:

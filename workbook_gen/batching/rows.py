@@ -60,6 +60,11 @@ def figure_columns(model: Model) -> list[str]:
     return [snake(s.label) for s in model.spans] + [snake(f.label) for f in model.figures]
 
 
+def text_figures(model: Model) -> set[str]:
+    """The figure columns that may hold texts (not the spans, always numbers)."""
+    return set(figure_columns(model)) - {snake(s.label) for s in model.spans}
+
+
 def value_columns(model: Model) -> list[str]:
     """Every summary column a variant's evaluation fills, in order."""
     names = []

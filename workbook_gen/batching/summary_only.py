@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import functools
 import math
+from dataclasses import dataclass
 from typing import Sequence
 
 import numpy as np
@@ -21,7 +22,9 @@ from ..errors import SceneError
 from ..scene import MAGNITUDE, Scene, parse_scene
 from .broadcast import Plan
 from .job import JobSpec, refused_reason, unassembled_reason, variant_scene
-from .rows import figure_values, status_texts, summarise, value_columns
+from .blocktext import TEXT_COLUMNS, block_texts, has_value, value_kind
+from .rows import figure_values, status_texts, summarise, text_figures, value_columns
+from .summary import BlockText
 from .variants import Variant
 
 # Elements (variants x rows) per block: ~2 MB per float column.
@@ -112,3 +115,41 @@ def block_size(spec: JobSpec) -> int:
     """Variants per block: about BLOCK_ELEMENTS rows in all."""
     base, _ = _prepared(spec)
     return max(1, BLOCK_ELEMENTS // max(1, base.sweep.rows))
+
+
+@dataclass(frozen=True)
+class SummaryJob:
+    """A ``--summary-only`` batch as its workers see it: the job and the varied
+    parameters (the summary's columns), so each block comes back formatted."""
+
+    spec: JobSpec
+    names: tuple[str, ...]
+
+
+def summary_rows(job: SummaryJob, variants: Sequence[Variant]
+                 ) -> tuple[dict[str, list[object]], BlockText | None]:
+    """The summary columns of ``variants`` and, if they are consecutive, their rows
+    formatted for summary.csv and the Variants sheet (the kinds of the figure
+    columns taken from this block: the command checks them against the whole
+    table's)."""
+    base, plan = _prepared(job.spec)
+    block = _block(base, plan, job.spec, variants)
+    first = variants[0].index
+    if variants[-1].index - first != len(variants) - 1:
+        return block, None
+    columns = (["variant", "file", "status"] + list(job.names) + value_columns(plan.model)
+               + ["audit"])
+    data = dict(block)
+    data["variant"] = [v.label for v in variants]
+    chosen = [dict(v.values) for v in variants]
+    for name in job.names:
+        default = base.parameters[name]
+        data[name] = [values.get(name, default) for values in chosen]
+    figures = text_figures(plan.model)
+    kinds = {name: "text" if name in TEXT_COLUMNS else value_kind(data[name])
+             if name in figures and name not in job.names else "number" for name in columns}
+    csv_text, xml_text = block_texts(columns, kinds, data, first + 1, len(variants))
+    own = tuple((name, kinds[name]) for name in columns if name in figures
+                and name not in job.names and name not in TEXT_COLUMNS)
+    filled = frozenset(name for name, _ in own if has_value(data[name]))
+    return block, BlockText(csv_text, xml_text, own, filled)

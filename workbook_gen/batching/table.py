@@ -9,14 +9,14 @@ is none (a refused variant, a figure whose formula is an error).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 from typing import Mapping, Sequence
 
 from ..model import Model
-from .rows import figure_columns, snake, value_columns
+from .blocktext import TEXT_COLUMNS, value_kind
+from .rows import text_figures, value_columns
 from .variants import Design, Variant
 
 
@@ -39,7 +39,7 @@ class Table:
                 column[i] = dict(variant.values).get(name, self.defaults[name])
         self._filled = [False] * size
         self._kinds: dict[str, str] = {}
-        self._figures = set(figure_columns(self.model)) - {snake(s.label) for s in self.model.spans}
+        self._figures = text_figures(self.model)
 
     def put(self, variant: Variant, row: Mapping[str, object]) -> None:
         i = variant.index - 1
@@ -70,14 +70,11 @@ class Table:
         return kind
 
     def _kind(self, name: str) -> str:
-        if name in ("variant", "file", "status", "audit"):
+        if name in TEXT_COLUMNS:
             return "text"
         if name in self.design.names or name not in self._figures:
             return "number"
-        values = self.data[name]
-        if all(v is None or isinstance(v, (int, float)) for v in values):
-            return "number"
-        return "text" if all(v is None or isinstance(v, str) for v in values) else "mixed"
+        return value_kind(self.data[name])
 
     @property
     def complete(self) -> bool:
@@ -106,32 +103,3 @@ class Table:
         if "rows_not_assembled" in frame:
             frame["rows_not_assembled"] = frame["rows_not_assembled"].astype("Int64")
         return frame
-
-    def csv_column(self, name: str, lo: int = 0, hi: int | None = None) -> list[str]:
-        """The column's CSV cells (rows ``lo:hi``): floats as Python's shortest
-        round-trip text (``repr``), no number as empty."""
-        values = self.data[name][lo:hi]
-        if self.kind(name) == "number":
-            return number_texts(values)
-        return [cell_text(v) for v in values]
-
-
-def number_texts(values: list) -> list[str]:
-    """``repr`` of each number ('' for None and NaN), formatted in C: ``repr`` of a list
-    formats its floats as ``repr`` of each does."""
-    if not values:
-        return []
-    text = repr(values)[1:-1]
-    texts = text.split(", ")
-    if "nan" not in text and "None" not in text:  # every row a number: nothing to blank
-        return texts
-    return ["" if t in ("nan", "None") else t for t in texts]
-
-
-def cell_text(value: object) -> str:
-    """A CSV cell: floats as Python's shortest round-trip text, no number as empty."""
-    if value is None:
-        return ""
-    if isinstance(value, float):
-        return "" if math.isnan(value) else repr(value)
-    return str(value)

@@ -1,0 +1,72 @@
+"""The summary's rows formatted a block at a time (batching/blocktext.py): the texts
+are Python's own ``repr`` of each number, and a block formatted by a worker gives the
+bytes the command gives when it formats the whole table itself."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from workbook_gen import batch
+from workbook_gen.batching import api, blocktext, summary_only
+
+ROOT = Path(__file__).resolve().parents[1]
+SEWING = str(ROOT / "templates" / "sewing_machine.toml")
+TRICKY = [0.0, -0.0, 0.1, 1e-05, 0.0001, 1e16, 1e15, 123456789012345.6, 5e-324,
+          -1.7976931348623157e308, 2.0 ** -1074 * 3, 95.01, 1 / 3, -197.16118968844148,
+          float("nan"), float("inf"), None]
+
+
+def test_number_texts_are_repr_of_each_number_and_empty_for_none_and_nan():
+    rng = np.random.default_rng(5)
+    values = TRICKY + rng.normal(0, 1e3, 500).tolist() + (10.0 ** rng.uniform(
+        -30, 30, 500)).tolist() + [0.25] * 50
+    expected = ["" if v is None or v != v else repr(v) for v in values]
+    assert blocktext.number_texts(values) == expected  # floats and None: numpy path
+    floats = np.array([np.nan if v is None else v for v in values])
+    assert blocktext.number_texts(floats) == expected
+    assert blocktext.number_texts([3, None, 0, 2.5]) == ["3", "", "0", "2.5"]
+
+
+RANDOM = ["l_AB=normal:32:16", "l_BC=uniform:20:110"]  # refused (l_AB <= 0) and partial rows
+
+
+def _summaries(folder: Path) -> tuple[bytes, bytes]:
+    out = folder / "sewing_machine-batch"
+    return (out / "summary.csv").read_bytes(), (out / "summary.xlsx").read_bytes()
+
+
+def _run(folder: Path, jobs: int) -> tuple[bytes, bytes]:
+    frame = batch(SEWING, vary=RANDOM, samples=60, seed=3, out=folder, jobs=jobs, step=30.0,
+                  summary_only=True, progress=False)
+    statuses = {s.split(":")[0] for s in frame["status"]}
+    assert statuses == {"ok", "partial", "refused"}
+    return _summaries(folder)
+
+
+@pytest.fixture(scope="module")
+def formatted_here(tmp_path_factory):
+    """The summaries with every row formatted in the command (the workers' texts
+    ignored): the reference the workers' blocks must give byte for byte."""
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(summary_only, "BLOCK_ELEMENTS", 70)  # 5 variants of 13 rows a block
+        patch.setattr(api.SummaryWriter, "add", lambda self, first, count, text: None)
+        return _run(tmp_path_factory.mktemp("here"), jobs=1)
+
+
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_blocks_formatted_by_workers_give_the_bytes_of_the_command(formatted_here, tmp_path,
+                                                                   monkeypatch, jobs):
+    monkeypatch.setattr(summary_only, "BLOCK_ELEMENTS", 70)
+    assert _run(tmp_path, jobs) == formatted_here
+
+
+def test_a_block_formatted_with_another_kind_is_formatted_again(formatted_here, tmp_path,
+                                                                monkeypatch):
+    # Workers that take the (number) figure columns for mixed ones: their texts would
+    # write those floats as %.16G; the command notices and formats every row itself.
+    monkeypatch.setattr(summary_only, "BLOCK_ELEMENTS", 70)
+    monkeypatch.setattr(summary_only, "value_kind", lambda values: "mixed")
+    assert _run(tmp_path, 1) == formatted_here

@@ -1,0 +1,186 @@
+"""The summary's rows as text, a block of rows at a time: the lines of summary.csv and
+the row XML of summary.xlsx's Variants sheet.
+
+One code path for both places that format them: the ``--summary-only`` workers (each
+formats the block it evaluated, in parallel) and the command (the file batch's
+summary, and any block a worker formatted with a column kind the whole table does
+not have).  The bytes are those the cell-by-cell writers gave:
+
+- a number as Python's shortest round-trip text (``repr``), nothing for NaN or None,
+  in both files (``<c r="F2"><v>-125.0</v></c>``); a float in a ``mixed`` column (a
+  figure that is a number for some variants and a text for others) as ``%.16G`` in
+  the sheet;
+- a text as itself in the CSV (quoted as ``csv.writer`` quotes) and as an inline
+  string in the sheet (``xml:space="preserve"`` when it has outer spaces); the file
+  column a ``HYPERLINK`` formula with the name as cached text.
+
+Columns are formatted whole, not cell by cell: a column's distinct numbers are
+formatted once (``repr`` of a list, in C) and spread by numpy, and a block's rows are
+assembled by interleaving whole columns into one list and joining it once.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+import re
+from typing import Mapping, Sequence
+
+import numpy as np
+from xlsxwriter.utility import xl_col_to_name
+
+TEXT_COLUMNS = ("variant", "file", "status", "audit")
+_CSV_SPECIAL = re.compile(r'[,"\r\n]')
+_EXACT_FLOATS = {float, type(None)}
+
+
+def value_kind(values: Sequence[object]) -> str:
+    """A figure column's kind from its values: ``number`` (floats, ints, None),
+    ``text`` (texts, None) or ``mixed``."""
+    types = set(map(type, values))
+    types.discard(type(None))
+    if all(issubclass(t, (int, float)) for t in types):
+        return "number"
+    return "text" if types <= {str} else "mixed"
+
+
+def has_value(values: Sequence[object]) -> bool:
+    """Whether any cell of the column shows something (not None, NaN or empty text)."""
+    return any(not (v is None or v == "" or (isinstance(v, float) and v != v))
+               for v in values)
+
+
+def number_texts(values: Sequence[object]) -> list[str]:
+    """``repr`` of each number ('' for None and NaN), formatted in C: ``repr`` of a list
+    formats its floats as ``repr`` of each does."""
+    if not len(values):
+        return []
+    if isinstance(values, np.ndarray) or set(map(type, values)) <= _EXACT_FLOATS:
+        return _float_texts(np.asarray(values, dtype=np.float64))
+    text = repr(list(values))[1:-1]
+    texts = text.split(", ")
+    if "nan" not in text and "None" not in text:  # every row a number: nothing to blank
+        return texts
+    return ["" if t in ("nan", "None") else t for t in texts]
+
+
+def _float_texts(values: np.ndarray) -> list[str]:
+    """``repr`` of each float ('' for NaN): each distinct value (bit for bit: -0.0 is
+    not 0.0) formatted once, then spread (``_at`` columns hold a few sweep inputs,
+    the varied parameters a few levels)."""
+    bits, where = np.unique(np.ascontiguousarray(values).view(np.int64), return_inverse=True)
+    distinct = bits.view(np.float64).tolist()
+    text = repr(distinct)[1:-1]
+    texts = text.split(", ")
+    if "nan" in text:
+        texts = ["" if t == "nan" else t for t in texts]
+    return np.array(texts, dtype=object)[where.reshape(-1)].tolist()
+
+
+def cell_text(value: object) -> str:
+    """A CSV cell: floats as Python's shortest round-trip text, no number as empty."""
+    if value is None:
+        return ""
+    if isinstance(value, float):
+        return "" if math.isnan(value) else repr(value)
+    return str(value)
+
+
+def _escape(text: str) -> str:
+    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+
+
+def text_cell(ref: str, text: str) -> str:
+    space = ' xml:space="preserve"' if text != text.strip() else ""
+    return f'<c r="{ref}" t="inlineStr"><is><t{space}>{_escape(text)}</t></is></c>'
+
+
+def _cell(name: str, ref: str, value: object) -> str:
+    """One cell of a ``file`` or ``mixed`` column, as XlsxWriter writes it."""
+    if value is None or value == "" or (isinstance(value, float) and value != value):
+        return ""
+    if name == "file":
+        target = _escape(str(value).replace('"', '""'))
+        return (f'<c r="{ref}" t="str"><f>HYPERLINK("{target}","{target}")</f>'
+                f"<v>{_escape(str(value))}</v></c>")
+    if isinstance(value, str):
+        return text_cell(ref, value)
+    if isinstance(value, bool) or not math.isfinite(value):
+        return text_cell(ref, str(value))
+    return f'<c r="{ref}"><v>{value:.16G}</v></c>'
+
+
+def _xml_items(name: str, col: int, kind: str, values: Sequence[object],
+               texts: list[str] | None, rows: list[str]) -> list:
+    """A column's share of each row's XML: constants (str) and per-row lists."""
+    letter = xl_col_to_name(col)
+    if kind == "number":
+        if all(texts):
+            return [f'<c r="{letter}', rows, '"><v>', texts, "</v></c>"]
+        if not any(texts):
+            return []
+        return [[f'<c r="{letter}{r}"><v>{t}</v></c>' if t else ""
+                 for r, t in zip(rows, texts)]]
+    if kind == "text" and name != "file":  # each distinct text's XML made once
+        bodies: dict[str, str] = {}
+        for value in set(values):
+            if value:
+                bodies[value] = text_cell("", value)[len('<c r="'):]
+        if all(values):
+            return [f'<c r="{letter}', rows, [bodies[v] for v in values]]
+        if not bodies:
+            return []
+        return [[f'<c r="{letter}{r}{bodies[v]}' if v else "" for r, v in zip(rows, values)]]
+    cells = [_cell(name, f"{letter}{r}", v) for r, v in zip(rows, values)]
+    return [cells] if any(cells) else []
+
+
+def _join(items: list, count: int) -> str:
+    """``count`` rows whose pieces are ``items`` (a constant, or one text per row)."""
+    merged: list = []
+    for item in items:
+        if isinstance(item, str) and merged and isinstance(merged[-1], str):
+            merged[-1] += item
+        else:
+            merged.append(item)
+    width = len(merged)
+    flat: list = [None] * (width * count)
+    for k, item in enumerate(merged):
+        flat[k::width] = [item] * count if isinstance(item, str) else item
+    return "".join(flat)
+
+
+def block_texts(columns: Sequence[str], kinds: Mapping[str, str],
+                data: Mapping[str, Sequence[object]], first_row: int, count: int
+                ) -> tuple[str, str]:
+    """(summary.csv lines, Variants sheet row XML) of ``count`` rows, the first on
+    sheet row ``first_row`` (1-based; the header is row 1); ``data``: each column's
+    values for those rows, ``kinds`` each column's kind in the whole table."""
+    if not count:
+        return "", ""
+    rows = list(map(str, range(first_row, first_row + count)))
+    csv_cols: list[list[str]] = []
+    special = False
+    xml: list = ['<row r="', rows, '">']
+    for col, name in enumerate(columns):
+        values, kind = data[name], kinds[name]
+        if kind == "number":
+            texts = number_texts(values)
+        else:
+            texts = [cell_text(v) for v in values]
+            special = special or bool(_CSV_SPECIAL.search("\x00".join(texts)))
+        csv_cols.append(texts)
+        xml += _xml_items(name, col, kind, values, texts if kind == "number" else None, rows)
+    xml.append("</row>")
+    if special:  # a text with a comma, quote or line break: csv.writer quotes it
+        out = io.StringIO()
+        csv.writer(out, lineterminator="\n").writerows(zip(*csv_cols))
+        csv_text = out.getvalue()
+    else:  # csv.writer (QUOTE_MINIMAL) writes such fields as they are
+        items: list = []
+        for texts in csv_cols:
+            items += [texts[0] if texts.count(texts[0]) == count else texts, ","]
+        items[-1] = "\n"
+        csv_text = _join(items, count)
+    return csv_text, _join(xml, count)
