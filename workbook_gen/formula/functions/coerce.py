@@ -27,7 +27,7 @@ __all__ = [
     "Range", "Value", "checked", "compare", "number_to_text", "rank", "scalar_of", "text_to_number",
     "to_bool", "to_number", "to_text", "is_error", "is_number", "flat", "number",
     "integer", "text", "numbers", "logicals", "result", "wildcard", "criterion",
-    "as_area", "first_error",
+    "as_area", "first_error", "values_a",
 ]
 
 
@@ -100,6 +100,26 @@ def numbers(args, ctx=None, *, strict_text: bool | None = None) -> list[float] |
             continue
         if strict and isinstance(a, str):
             return ExcelError.VALUE
+        x = to_number(a)
+        if isinstance(x, ExcelError):
+            return x
+        out.append(x)
+    return out
+
+
+def values_a(args) -> list[float] | ExcelError:
+    """AVERAGEA/VARA-style numbers: in ranges text is 0, booleans 1/0, empty cells skipped;
+    a direct argument converts (an omitted one is 0: LibreOffice gives AVERAGEA(1,,3) = 4/3,
+    VARA(1,,3) = 7/3, MAXA(-1,,-3) = 0, tests/test_functions_more.py)."""
+    out: list[float] = []
+    for a in args:
+        if isinstance(a, Range):
+            for v in a.flat():
+                if isinstance(v, ExcelError):
+                    return v
+                if v is not None:
+                    out.append(0.0 if isinstance(v, str) else float(v))
+            continue
         x = to_number(a)
         if isinstance(x, ExcelError):
             return x

@@ -68,6 +68,15 @@ LIBREOFFICE_ERRORS: dict[str, dict[ExcelError, ExcelError]] = {
     "VLOOKUP": {ExcelError.REF: ExcelError.VALUE},
     "HLOOKUP": {ExcelError.REF: ExcelError.VALUE},
     "INDEX": {ExcelError.REF: ExcelError.VALUE},
+    # measured on tests/test_functions_more.py's cases (a name and its aliases share the code)
+    **{name: _INVALID for name in (
+        "BETA.DIST", "BETADIST", "BINOM.DIST", "BINOMDIST", "POISSON", "POISSON.DIST",
+        "CHISQ.DIST", "EXPONDIST", "EXPON.DIST", "GAMMALN", "GAMMALN.PRECISE", "GAMMA",
+        "GEOMEAN", "HARMEAN", "T.TEST", "TTEST", "IMABS", "IMLN", "IMDIV", "BITAND", "BITOR",
+        "BITXOR", "ACOTH")},
+    **{name: {ExcelError.NA: ExcelError.VALUE} for name in (
+        "SUMXMY2", "SUMX2MY2", "SUMX2PY2", "PERCENTRANK", "PERCENTRANK.INC", "PERCENTRANK.EXC")},
+    "DGET": {ExcelError.NUM: ExcelError.VALUE},
 }
 
 

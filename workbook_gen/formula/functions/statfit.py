@@ -107,28 +107,9 @@ _numbers_stat("AVEDEV", lambda xs: fsum([abs(x - fsum(xs) / len(xs)) for x in xs
               ExcelError.NUM)
 
 
-def _values_a(args):
-    """VARA-style: in ranges text is 0 and booleans 1/0; empties skipped."""
-    out = []
-    for a in args:
-        for v in (c.flat(a) if isinstance(a, Range) else [a]):
-            if isinstance(v, ExcelError):
-                return v
-            if v is None:
-                continue
-            if isinstance(a, Range):
-                out.append(0.0 if isinstance(v, str) else float(v))
-            else:
-                x = c.to_number(v)
-                if isinstance(x, ExcelError):
-                    return x
-                out.append(x)
-    return out
-
-
 def _var_a(name, sample, root):
     def scalar(ctx, *args):
-        xs = _values_a(args)
+        xs = c.values_a(args)
         if isinstance(xs, ExcelError):
             return xs
         if len(xs) - sample <= 0:

@@ -74,28 +74,9 @@ def _mode(ctx, *args):
     return next(x for x in xs if counts[x] == best)
 
 
-def _values_a(args, ctx):
-    """AVERAGEA-style: in ranges text is 0 and booleans 1/0; empties skipped."""
-    out = []
-    for a in args:
-        if isinstance(a, Range):
-            for v in a.flat():
-                if isinstance(v, ExcelError):
-                    return v
-                if v is None:
-                    continue
-                out.append(float(v) if not isinstance(v, str) else 0.0)
-            continue
-        x = c.to_number(a)
-        if isinstance(x, ExcelError):
-            return x
-        out.append(x)
-    return out
-
-
 def _agg_a(name, fn, empty):
     def scalar(ctx, *args):
-        xs = _values_a(args, ctx)
+        xs = c.values_a(args)
         if isinstance(xs, ExcelError):
             return xs
         return c.result(fn(xs)) if xs else empty

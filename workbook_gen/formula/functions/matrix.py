@@ -1,0 +1,127 @@
+"""Matrices and paired sums: MMULT, MINVERSE, MDETERM, MUNIT, FREQUENCY, SUMX2MY2,
+SUMX2PY2, SUMXMY2. Matrix arguments must hold numbers only (else #VALUE!); results that
+are arrays are returned as array Ranges (spread over an array formula's cells, or their
+first item where one value is wanted)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from workbook_gen.formula.functions import coerce as c
+from workbook_gen.formula.functions.math import fsum
+from workbook_gen.formula.functions.registry import register
+from workbook_gen.formula.values import Range
+from workbook_gen.xlerror import ExcelError
+
+
+def matrix(v) -> np.ndarray | ExcelError:
+    """An area of numbers as a float matrix (an error cell is that error, other
+    non-numbers #VALUE!)."""
+    area = c.as_area(v)
+    if not area.rows or not area.rows[0]:
+        return ExcelError.VALUE
+    err = c.first_error(area.flat())
+    if err is not None:
+        return err
+    if not all(c.is_number(x) for x in area.flat()):
+        return ExcelError.VALUE
+    return np.array([[float(x) for x in row] for row in area.rows], dtype=float)
+
+
+def array(m: np.ndarray) -> Range | ExcelError:
+    if not np.all(np.isfinite(m)):
+        return ExcelError.NUM
+    return Range.array_of([[c.result(float(x)) for x in row] for row in m])
+
+
+@register("MMULT", "math", 2, 2, "range")
+def _mmult(ctx, a, b):
+    x, y = matrix(a), matrix(b)
+    for v in (x, y):
+        if isinstance(v, ExcelError):
+            return v
+    if x.shape[1] != y.shape[0]:
+        return ExcelError.VALUE
+    out = [[fsum(x[i, k] * y[k, j] for k in range(x.shape[1])) for j in range(y.shape[1])]
+           for i in range(x.shape[0])]
+    return array(np.array(out))
+
+
+def _square(v):
+    m = matrix(v)
+    if isinstance(m, ExcelError):
+        return m
+    return m if m.shape[0] == m.shape[1] else ExcelError.VALUE
+
+
+@register("MDETERM", "math", 1, 1, "range")
+def _mdeterm(ctx, v):
+    m = _square(v)
+    if isinstance(m, ExcelError):
+        return m
+    return c.result(float(np.linalg.det(m)))
+
+
+@register("MINVERSE", "math", 1, 1, "range")
+def _minverse(ctx, v):
+    m = _square(v)
+    if isinstance(m, ExcelError):
+        return m
+    if np.linalg.det(m) == 0:
+        return ExcelError.NUM
+    try:
+        return array(np.linalg.inv(m))
+    except np.linalg.LinAlgError:
+        return ExcelError.NUM
+
+
+@register("MUNIT", "math", 1, 1)
+def _munit(ctx, n):
+    k = c.to_number(n)
+    if isinstance(k, ExcelError):
+        return k
+    k = math.trunc(k)
+    if k < 1:
+        return ExcelError.VALUE
+    return array(np.eye(k))
+
+
+@register("FREQUENCY", "stats", 2, 2, "range")
+def _frequency(ctx, data, bins):
+    xs, bs = c.numbers([c.as_area(data)], ctx), c.numbers([c.as_area(bins)], ctx)
+    for v in (xs, bs):
+        if isinstance(v, ExcelError):
+            return v
+    if not bs:
+        return Range.array_of([[float(len(xs))]])
+    order = sorted(range(len(bs)), key=lambda i: bs[i])
+    counts = [0.0] * (len(bs) + 1)
+    for x in xs:
+        for i in order:
+            if x <= bs[i]:
+                counts[i] += 1
+                break
+        else:
+            counts[-1] += 1
+    return Range.array_of([[k] for k in counts])
+
+
+def _paired(fn):
+    def scalar(ctx, a, b):
+        x, y = c.flat(c.as_area(a)), c.flat(c.as_area(b))
+        if len(x) != len(y):
+            return ExcelError.NA
+        err = c.first_error(x + y)
+        if err is not None:
+            return err
+        terms = [fn(float(p), float(q)) for p, q in zip(x, y)
+                 if c.is_number(p) and c.is_number(q)]
+        return c.result(fsum(terms)) if terms else ExcelError.DIV0  # no pair: Excel's #DIV/0!
+    return scalar
+
+
+register("SUMX2MY2", "math", 2, 2, "range")(_paired(lambda x, y: x * x - y * y))
+register("SUMX2PY2", "math", 2, 2, "range")(_paired(lambda x, y: x * x + y * y))
+register("SUMXMY2", "math", 2, 2, "range")(_paired(lambda x, y: (x - y) ** 2))
