@@ -73,3 +73,28 @@ def test_public_compute_stays_the_function_after_the_package_is_imported_whole()
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout.split()
     assert out == ["True", "37"]
+
+
+def test_list_prints_the_stored_listing_without_building_a_template():
+    """``list`` prints the text kept in mechanisms/_listing.py while the template sources
+    are those it was made from (else it builds them: same text, slower)."""
+    from workbook_gen.mechanisms import listing
+    kept = listing.stored()
+    assert kept is not None and kept[0] == listing.sources_digest(), (
+        "mechanisms/_listing.py is stale: run python -m workbook_gen.mechanisms.listing")
+    assert kept[1] == listing.build_listing()  # the templates' own text
+    probe = ("import contextlib, io, sys\nfrom workbook_gen.cli import main\n"
+             "out = io.StringIO()\nwith contextlib.redirect_stdout(out):\n    main(['list'])\n"
+             "print(sorted(m for m in sys.modules if m.startswith('workbook_gen.mechanisms.')))")
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                         check=True).stdout
+    assert out.split("\n")[-2] == "['workbook_gen.mechanisms._listing', " \
+        "'workbook_gen.mechanisms.listing']"
+
+
+def test_list_builds_the_templates_when_their_sources_changed(monkeypatch, capsys):
+    from workbook_gen import cli
+    from workbook_gen.mechanisms import listing
+    monkeypatch.setattr(listing, "sources_digest", lambda: "changed")
+    assert cli.main(["list"]) == 0
+    assert capsys.readouterr().out == listing.build_listing()

@@ -45,21 +45,8 @@ def _warn(scene) -> None:
 
 
 def _list(args: argparse.Namespace) -> int:
-    from .mechanisms import TEMPLATES
-    for template in TEMPLATES.values():
-        print(f"{template.id}: {template.title}")
-        print(f"  {template.description}")
-        spec = template.input
-        print(f"  input: {spec.name} [{spec.unit}] {spec.description}, default "
-              f"{spec.start:g}..{spec.stop:g} by {spec.step:g}")
-        print("  parameters:")
-        for p in template.parameters:
-            print(f"    {p.name:<10} = {p.default:<12.10g} {p.unit:<6} {p.description}")
-        print("  outputs: " + ", ".join(q.header for q in template.quantities if q.output))
-        for option in template.options:
-            values = " | ".join(option.choices) if option.choices else type(option.default).__name__
-            print(f"  option {option.name} = {option.default!r} ({values}): {option.description}")
-        print()
+    from .mechanisms.listing import listing
+    sys.stdout.write(listing())
     return 0
 
 
