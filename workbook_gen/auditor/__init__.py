@@ -20,6 +20,8 @@ from xlsxwriter.utility import xl_col_to_name, xl_rowcol_to_cell
 
 from ..errors import FormulaSyntaxError, WorkbookGenError, WorkbookReadError
 from ..evaluator import evaluate_cells
+from ..evaluator.store import value_scale
+from ..evaluator.volatile import Clock
 from ..formula import ast, parse
 from ..formula.functions import dialect_of
 from ..formula.scalar import evaluate as evaluate_scalar
@@ -31,6 +33,7 @@ from .findings import find as find_findings
 from .inputs import AuditInputs, read_inputs
 from .mechanics import check_mechanics
 from .report import AuditReport, EngineResult, Mismatch
+from .saved import last_saved
 from .structure import check_structure
 
 __all__ = ["audit", "AuditReport"]
@@ -137,7 +140,8 @@ def _mark_roots(inputs: AuditInputs, mismatches: list[Mismatch], differ: set[str
                 break
 
 
-def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: str = "excel"):
+def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: str = "excel",
+                      saved: Clock | None = None):
     """Cells that read ranges (MAX, MIN, SUM, INDEX, MATCH over a column), recomputed
     from the cached values they read.
 
@@ -167,8 +171,10 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: st
     cached = {k: v for k, v in inputs.constants.items() if everything or (k[0], k[2]) in read}
     cached.update((k, given[k]) for k in given
                   if (everything or (k[0], k[2]) in read) and k not in keys)
+    if saved is not None:  # volatile cells settle on the values ``given``
+        saved = Clock(given, saved.saved, saved.agree, saved.date1904)
     return evaluate_cells({k: inputs.formulas[k] for k in keys}, cached, names,
-                          dialect=dialect, book=inputs.book_info())
+                          dialect=dialect, book=inputs.book_info(), saved=saved)
 
 
 def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True,
@@ -185,18 +191,19 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
     step("read")
     t = time.perf_counter()
     semantics = dialect_of(inputs.book.application)  # the engine that saved the file
+    clock = Clock(inputs.cached, last_saved(path), _agree, inputs.book.date1904)
     try:
         evaluation = evaluate_cells(inputs.formulas, inputs.constants, inputs.book.defined_names,
                                     vectorize=vectorize, uncheckable=inputs.uncheckable(),
                                     dialect=semantics, book=inputs.book_info(),
-                                    arrays=inputs.arrays)
+                                    arrays=inputs.arrays, saved=clock)
     except WorkbookReadError as exc:  # the evaluator's refusal (cost), named by file
         raise WorkbookReadError(f"{path}: {exc}") from None
     timings["evaluate_all"] = time.perf_counter() - t
     skipped = evaluation.not_checked
 
     values, constants = evaluation.values, inputs.constants
-    local = _local_evaluation(inputs, dialect=semantics)
+    local = _local_evaluation(inputs, dialect=semantics, saved=clock)
     timings["evaluate_all"] = time.perf_counter() - t
     # "parse": cutting the columns into runs equal in R1C1 form (the formula text analysis);
     # "evaluate": ordering, vectorised and cell-by-cell evaluation (both passes)
@@ -261,6 +268,12 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
             else:
                 max_abs = max(max_abs, verdict.abs_error)
                 max_rel = max(max_rel, verdict.rel_error)
+    # volatile cells hold their cached value (their dependents read it): the check was
+    # against the function's contract, and a value outside it is a disagreement
+    for key, outcome in evaluation.contract.items():
+        if outcome.status == "disagrees":
+            mismatches.append(Mismatch(_cell_name(key), inputs.text_of(key), inputs.cached[key],
+                                       outcome.contract))
     differ = {_cell_name(k) for k in local.values if k not in skipped
               and not compare(inputs.cached[k], values[k], evaluation.operands_scale[k]).agree}
     _mark_roots(inputs, mismatches, differ)
@@ -288,7 +301,12 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
         libreoffice_semantics=explained, vector_cells=evaluation.groups.vector_cells,
         seconds=time.perf_counter() - started, engine=engine_result, timings=timings,
         macros=inputs.book.vba_project, semantics=semantics,
+        by_contract={_cell_name(k): o.message for k, o in sorted(evaluation.contract.items())},
         application=inputs.book.application)
+
+
+def _agree(cached, value) -> bool:
+    return compare(cached, value, value_scale(cached)).agree
 
 
 def _engine(path, engine: str, inputs: AuditInputs, value_of, scales,
@@ -301,7 +319,8 @@ def _engine(path, engine: str, inputs: AuditInputs, value_of, scales,
     mismatches, explained, cells = [], 0, 0
     sheet_of = {s.name: s for s in inputs.book.sheets}
     seen = {k: theirs.get(k[0], {}).get(inputs.ref(k)) for k in inputs.formulas}
-    local = _local_evaluation(inputs, seen, dialect="libreoffice")
+    local = _local_evaluation(inputs, seen, dialect="libreoffice",
+                              saved=Clock({}, last_saved(path), _agree))
     for key, formula in inputs.formulas.items():
         if key in scales_skip:
             continue

@@ -56,6 +56,9 @@ class AuditReport:
     # that saved the file (docProps/app.xml)
     semantics: str = "excel"
     application: str | None = None
+    # cells calling TODAY/NOW/RAND/RANDBETWEEN, checked against the function's contract
+    # (not recomputed: the value changes at every recalculation): cell -> how
+    by_contract: dict[str, str] = field(default_factory=dict)
 
     @property
     def ok(self) -> bool:
@@ -107,6 +110,8 @@ class AuditReport:
             "cells_disagree": self.cells_disagree,
             "cells_not_checked": self.cells_not_checked,
             "not_checked": [{"cell": c, "reason": r} for c, r in self.not_checked.items()],
+            "cells_by_contract": len(self.by_contract),
+            "by_contract": [{"cell": c, "check": m} for c, m in self.by_contract.items()],
             "mismatches": [_mismatch_json(m) for m in self.mismatches],
             "max_abs_error": self.max_abs_error,
             "max_rel_error": self.max_rel_error,
@@ -182,6 +187,10 @@ def format_report(report: AuditReport, verbose: bool = False) -> str:
         shown = reasons if verbose else reasons[:3]
         lines.append("  not checked: " + "; ".join(f"{n} {r}" for r, n in shown)
                      + ("; ..." if len(shown) < len(reasons) else ""))
+    if report.by_contract:
+        lines.append(f"  {len(report.by_contract)} of the checked cells call TODAY, NOW, RAND or "
+                     "RANDBETWEEN (volatile): checked against the function's contract, not "
+                     "recomputed; their dependents are recomputed from their cached values")
     if report.libreoffice_semantics:
         lines.append(f"  {report.libreoffice_semantics} cells hold LibreOffice's answer where "
                      f"Excel's differs (e.g. SQRT(-1) is #VALUE! there): accepted")
@@ -199,6 +208,9 @@ def format_report(report: AuditReport, verbose: bool = False) -> str:
         if report.not_checked:
             lines += ["", "  not checked:"]
             lines += [f"    {cell}: {reason}" for cell, reason in report.not_checked.items()]
+        if report.by_contract:
+            lines += ["", "  checked against the contract of a volatile function:"]
+            lines += [f"    {cell}: {how}" for cell, how in report.by_contract.items()]
     if report.findings:
         kinds: dict[str, int] = {}
         for f in report.findings:

@@ -16,6 +16,10 @@ Documented choices:
 - an external reference (``[1]Sheet!A1``) gives ``#REF!`` and the cell is in ``external``;
 - an unsupported function gives ``#NAME?`` where it is evaluated; a volatile function
   (NOW, RAND, OFFSET, INDIRECT, ...) is evaluated and its cells listed in ``volatile``;
+  given ``saved`` (the cached values and the file's last save), a cell whose value
+  changes at every recalculation (TODAY, NOW, RAND, RANDBETWEEN) is checked against the
+  function's contract (:mod:`volatile`, outcome in ``contract``) and keeps its cached
+  value, which its dependents read;
 - ``dialect`` is the semantics of the engine that saved the file ("excel" or
   "libreoffice": see ``formula.functions.dialect``);
 - a reference to a sheet that has no cells reads empty cells.
@@ -31,7 +35,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from workbook_gen.errors import FormulaSyntaxError
-from workbook_gen.evaluator import graph
+from workbook_gen.evaluator import graph, volatile as vol
 from workbook_gen.evaluator.book import BookInfo, resolve
 from workbook_gen.evaluator.taint import Shape, Taint
 from workbook_gen.evaluator.grouping import Run, group_formulas
@@ -50,7 +54,7 @@ Cell = tuple[str, int, int]
 VOLATILE = fx.VOLATILE | {"NOW", "TODAY", "RAND", "RANDBETWEEN", "RANDARRAY", "OFFSET",
                           "INDIRECT"}
 # volatile and not reproducible: the cached value is from another moment or another draw
-CHANGING = frozenset({"NOW", "TODAY", "RAND", "RANDBETWEEN", "RANDARRAY"})
+CHANGING = vol.CHANGING
 # functions that use a reference's position or size, never its cells' values
 REFERENCE_ONLY = frozenset({"ROW", "COLUMN", "ROWS", "COLUMNS", "ISREF", "AREAS"})
 CYCLE_VALUE = ExcelError.REF
@@ -99,6 +103,9 @@ class Evaluation:
     # every cell that cannot be recomputed or reads one: (sheet, row, col) -> reason
     not_checked: dict[Cell, str] = field(default_factory=dict)
     bad_names: dict[str, str] = field(default_factory=dict)  # name -> why it does not parse
+    # cells calling TODAY/NOW/RAND/RANDBETWEEN checked against the function's contract
+    # (agreeing or not); those it could not settle are in not_checked
+    contract: dict[Cell, vol.Outcome] = field(default_factory=dict)
     groups: GroupStats = field(default_factory=GroupStats)
     seconds: dict[str, float] = field(default_factory=dict)  # grouping, graph, vector, scalar
     store: Store | None = None  # the values column by column, for array-wise comparison
@@ -126,15 +133,15 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
                    names: Mapping[str, str], *, vectorize: bool = True,
                    uncheckable: Mapping[Cell, str] | None = None,
                    dialect: str = "excel", book: BookInfo | None = None,
-                   arrays: Mapping[Cell, tuple[str, tuple[int, int]]] | None = None
-                   ) -> Evaluation:
+                   arrays: Mapping[Cell, tuple[str, tuple[int, int]]] | None = None,
+                   saved: vol.Clock | None = None) -> Evaluation:
     """Recompute every formula (texts without '=') of a workbook; see the module doc.
 
     ``uncheckable``: cells among ``constants`` that are formulas the caller could not
     hand over (with the reason): their readers are not checked either. ``book``: sheet
     order, sheet-scoped names and tables (structured references). ``arrays``: array
     formulas, ``{master cell: (text, (last row, last col))}``; the values of every cell
-    they fill are in ``values``."""
+    they fill are in ``values``. ``saved``: check volatile cells by contract (see above)."""
     if dialect not in fx.registry.DIALECTS:
         raise ValueError(f"unknown dialect {dialect!r}")
     book = book or BookInfo()
@@ -210,8 +217,14 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
             continue
         for u in component:
             head = (units[u].sheet, units[u].first, units[u].col)
+            by_contract = (saved is not None and units[u].area is None
+                           and saved.cached.get(head) is not None
+                           and _changing(result, head))
             if taint or shapes[u][1] or head in result.unsupported or head in result.volatile:
-                _spread(units[u], shapes[u], taint, result)
+                _spread(units[u], shapes[u], taint, result, by_contract)
+            if by_contract:
+                _settle(units[u], store, name_table, dialect, saved, result)
+                continue
             clock = time.perf_counter()
             try:
                 _evaluate(units[u], store, name_table, dialect)
@@ -262,6 +275,9 @@ def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -
                 store.put(run.sheet, r, run.col, EXTERNAL_VALUE)
             continue
         unit = _Unit(run.sheet, run.col, run.first, run.last, run.node)
+        if run.last > run.first and vol.calls(run.node):  # checked cell by cell
+            units.extend(_singles(unit))
+            continue
         if vectorize and run.last > run.first:
             try:
                 unit.block = compile_block(run.node, run.sheet, run.col, run.first, run.last,
@@ -326,13 +342,18 @@ def _source(result: Evaluation, taint: Taint, cell: Cell, origin: Cell, reason: 
         taint.add(cell[0], cell[2], cell[1], cell[1], origin)
 
 
-def _unit_reason(unit: _Unit, result: Evaluation, bad_names: list[str]) -> str | None:
+def _changing(result: Evaluation, cell: Cell) -> list[str]:
+    return [f for f in result.volatile.get(cell, ()) if f in CHANGING]
+
+
+def _unit_reason(unit: _Unit, result: Evaluation, bad_names: list[str],
+                 by_contract: bool = False) -> str | None:
     """Why a unit cannot be recomputed at all, or None."""
     cell = (unit.sheet, unit.first, unit.col)
     if cell in result.unsupported:
         return "unsupported function " + ", ".join(result.unsupported[cell])
-    changing = [f for f in result.volatile.get(cell, ()) if f in CHANGING]
-    if changing:
+    changing = _changing(result, cell)
+    if changing and not by_contract:
         return (f"volatile function {', '.join(changing)}: its value changes at every "
                 "recalculation")
     if bad_names:
@@ -341,10 +362,11 @@ def _unit_reason(unit: _Unit, result: Evaluation, bad_names: list[str]) -> str |
     return None
 
 
-def _spread(unit: _Unit, shaped: tuple, taint: Taint, result: Evaluation) -> None:
+def _spread(unit: _Unit, shaped: tuple, taint: Taint, result: Evaluation,
+            by_contract: bool = False) -> None:
     """Mark the unit's cells that cannot be recomputed or read a cell that cannot."""
     shapes, bad_names = shaped
-    reason = _unit_reason(unit, result, bad_names)
+    reason = _unit_reason(unit, result, bad_names, by_contract)
     if reason is not None:
         for cell in unit.cells():
             _source(result, taint, cell, cell, reason)
@@ -359,6 +381,27 @@ def _spread(unit: _Unit, shaped: tuple, taint: Taint, result: Evaluation) -> Non
                 if cell not in result.not_checked:
                     result.not_checked[cell] = f"depends on {_where(origin)}: {why}"
                     taint.add(unit.sheet, unit.col, cell[1], cell[1], origin)
+
+
+def _settle(unit: _Unit, store: Store, names: Names, dialect: str, clock: vol.Clock,
+            result: Evaluation) -> None:
+    """A single cell calling TODAY/NOW/RAND/RANDBETWEEN: its cached value checked against
+    the function's contract, and kept for its dependents to read."""
+    cell = (unit.sheet, unit.first, unit.col)
+    cached = clock.cached[cell]
+    if cell not in result.not_checked:  # not already a reader of a cell not checked
+        resolver = SheetResolver(store, names, unit.sheet)
+        try:
+            outcome = vol.check(unit.node, cached, lambda tree: evaluate(
+                tree, resolver, dialect=dialect, cell=cell), clock)
+        except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
+                AttributeError, RecursionError) as exc:
+            outcome = vol.Outcome("unknown", f"evaluator failure: {type(exc).__name__}: {exc}")
+        if outcome.status == "unknown":  # not checked; its readers still read its value
+            result.not_checked[cell] = outcome.message
+        else:
+            result.contract[cell] = outcome
+    store.put(*cell, cached, value_scale(cached))
 
 
 def _reads(node: ast.Node):

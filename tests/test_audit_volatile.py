@@ -1,0 +1,100 @@
+"""Volatile functions (TODAY, NOW, RAND, RANDBETWEEN) in foreign workbooks: the cached value
+is checked against the function's contract, and its dependents are recomputed from it.
+
+A workbook of cases is written with openpyxl and recalculated by LibreOffice headless (the
+independent engine draws the numbers and stamps the save date); the audit must accept every
+cell. Then cached values are edited in the saved XML to break each contract: those cells,
+and only those, must disagree (or stay not checked where the contract cannot be searched).
+"""
+
+from __future__ import annotations
+
+import re
+import zipfile
+
+import openpyxl
+import pytest
+
+from workbook_gen import audit
+from workbook_gen.auditor.saved import parse_w3cdtf
+from workbook_gen.engines.libreoffice import recalculate
+
+CASES = {
+    "B1": "=TODAY()",
+    "B2": "=TODAY()+A1",
+    "B3": "=NOW()",
+    "B4": "=RAND()",
+    "B5": "=RANDBETWEEN(1,6)",
+    "B6": "=(RANDBETWEEN(-50,250)+100)*10",
+    "B7": '=TEXT(TODAY(),"yyyy-mm-dd")',
+    "B8": "=RANDBETWEEN(A1,A1+2)",
+    "B9": "=RAND()<=1",
+    # dependents: recomputed from the cached volatile values
+    "C1": "=B1-A1",
+    "C4": "=B4*10",
+    "C5": "=B5^2",
+    "C6": "=C5+B6",
+}
+VOLATILE = {f"Vol!B{i}" for i in range(1, 10)}
+
+
+@pytest.fixture(scope="module")
+def recalculated(libreoffice, tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("volatile")
+    wb = openpyxl.Workbook()
+    ws = wb.active
+    ws.title = "Vol"
+    ws["A1"] = 3
+    for ref, formula in CASES.items():
+        ws[ref] = formula
+    wb.save(tmp / "volatile.xlsx")
+    return recalculate(tmp / "volatile.xlsx", tmp / "out")
+
+
+def _with_cached(src, dst, values: dict[str, str]):
+    """A copy of ``src`` with the cached ``<v>`` of the given cells of sheet1 replaced."""
+    with zipfile.ZipFile(src) as zin, zipfile.ZipFile(dst, "w", zipfile.ZIP_DEFLATED) as zout:
+        for item in zin.infolist():
+            data = zin.read(item)
+            if item.filename == "xl/worksheets/sheet1.xml":
+                text = data.decode("utf-8")
+                for ref, value in values.items():
+                    text, n = re.subn(rf'(<c r="{ref}"[^>]*>.*?<v>)[^<]*(</v>)',
+                                      rf"\g<1>{value}\g<2>", text, count=1)
+                    assert n == 1, ref
+                data = text.encode("utf-8")
+            zout.writestr(item, data)
+    return dst
+
+
+def test_every_volatile_cell_checked_by_contract_and_dependents_recomputed(recalculated):
+    report = audit(recalculated)
+    assert report.ok, [(m.cell, m.cached, m.recomputed) for m in report.mismatches]
+    assert report.not_checked == {}
+    assert set(report.by_contract) == VOLATILE
+    assert report.cells_checked == len(CASES)
+    assert "TODAY() = " in report.by_contract["Vol!B2"]
+    assert "whole number in [3, 5]" in report.by_contract["Vol!B8"]
+    assert report.to_json()["cells_by_contract"] == len(VOLATILE)
+
+
+def test_values_outside_the_contract_disagree(recalculated, tmp_path):
+    with zipfile.ZipFile(recalculated) as z:
+        core = z.read("docProps/core.xml").decode()
+    saved = parse_w3cdtf(re.search(r"<dcterms:modified[^>]*>([^<]+)<", core).group(1))
+    assert saved is not None
+    broken = _with_cached(recalculated, tmp_path / "broken.xlsx", {
+        "B4": "1.5",       # RAND() is below 1
+        "B6": "1",         # (k+100)*10 for a whole k in [-50, 250]: never 1
+        "B8": "9",         # RANDBETWEEN(3, 5)
+        "B9": "0",         # RAND()<=1 is always TRUE
+        "B3": "2958465",   # NOW() long after the file was saved (9999-12-31)
+    })
+    report = audit(broken)
+    disagree = {m.cell for m in report.mismatches}
+    # C4 and C6 read B4 and B6: recomputed from the edited values, against LibreOffice's
+    assert disagree == {"Vol!B4", "Vol!B6", "Vol!B8", "Vol!B3", "Vol!C4", "Vol!C6"}, disagree
+    assert {m.cell for m in report.mismatches if m.root} == disagree - {"Vol!C4", "Vol!C6"}
+    # RAND()<=1 cached FALSE: no probe gives it, and [0, 1) cannot be searched: not checked
+    assert "Vol!B9" in report.not_checked
+    assert not report.ok
