@@ -98,3 +98,42 @@ def test_values_outside_the_contract_disagree(recalculated, tmp_path):
     # RAND()<=1 cached FALSE: no probe gives it, and [0, 1) cannot be searched: not checked
     assert "Vol!B9" in report.not_checked
     assert not report.ok
+
+
+# -- cycles of the reference graph that the values do not take ----------------------------
+
+CYCLES = {
+    # a row sums the cells to its left through INDEX over the row itself (koala's layout)
+    "A2": 3, "B2": "=SUM(INDEX($A$2:$E$2,1,1):INDEX($A$2:$E$2,1,COLUMN()-1))",
+    "C2": "=SUM(INDEX($A$2:$E$2,1,1):INDEX($A$2:$E$2,1,COLUMN()-1))",
+    "D2": "=SUM(INDEX($A$2:$E$2,1,1):INDEX($A$2:$E$2,1,COLUMN()-1))",
+    "E2": "=SUM(INDEX($A$2:$E$2,1,1):INDEX($A$2:$E$2,1,COLUMN()-1))",
+    # IF never reads the branch that closes the loop while A3 is FALSE
+    "A3": False, "B3": "=C3", "C3": "=IF(A3,B3,5)", "D3": "=B3*2",
+    "A4": 0, "B4": "=VLOOKUP(1,A4:C5,2,FALSE)", "A5": 1, "B5": 7, "C4": "=B4+1",
+    # a real cycle: not checked, and neither is what reads it
+    "B6": "=C6+1", "C6": "=B6", "D6": "=B6",
+}
+
+
+@pytest.fixture(scope="module")
+def cycles_recalculated(libreoffice, tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("cycles")
+    wb = openpyxl.Workbook()
+    ws = wb.active
+    ws.title = "Cyc"
+    for ref, value in CYCLES.items():
+        ws[ref] = value
+    wb.save(tmp / "cycles.xlsx")
+    return recalculate(tmp / "cycles.xlsx", tmp / "out")
+
+
+def test_false_cycles_are_evaluated_and_real_ones_reported(cycles_recalculated):
+    report = audit(cycles_recalculated)
+    assert report.mismatches == []
+    assert set(report.not_checked) == {"Cyc!B6", "Cyc!C6", "Cyc!D6"}
+    formulas = {ref for ref, v in CYCLES.items() if isinstance(v, str) and v.startswith("=")}
+    # (LibreOffice saves the boolean A3 as the formula FALSE())
+    assert report.cells_checked == report.formula_cells - 3 >= len(formulas) - 3
+    cycles = [f for f in report.findings if f.kind == "circular_reference"]
+    assert len(cycles) == 1 and "Cyc!B6" in cycles[0].message

@@ -35,7 +35,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from workbook_gen.errors import FormulaSyntaxError
-from workbook_gen.evaluator import graph, volatile as vol
+from workbook_gen.evaluator import cycles, graph, volatile as vol
 from workbook_gen.evaluator.book import BookInfo, resolve
 from workbook_gen.evaluator.taint import Shape, Taint
 from workbook_gen.evaluator.grouping import Run, group_formulas
@@ -207,7 +207,9 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     result.seconds["graph"] = time.perf_counter() - clock
     spent = {"vector": 0.0, "scalar": 0.0}
     for component in components:
-        if graph.is_cycle(component, deps):
+        if graph.is_cycle(component, deps) and not _settle_cycle(
+                [units[u] for u in component], [shapes[u] for u in component], taint, result,
+                store, name_table, dialect):
             cells = sorted(c for u in component for c in units[u].cells())
             result.cycles.append(cells)
             where = _where(cells[0]) + (f" and {len(cells) - 1} more" if len(cells) > 1 else "")
@@ -381,6 +383,43 @@ def _spread(unit: _Unit, shaped: tuple, taint: Taint, result: Evaluation,
                 if cell not in result.not_checked:
                     result.not_checked[cell] = f"depends on {_where(origin)}: {why}"
                     taint.add(unit.sheet, unit.col, cell[1], cell[1], origin)
+
+
+def _settle_cycle(members: list[_Unit], shaped: list, taint: Taint, result: Evaluation,
+                  store: Store, names: Names, dialect: str) -> bool:
+    """A cycle of the reference graph that the values do not take (:mod:`cycles`): its
+    cells evaluated, True; a real cycle: False (nothing marked)."""
+    if any(m.area is not None or vol.calls(m.node) for m in members):
+        return False  # Excel reads every cell an array formula mentions: a cycle there is real
+    try:
+        settled = cycles.settle(members, _Unit.cells, lambda c: store.get(*c),
+                                lambda c, v: store.put(*c, v),
+                                lambda unit: _fresh(store) or _evaluate(unit, store, names,
+                                                                        dialect))
+    except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
+            AttributeError, RecursionError) as exc:
+        log.warning("evaluator failure in a cycle at %s: %r", _where(members[0].cells()[0]), exc)
+        settled = False
+    _fresh(store)  # rectangles read while the values moved
+    if not settled:
+        return False
+    for unit, shape in zip(members, shaped):
+        head = (unit.sheet, unit.first, unit.col)
+        if taint or shape[1] or head in result.unsupported or head in result.volatile:
+            _spread(unit, shape, taint, result)
+    cells = [c for m in members for c in m.cells()]
+    spoiled = next((c for c in cells if c in result.not_checked), None)
+    if spoiled is not None:  # what reads what inside the component is not known: all of it
+        why = result.not_checked[spoiled]
+        for cell in cells:
+            if cell not in result.not_checked:
+                result.not_checked[cell] = f"depends on {_where(spoiled)}: {why}"
+                taint.add(cell[0], cell[2], cell[1], cell[1], spoiled)
+    return True
+
+
+def _fresh(store: Store) -> None:
+    store.rect_cache.clear()
 
 
 def _settle(unit: _Unit, store: Store, names: Names, dialect: str, clock: vol.Clock,
