@@ -16,6 +16,7 @@ none of them is a future or dynamic-array function.
 
 from __future__ import annotations
 
+import io
 import math
 from dataclasses import dataclass
 from itertools import repeat
@@ -67,8 +68,68 @@ def _number_xml(value) -> str:
     return f"{value:.16G}"
 
 
+#: The XML of rows written cell by cell, by what decides it (row_key): most of a
+#: workbook's header and text rows are the same for every variant of a scene.
+_ROW_XML: dict[tuple, str] = {}
+_ROW_XML_LIMIT = 4096  # entries; cleared past it (a batch's varied cells never repeat)
+
+
+def _value_key(value) -> object:
+    if isinstance(value, float):
+        return repr(value)  # -0.0 and NaN as they print
+    return (type(value), value)
+
+
 class Sheet(Worksheet):
     """A worksheet that writes our formula text as it is, and blocks of rows whole."""
+
+    def _row_key(self, row: int, cells: dict) -> tuple:
+        """What XlsxWriter's XML of ``row`` depends on: the sheet's row-height settings,
+        the row's attributes and, per cell in column order, its type, values and style
+        index (the cell's format, else the row's, else the column's, as ``_write_cell``
+        picks it; asking each index here in that order assigns the indices in the order
+        ``_write_row`` and ``_write_cell`` would)."""
+        info = self.row_info.get(row)
+        row_format = None
+        if info is not None:
+            row_format = info.row_format
+            info = (info.height, None if row_format is None else row_format._get_xf_index(),
+                    info.hidden, info.level, info.collapsed)
+        key = [row, info, self.default_row_height, self.original_row_height]
+        for col in sorted(cells):
+            cell = cells[col]
+            fmt = cell.format
+            if not fmt:
+                fmt = row_format if row_format else None
+                if fmt is None and col in self.col_info:
+                    fmt = self.col_info[col].column_format
+            key.append((col, type(cell), None if fmt is None else fmt._get_xf_index(),
+                        tuple(_value_key(v) for f, v in zip(cell._fields, cell)
+                              if f != "format")))
+        return tuple(key)
+
+    def _write_single_row(self, current_row_num=0) -> None:
+        """XlsxWriter's, with the XML of a row kept by ``_row_key`` (constant_memory)."""
+        row = self.previous_row
+        cells = self.table.get(row)
+        if not cells or row in self.comments or self.excel_version != 2007:
+            return super()._write_single_row(current_row_num)
+        key = self._row_key(row, cells)
+        xml = _ROW_XML.get(key)
+        if xml is None:
+            fh, self.fh = self.fh, io.StringIO()
+            try:
+                super()._write_single_row(current_row_num)
+                xml = self.fh.getvalue()
+            finally:
+                self.fh = fh
+            if len(_ROW_XML) >= _ROW_XML_LIMIT:
+                _ROW_XML.clear()
+            _ROW_XML[key] = xml
+        else:
+            self.previous_row = current_row_num
+            self.table.clear()
+        self.fh.write(xml)
 
     def _prepare_formula(self, formula, expand_future_functions=False):
         return formula[1:] if formula.startswith("=") else formula
