@@ -19,6 +19,7 @@ from __future__ import annotations
 import io
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 from itertools import repeat
 from typing import Callable, Sequence
 
@@ -78,6 +79,19 @@ def _value_key(value) -> object:
     if isinstance(value, float):
         return repr(value)  # -0.0 and NaN as they print
     return (type(value), value)
+
+
+@lru_cache(maxsize=4096)
+def _formula_xml(formula: RowTemplate, offsets: tuple[int, ...]) -> str:
+    """A formula's ``<f>`` text with ``{k}`` slots for its rows (the k-th of ``offsets``),
+    XML-escaped and brace-escaped once per process."""
+    slot = {o: "{%d}" % i for i, o in enumerate(offsets)}
+    parts = formula.parts
+    offs = formula.offsets or tuple(repeat(0, len(parts) - 1))
+    text = [_brace(_escape(parts[0].removeprefix("=")))]
+    for o, part in zip(offs, parts[1:]):
+        text += [slot[o], _brace(_escape(part))]
+    return "".join(text)
 
 
 class Sheet(Worksheet):
@@ -187,7 +201,7 @@ class Sheet(Worksheet):
         for c in columns:
             if c.formula is not None:
                 offsets += [o for o in c.formula.offsets if o not in offsets]
-        slot = {o: "{%d}" % i for i, o in enumerate(offsets)}
+        offsets_key = tuple(offsets)
         arguments: list[list] = []
 
         def add(values: list) -> str:
@@ -200,18 +214,16 @@ class Sheet(Worksheet):
             if c.formula is None:
                 out.append("><v>" + add([_number_xml(v) for v in c.values]) + "</v></c>")
                 continue
-            if all(type(v) is float for v in c.values):  # the common case, at C speed
-                pairs = [("", text) for text in map(str, c.values)]
+            if set(map(type, c.values)) == {float}:  # the common case, at C speed
+                out.append("")
+                texts = list(map(str, c.values))
             else:
                 pairs = [cached_xml(v) for v in c.values]
-            types = {t for t, _ in pairs}
-            out.append(_brace(types.pop()) if len(types) == 1 else add([t for t, _ in pairs]))
-            parts = c.formula.parts
-            offs = c.formula.offsets or tuple(repeat(0, len(parts) - 1))
-            text = [_brace(_escape(parts[0].removeprefix("=")))]
-            for o, part in zip(offs, parts[1:]):
-                text += [slot[o], _brace(_escape(part))]
-            out.append("><f>" + "".join(text) + "</f><v>"
-                       + add([v for _, v in pairs]) + "</v></c>")
+                types = {t for t, _ in pairs}
+                out.append(_brace(types.pop()) if len(types) == 1
+                           else add([t for t, _ in pairs]))
+                texts = [v for _, v in pairs]
+            out.append("><f>" + _formula_xml(c.formula, offsets_key) + "</f><v>"
+                       + add(texts) + "</v></c>")
         out.append("</row>")
         return "".join(out), offsets, arguments
