@@ -27,10 +27,14 @@ _XML: dict[tuple[str, int], str] = {}
 _XML_LIMIT = 512
 
 
-def _assemble_cached(chart, key: str) -> None:
-    """``chart._assemble_xml_file()``, from the XML kept for ``key`` and its id."""
+def _assemble_cached(chart, key: str, configure=None) -> None:
+    """``chart._assemble_xml_file()``, from the XML kept for ``key`` and its id;
+    ``configure()`` (the axes, title and legend, which only the XML reads) is called
+    first when the XML must be assembled."""
     found = _XML.get((key, chart.id))
     if found is None:
+        if configure is not None:
+            configure()
         fh, internal = chart.fh, chart.internal_fh
         chart.fh, chart.internal_fh = io.StringIO(), False
         type(chart)._assemble_xml_file(chart)
@@ -83,11 +87,16 @@ def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
         legend, size = {"none": True}, {"width": 560, "height": 380}
         # everything the chart is given, as text: its key in _XML (with its id)
         key = repr((kind, series, x_axis, y_axis, title, legend, size))
-        chart.set_x_axis(x_axis)
-        chart.set_y_axis(y_axis)
-        chart.set_title(title)
-        chart.set_legend(legend)
         chart.set_size(size)
-        chart._assemble_xml_file = partial(_assemble_cached, chart, key)
+
+        def configure(chart=chart, x_axis=x_axis, y_axis=y_axis, title=title, legend=legend):
+            chart.set_x_axis(x_axis)
+            chart.set_y_axis(y_axis)
+            chart.set_title(title)
+            chart.set_legend(legend)
+        if any(str(o.get("name", "")).startswith("=") for o in (x_axis, y_axis, title)):
+            configure()   # a formula name is chart data the workbook gathers before
+            configure = None
+        chart._assemble_xml_file = partial(_assemble_cached, chart, key, configure)
         row, col = divmod(n, _COLUMNS)
         sheet.insert_chart(row * _ROWS_PER_CHART, col * _COLS_PER_CHART, chart)

@@ -15,11 +15,11 @@ from xlsxwriter.utility import xl_col_to_name
 from .. import xlmath as xm
 from ..tabulate import Evaluated
 from ..expr import Node, Var, eq, if_
-from ..expr.excel import to_excel
 from ..expr.numeric import compiled
 from .conditions import write_conditions
 from ..xlerror import ExcelError
-from .layout import CHECK_FIRST_ROW, CHECKS, STATUS, TableLayout, add_sheet, print_wide
+from .layout import (CHECK_FIRST_ROW, CHECKS, STATUS, TableLayout, add_sheet, excel_text,
+                     print_wide)
 from .rows import Column
 from .table import cached_values
 from .terms import Term, common_terms
@@ -128,7 +128,7 @@ def write_checks(workbook, formats, result: Evaluated, layout: TableLayout,
     for c, col, check in named:
         sheet.write_string(2, c, check.description, formats["wrap"])
     for i, term in enumerate(terms, start=flag_col + 2):
-        sheet.write_string(2, i, "shared by the residuals: " + to_excel(term.expr, str)[1:],
+        sheet.write_string(2, i, "shared by the residuals: " + excel_text(term.expr, str)[1:],
                            formats["wrap"])
     sheet.write_string(3, 0, "max |r|", formats["label"])
     for c, col, check in named:

@@ -9,8 +9,8 @@ the workbook: the auditor's closure residuals are the per-row columns above.
 from __future__ import annotations
 
 from ..tabulate import Evaluated
-from ..expr.excel import to_excel
 from ..expr.numeric import compile_numpy
+from .layout import excel_text
 from .table import cached_values
 
 SKIP = 2  # blank rows between the per-row residuals and the conditions
@@ -48,9 +48,9 @@ def write_conditions(sheet, formats, result: Evaluated, after: int, tolerance: f
     for r, item, value, scale, rel, good in zip(range(first, last), items, values, scales,
                                                 relative, ok):
         sheet.write_string(r, 0, item.name)
-        sheet.write_formula(r, 1, to_excel(item.expr), formats["residual"], value)
+        sheet.write_formula(r, 1, excel_text(item.expr), formats["residual"], value)
         sheet.write_string(r, 2, item.unit)
-        sheet.write_formula(r, 3, to_excel(item.scale), formats["residual"], scale)
+        sheet.write_formula(r, 3, excel_text(item.scale), formats["residual"], scale)
         sheet.write_formula(r, 4, f"=IF(D{r + 1}=0,0,ABS(B{r + 1})/D{r + 1})",
                             formats["residual"], rel)
         sheet.write_formula(r, 5, f'=IF(E{r + 1}<=check_tol,"PASS","FAIL")', None,

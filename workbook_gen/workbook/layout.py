@@ -9,7 +9,7 @@ from xlsxwriter.utility import xl_col_to_name
 
 from ..tabulate import Evaluated
 from ..expr import Node
-from ..expr.excel import ROW, Piece, Row, RowTemplate, row_template
+from ..expr.excel import ROW, Piece, Row, RowTemplate, row_template, to_excel
 from .rows import Sheet
 
 TABLE, PARAMETERS, CHECKS, SUMMARY, CHARTS, ABOUT = (
@@ -91,6 +91,11 @@ def _printed(node: Node, letters: tuple[tuple[str, str], ...], on_checks: bool,
 
 
 A4 = 9  # XlsxWriter's paper index
+
+
+#: ``to_excel`` of a tree (resolve None or ``str``) once per process: the Checks' term
+#: descriptions, the derived values and figures are printed for every variant.
+excel_text = lru_cache(maxsize=4096)(to_excel)
 
 
 def print_wide(sheet, header_row: int | None = None) -> None:

@@ -8,9 +8,8 @@ import numpy as np
 
 from .. import xlmath as xm
 from ..tabulate import Evaluated
-from ..expr.excel import to_excel
 from .table import cached_values
-from .layout import ABOUT, PARAMETERS, add_sheet, print_wide
+from .layout import ABOUT, PARAMETERS, add_sheet, excel_text, print_wide
 
 
 def write_parameters(workbook, formats, result: Evaluated) -> None:
@@ -32,7 +31,7 @@ def write_parameters(workbook, formats, result: Evaluated) -> None:
         workbook.define_name(spec.name, f"={PARAMETERS}!$B${row + 1}")
     for row, item in enumerate(result.scene.template.derived, start=row + 1):
         sheet.write_string(row, 0, item.name)
-        sheet.write_formula(row, 1, to_excel(item.expr), None,
+        sheet.write_formula(row, 1, excel_text(item.expr), None,
                             cached_values(xm.array(np.array([result.params[item.name]])))[0])
         sheet.write_string(row, 2, item.unit)
         sheet.write_string(row, 3, f"{item.description} (computed from the parameters above)")

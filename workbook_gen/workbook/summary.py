@@ -8,12 +8,12 @@ import numpy as np
 
 from .. import xlmath as xm
 from ..tabulate import Evaluated
-from ..expr.excel import to_excel
 from ..expr.magnitude import magnitude, scope
 from ..expr.numeric import compile_numpy
 from ..xlerror import ExcelError
 from .table import cached_values
-from .layout import CHECK_FIRST_ROW, CHECKS, SUMMARY, TableLayout, add_sheet, print_wide
+from .layout import (CHECK_FIRST_ROW, CHECKS, SUMMARY, TableLayout, add_sheet, excel_text,
+                     print_wide)
 from xlsxwriter.utility import xl_col_to_name
 
 
@@ -104,7 +104,7 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
         cached = cached_values(value)[0]
         sheet.write_string(row, 0, figure.label)
         sheet.write_string(row, 1, figure.unit)
-        sheet.write_formula(row, 2, to_excel(figure.expr), None, cached)
+        sheet.write_formula(row, 2, excel_text(figure.expr), None, cached)
         sheet.write_string(row, 3, figure.description)
         row += 1
     flags = xl_col_to_name(len(result.model.checks) + 1)
