@@ -10,7 +10,9 @@ absolute times and ratios against our audit. A peer that fails or times out is r
 as such; a peer run whose predicted time (per-cell time of the largest finished size x
 cells) exceeds the timeout is not started, and its figure is extrapolated and marked "~".
 
-    python bench/audit.py [--quick] [--timeout 600] [--repeat 3]
+    python bench/audit.py [--quick] [--timeout 600] [--repeat 3] [--json FILE]
+
+``--json FILE`` also writes the figures with the machine and the load (bench/benchinfo.py).
 """
 
 from __future__ import annotations
@@ -28,6 +30,9 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 SCENE = ROOT / "templates" / "sewing_machine.toml"
+sys.path.insert(0, str(ROOT / "bench"))
+import benchinfo  # noqa: E402
+
 PYCEL_VENV = ROOT / "bench" / ".venv-pycel"
 PYCEL_RUNNER = ROOT / "bench" / "pycel_runner.py"
 STEPS = (10.0, 1.0, 0.1)
@@ -40,6 +45,7 @@ class Peer:
     cells: int = 0
     status: str = "ok"      # ok | extrapolated | lower bound | timeout | failed
     note: str = ""
+    cpu: float | None = None  # CPU seconds (user + sys, all its processes), where measured
 
     @property
     def total(self) -> float | None:
@@ -48,6 +54,10 @@ class Peer:
     @property
     def per_cell(self) -> float | None:
         return self.total / self.cells if self.phases and self.cells else None
+
+    def to_json(self) -> dict:
+        return {"phases": self.phases, "total": self.total, "cells": self.cells,
+                "status": self.status, "note": self.note, "cpu": self.cpu}
 
 
 # ---------------------------------------------------------------- peers run in a child
@@ -67,12 +77,13 @@ def formulas_runner(path: str) -> None:
 def formualizer_runner(path: str) -> None:
     """Child process: time formualizer's load and evaluate_all, print JSON."""
     import formualizer
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     book = formualizer.load_workbook(path)
     loaded = time.perf_counter()
     book.evaluate_all()
     done = time.perf_counter()
-    print(json.dumps({"load": loaded - start, "evaluate": done - loaded}))
+    print(json.dumps({"load": loaded - start, "evaluate": done - loaded,
+                      "cpu": time.process_time() - cpu}))
 
 
 def _child(cmd: list[str], timeout: float) -> dict:
@@ -144,7 +155,8 @@ def run_peer(name: str, cmd: list[str], cells: int, phases: tuple[str, ...], tim
             Peer(status="timeout", note=str(exc))
     except (RuntimeError, OSError, ValueError, KeyError) as exc:
         return Peer(status="failed", note=f"{name}: {exc}")
-    peer = Peer({k: result[k] for k in phases}, result.get("cells", cells))
+    peer = Peer({k: result[k] for k in phases}, result.get("cells", cells),
+                cpu=result.get("cpu"))
     if result.get("errors") or result.get("disagree"):
         peer.note = f"{result.get('errors', 0)} errors, {result.get('disagree', 0)} disagree"
     return peer
@@ -162,7 +174,11 @@ def measure(step: float, tmp: Path, args, prev: dict) -> dict:
     path = write_workbook(scene, tmp / f"step{step:g}", force=True)
     row: dict = {"step": step}
 
-    reports = [audit(path) for _ in range(args.repeat)]
+    reports, cpus = [], []
+    for _ in range(args.repeat):
+        cpu = time.process_time()
+        reports.append(audit(path))
+        cpus.append(time.process_time() - cpu)
     if not all(r.ok for r in reports):
         print(f"warning: audit at {step:g} deg is not ok", file=sys.stderr)
     cells = reports[0].formula_cells
@@ -170,11 +186,15 @@ def measure(step: float, tmp: Path, args, prev: dict) -> dict:
     row["rows"] = scene.sweep.rows
     row["ours"] = Peer({"total": min(r.seconds for r in reports)}, cells)
     row["ours_eval"] = min(r.timings["evaluate"] for r in reports)
+    row["ours_cpu"] = min(cpus)  # process time of the whole audit() call
+    row["ours_ok"] = all(r.ok for r in reports)
+    row["ours_timings"] = min(reports, key=lambda r: r.seconds).timings  # the best run's phases
 
-    start = time.perf_counter()
+    start, children = time.perf_counter(), _children_cpu()
     try:
         recalculate(path, tmp / f"lo{step:g}", timeout=args.timeout)
-        row["lo"] = Peer({"total": time.perf_counter() - start}, cells)
+        row["lo"] = Peer({"total": time.perf_counter() - start}, cells,
+                         cpu=_children_cpu() - children)
     except WorkbookGenError as exc:
         row["lo"] = Peer(status="failed", note=str(exc))
 
@@ -206,6 +226,26 @@ def measure(step: float, tmp: Path, args, prev: dict) -> dict:
         times.append(time.perf_counter() - t)
     row["numpy"] = min(times)
     return row
+
+
+def _children_cpu() -> float:
+    """CPU seconds (user + sys) of the finished child processes so far."""
+    import resource
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def to_json(rows: list[dict], args) -> dict:
+    """The figures of ``rows`` as JSON: per step, each peer's phases and status."""
+    out = []
+    for r in rows:
+        item = {k: r[k] for k in ("step", "rows", "cells", "ours_eval", "ours_cpu", "ours_ok",
+                                  "ours_timings", "numpy")}
+        item.update({k: r[k].to_json() for k in ("ours", "lo", "formualizer", "formulas",
+                                                 "pycel")})
+        out.append(item)
+    return {"scene": str(SCENE.relative_to(ROOT)), "repeat": args.repeat,
+            "timeout": args.timeout, "only": args.only, "steps": out}
 
 
 # ---------------------------------------------------------------- printing
@@ -310,6 +350,8 @@ def main() -> None:
     parser.add_argument("--formualizer-runner", metavar="FILE", help=argparse.SUPPRESS)
     parser.add_argument("--only", choices=["lo-formualizer"],
                         help="lo-formualizer: our audit, LibreOffice and formualizer only")
+    parser.add_argument("--json", metavar="FILE", help="also write the figures, the machine "
+                        "and the load to FILE")
     args = parser.parse_args()
     if args.formulas_runner:
         formulas_runner(args.formulas_runner)
@@ -317,6 +359,8 @@ def main() -> None:
     if args.formualizer_runner:
         formualizer_runner(args.formualizer_runner)
         return
+    benchinfo.check_writable(args.json)
+    record = benchinfo.Record()
     args.formualizer_ok, args.formualizer_why = True, ""
     try:
         ensure_formualizer()
@@ -352,6 +396,8 @@ def main() -> None:
                     prev[name] = (row[name], step, row["cells"])
     print()
     print_table(rows)
+    if args.json:
+        record.write(args.json, to_json(rows, args))
 
 
 if __name__ == "__main__":

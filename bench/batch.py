@@ -8,6 +8,9 @@
 
     python bench/batch.py                 # the figures the README quotes
     python bench/batch.py --variants 200 --summary 20000   # a quicker look
+    python bench/batch.py --json docs/bench/batch.json     # also the figures as JSON
+
+``--json FILE`` also writes the figures with the machine and the load (bench/benchinfo.py).
 """
 
 from __future__ import annotations
@@ -24,6 +27,15 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = str(ROOT / "templates" / "sewing_machine.toml")
+sys.path.insert(0, str(ROOT / "bench"))
+import benchinfo  # noqa: E402
+
+
+def cpu_now() -> float:
+    """CPU seconds (user + sys) of this process and its finished children so far."""
+    import resource
+    me, kids = (resource.getrusage(w) for w in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
+    return me.ru_utime + me.ru_stime + kids.ru_utime + kids.ru_stime
 
 
 def grid(count: int) -> list[str]:
@@ -68,7 +80,7 @@ def summary_only(out: Path, count: int, jobs: int) -> tuple[float, ...]:
             "me, kids = (resource.getrusage(w) for w in (resource.RUSAGE_SELF, "
             "resource.RUSAGE_CHILDREN)); "
             "print(s, me.ru_maxrss / 1024, kids.ru_maxrss / 1024, "
-            "me.ru_utime + me.ru_stime, kids.ru_utime + kids.ru_stime)")
+            "me.ru_utime + me.ru_stime, kids.ru_utime + kids.ru_stime, len(f.columns))")
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(
         [str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]))
     result = subprocess.run([sys.executable, "-c", code], env=env, check=True,
@@ -82,7 +94,12 @@ def main() -> None:
     parser.add_argument("--summary", type=int, default=100_000, help="summary-only size (x100)")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--parts", default="123", help="which figures (default: all three)")
+    parser.add_argument("--json", metavar="FILE", help="also write the figures, the machine "
+                        "and the load to FILE")
     args = parser.parse_args()
+    benchinfo.check_writable(args.json)
+    record = benchinfo.Record()
+    figures: dict = {"scene": str(Path(SCENE).relative_to(ROOT)), "jobs": args.jobs}
     print(f"machine: {platform.machine()}, {os.cpu_count()} cores, Python "
           f"{platform.python_version()}, {platform.system()} {platform.release()}")
     n = args.variants
@@ -90,16 +107,24 @@ def main() -> None:
         tmp = Path(tmp)
         pool = None
         if "1" in args.parts:
+            cpu = cpu_now()
             pool = file_batch(tmp / "pool", n, jobs=args.jobs)
+            pool_cpu = cpu_now() - cpu
             print(f"1. {n:,} variants at 10 deg, --jobs {args.jobs}: {pool:.1f} s "
                   f"({n / pool:.1f} variants/s)", flush=True)
             single = loop(tmp / "loop", n)
             print(f"   loop of write_workbook in one process: {single:.1f} s ({n / single:.1f} "
                   f"variants/s); --jobs {args.jobs} is {single / pool:.2f}x faster", flush=True)
             shutil.rmtree(tmp / "loop")
+            figures["files"] = {"variants": n, "seconds": pool, "cpu": pool_cpu,
+                                "loop_seconds": single}
         if "2" in args.parts:
-            seconds, parent, workers, cpu, cpu_workers = summary_only(
+            seconds, parent, workers, cpu, cpu_workers, columns = summary_only(
                 tmp / "summary", args.summary, args.jobs)
+            figures["summary_only"] = {"variants": args.summary, "seconds": seconds,
+                                       "peak_mb": parent, "worker_peak_mb": workers,
+                                       "cpu": cpu, "worker_cpu": cpu_workers,
+                                       "columns": int(columns)}
             rate = args.summary / seconds
             versus = f", {rate / (n / pool):.0f}x the file batch's" if pool else ""
             print(f"2. --summary-only, {args.summary:,} variants, --jobs {args.jobs}: "
@@ -118,10 +143,14 @@ def main() -> None:
                 dask = file_batch(tmp / "dask", n, client=client)
                 after = file_batch(tmp / "after", n, jobs=args.jobs)
             local = (before + after) / 2
+            figures["dask"] = {"variants": n, "workers": 2, "seconds": dask,
+                               "jobs_before": before, "jobs_after": after}
             print(f"3. Dask LocalCluster, 2 worker processes: {dask:.1f} s for {n:,} variants; "
                   f"--jobs {args.jobs} before and after: {before:.1f} s, {after:.1f} s; Dask takes "
                   f"{dask / local:.2f}x the time (overhead {(dask - local) / n * 1000:+.1f} ms "
                   f"per variant)", flush=True)
+    if args.json:
+        record.write(args.json, figures)
 
 
 if __name__ == "__main__":

@@ -5,7 +5,9 @@ columns, each formula with its cached value (written by XlsxWriter).  openpyxl i
 timed in its four modes; read-only modes iterate every cell so that all the XML is
 parsed.  Each figure is the best of REPEAT runs.
 
-    python bench/read_xlsx.py [--rows 3600] [--cols 30] [--repeat 3]
+    python bench/read_xlsx.py [--rows 3600] [--cols 30] [--repeat 3] [--json FILE]
+
+``--json FILE`` also writes the figures with the machine and the load (bench/benchinfo.py).
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ from __future__ import annotations
 import argparse
 import math
 import platform
+import sys
 import tempfile
 import time
 from collections.abc import Callable
@@ -22,6 +25,9 @@ import openpyxl
 import xlsxwriter
 
 from workbook_gen.xlsx import read_workbook
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import benchinfo  # noqa: E402
 
 
 def make_workbook(path: Path, rows: int, cols: int) -> None:
@@ -65,7 +71,11 @@ def main() -> None:
     ap.add_argument("--rows", type=int, default=3600)
     ap.add_argument("--cols", type=int, default=30)
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--json", metavar="FILE", help="also write the figures, the machine and the "
+                    "load to FILE")
     args = ap.parse_args()
+    benchinfo.check_writable(args.json)
+    record = benchinfo.Record()
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "bench.xlsx"
         make_workbook(path, args.rows, args.cols)
@@ -86,6 +96,13 @@ def main() -> None:
         both = times[False, True] + times[True, True]
         print(f"{'openpyxl formulas + values (2 read_only loads)':48s} {both:7.3f} s"
               f"{'':16s}{both / base:5.2f}x")
+    if args.json:
+        record.write(args.json, {
+            "rows": args.rows, "cols": args.cols, "repeat": args.repeat, "cells": n_ours,
+            "megabytes": size, "ours": base,
+            "openpyxl": [{"data_only": d, "read_only": r, "seconds": t}
+                         for (d, r), t in times.items()],
+            "openpyxl_formulas_and_values": both})
 
 
 if __name__ == "__main__":

@@ -135,6 +135,8 @@ def test_cli_json_and_workbook_with_log_charts(tmp_path, capsys):
     steps = [r for r in rows if r["dimension"] == "step"]
     assert [r["setting"] for r in steps][-1] == "0.1 deg"
     assert all(r["max_error"] > 0 and r["cells"] > 0 and r["bytes"] > 0 for r in steps)
+    # CPU seconds besides wall time (issue 12 item 12): process time of generate + audit
+    assert all(0 < r["cpu_seconds"] for r in steps) and 0 < data["cpu_seconds"]
     path = tmp_path / "slider_crank_tradeoff.xlsx"
     with zipfile.ZipFile(path) as z:
         charts = [n for n in z.namelist() if n.startswith("xl/charts/chart")]

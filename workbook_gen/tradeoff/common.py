@@ -42,6 +42,7 @@ class Row:
     errors: dict[str, float] = field(default_factory=dict)  # per quantity
     abs_error: float | None = None
     note: str = ""
+    cpu_seconds: float | None = None  # process time of the same work (this process)
 
     def to_json(self) -> dict:
         def num(x):
@@ -50,7 +51,8 @@ class Row:
                 "max_error": num(self.max_error), "seconds": num(self.seconds),
                 "cells": self.cells, "bytes": self.bytes, "rows": self.rows,
                 "errors": {k: num(v) for k, v in self.errors.items()},
-                "abs_error": num(self.abs_error), "note": self.note}
+                "abs_error": num(self.abs_error), "note": self.note,
+                "cpu_seconds": num(self.cpu_seconds)}
 
 
 @dataclass(frozen=True)
@@ -61,6 +63,7 @@ class Cost:
     bytes: int
     rows: int
     audit_ok: bool
+    cpu: float  # process time of generate + audit (what a loaded machine does not inflate)
 
     @property
     def seconds(self) -> float:
@@ -68,17 +71,18 @@ class Cost:
 
 
 def cost(scene: Scene) -> Cost:
-    """Generate the scene's workbook into a temporary folder and audit it, timed."""
+    """Generate the scene's workbook into a temporary folder and audit it, timed (wall and
+    process time)."""
     from .. import audit
     from ..workbook import write_workbook
     with tempfile.TemporaryDirectory(prefix="workbook-gen-tradeoff-") as tmp:
-        t0 = time.perf_counter()
+        cpu, t0 = time.process_time(), time.perf_counter()
         path = write_workbook(scene, tmp, force=True)
         t1 = time.perf_counter()
         report = audit(path)
         t2 = time.perf_counter()
         return Cost(t1 - t0, t2 - t1, report.formula_cells, Path(path).stat().st_size,
-                    scene.sweep.rows, report.ok)
+                    scene.sweep.rows, report.ok, time.process_time() - cpu)
 
 
 def floats(result: Evaluated, name: str) -> np.ndarray:

@@ -31,6 +31,7 @@ class Tradeoff:
     rows: list[Row]
     extremes: dict[str, Extremes]
     seconds: float
+    cpu_seconds: float | None = None  # process time of the whole measurement
 
     def to_json(self) -> dict:
         return {
@@ -43,6 +44,7 @@ class Tradeoff:
             "extremes": {n: {"max": e.maximum, "at_max": e.at_max, "min": e.minimum,
                              "at_min": e.at_min} for n, e in self.extremes.items()},
             "seconds": self.seconds,
+            "cpu_seconds": self.cpu_seconds,
         }
 
 
@@ -52,7 +54,7 @@ def units(scene: Scene) -> int:
 
 
 def measure(scene: Scene, progress: Progress = quiet) -> Tradeoff:
-    started = time.perf_counter()
+    started, cpu = time.perf_counter(), time.process_time()
     precise = Precise(scene)
     extremes = find_extremes(scene, precise)
     progress("true extremes (50 digits)")
@@ -61,4 +63,5 @@ def measure(scene: Scene, progress: Progress = quiet) -> Tradeoff:
     derivative_rows = measure_derivatives(scene, precise, runs, progress)
     precision_rows = measure_precision(scene, precise, extremes, runs[-1], progress)
     rows = step_rows + method_rows + derivative_rows + precision_rows
-    return Tradeoff(scene, rows, extremes, time.perf_counter() - started)
+    return Tradeoff(scene, rows, extremes, time.perf_counter() - started,
+                    time.process_time() - cpu)

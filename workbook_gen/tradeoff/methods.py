@@ -54,7 +54,7 @@ def _closed(scene: Scene, pairs, progress: Progress):
               for n in names}
     spent = cost(closed)
     row = Row("method", "closed form", worst(errors), spent.seconds, spent.cells, spent.bytes,
-              spent.rows, errors, note=_audit_note(spent))
+              spent.rows, errors, note=_audit_note(spent), cpu_seconds=spent.cpu)
     progress("method: closed form")
     return row, reference
 
@@ -84,7 +84,7 @@ def _newton(scene: Scene, progress: Progress) -> list[Row]:
         note = "; ".join(filter(None, [f"{missing} rows without a value" if missing else "",
                                        _audit_note(spent)]))
         rows.append(Row("method", f"newton {k}", worst(errors), spent.seconds, spent.cells,
-                        spent.bytes, spent.rows, errors, abs_error, note))
+                        spent.bytes, spent.rows, errors, abs_error, note, spent.cpu))
         progress(f"method: newton {k}")
     return rows
 
@@ -107,7 +107,8 @@ def _halving(scene: Scene, progress: Progress) -> list[Row]:
                                        f"{missing} rows not converged" if missing else "",
                                        _audit_note(spent)]))
         rows.append(Row("method", f"epsilon {eps:.0e}", worst(errors), spent.seconds,
-                        spent.cells, spent.bytes, spent.rows, errors, abs_error, note))
+                        spent.cells, spent.bytes, spent.rows, errors, abs_error, note,
+                        spent.cpu))
         progress(f"method: epsilon {eps:.0e}")
     return rows
 

@@ -35,17 +35,17 @@ def _digits_error(low: list[dict], high: list[dict], name: str) -> np.ndarray:
 def measure_precision(scene: Scene, precise: Precise, extremes: dict[str, Extremes],
                       finest: StepRun, progress: Progress) -> list[Row]:
     names = studied(scene)
-    t = time.perf_counter()
+    t, c = time.perf_counter(), time.process_time()
     result = evaluate(scene)
-    t64 = time.perf_counter() - t
-    t = time.perf_counter()
+    t64, c64 = time.perf_counter() - t, time.process_time() - c
+    t, c = time.perf_counter(), time.process_time()
     reference = precise.table(result.inputs, names)
-    t50 = time.perf_counter() - t
+    t50, c50 = time.perf_counter() - t, time.process_time() - c
     whole = {n: relative(mp_diff(floats(result, n), reference, n), mp_floats(reference, n))
              for n in names}
     n_values = result.rows * len(names)
     rows = [Row("precision", "float64, whole table", worst(whole), t64, n_values, None,
-                result.rows, whole, note="numpy, as the cached values")]
+                result.rows, whole, note="numpy, as the cached values", cpu_seconds=c64)]
 
     near, compared = {}, 0
     fine = finest.result
@@ -67,14 +67,14 @@ def measure_precision(scene: Scene, precise: Precise, extremes: dict[str, Extrem
                     note=f"rows of the {finest.step:g} step within {NEAR} of each extreme"))
 
     low = Precise(scene, dps=30)
-    t = time.perf_counter()
+    t, c = time.perf_counter(), time.process_time()
     thirty = low.table(result.inputs, names)
-    t30 = time.perf_counter() - t
+    t30, c30 = time.perf_counter() - t, time.process_time() - c
     digits = {n: relative(_digits_error(thirty, reference, n), mp_floats(reference, n))
               for n in names}
     rows.append(Row("precision", "mpmath 30 digits, whole table", worst(digits), t30, n_values,
-                    None, result.rows, digits))
+                    None, result.rows, digits, cpu_seconds=c30))
     rows.append(Row("precision", "mpmath 50 digits, whole table", None, t50, n_values, None,
-                    result.rows, note="the reference"))
+                    result.rows, note="the reference", cpu_seconds=c50))
     progress("precision")
     return rows

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from .measure import Tradeoff
 
-_HEAD = ("dimension", "setting", "max error", "seconds", "cells", "bytes", "note")
+_HEAD = ("dimension", "setting", "max error", "seconds", "CPU s", "cells", "bytes", "note")
 
 
 def _error(x: float | None) -> str:
@@ -26,11 +26,13 @@ def format_table(result: Tradeoff) -> str:
     lines = [f"{scene.name} ({scene.template.id}): speed against accuracy",
              "max error: worst over the outputs, relative to the output's magnitude, against "
              "the formulas at 50 digits (mpmath)",
-             "seconds: generate + audit the workbook (precision: evaluate the table)", ""]
-    body = [(r.dimension, r.setting, _error(r.max_error), _seconds(r.seconds), _count(r.cells),
+             "seconds: generate + audit the workbook (precision: evaluate the table), wall "
+             "time; CPU s: the process time of the same work (not inflated by other load)", ""]
+    body = [(r.dimension, r.setting, _error(r.max_error), _seconds(r.seconds),
+             _seconds(r.cpu_seconds), _count(r.cells),
              _count(r.bytes), r.note) for r in result.rows]
     widths = [max(len(row[i]) for row in body + [_HEAD]) for i in range(len(_HEAD) - 1)]
-    right = {2, 3, 4, 5}
+    right = {2, 3, 4, 5, 6}
 
     def fmt(row) -> str:
         cells = [row[i].rjust(w) if i in right else row[i].ljust(w) for i, w in enumerate(widths)]
@@ -43,6 +45,7 @@ def format_table(result: Tradeoff) -> str:
             lines.append("")
         lines.append(fmt(row))
         previous = row[0]
-    lines.append(f"\nmeasured in {result.seconds:.1f} s")
+    cpu = "" if result.cpu_seconds is None else f" ({result.cpu_seconds:.1f} s CPU)"
+    lines.append(f"\nmeasured in {result.seconds:.1f} s{cpu}")
     return "\n".join(lines)
 

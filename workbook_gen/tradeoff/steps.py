@@ -71,7 +71,8 @@ def measure_steps(scene: Scene, extremes: dict[str, Extremes],
             errors[name] = err / true.magnitude if true.magnitude > 0 else err
         note = "" if spent.audit_ok else "the audit flags it (1e-9 against the reference model)"
         rows.append(Row("step", step_label(scene, step), worst(errors), spent.seconds,
-                        spent.cells, spent.bytes, spent.rows, errors, note=note))
+                        spent.cells, spent.bytes, spent.rows, errors, note=note,
+                        cpu_seconds=spent.cpu))
         runs.append(StepRun(step, result, spent))
         progress(f"step {step_label(scene, step)}")
     return rows, runs
@@ -100,7 +101,8 @@ def measure_derivatives(scene: Scene, precise: Precise, runs: list[StepRun],
         label = step_label(scene, run.step)
         rows.append(Row("derivative", f"analytic, {label}", worst(analytic), run.cost.seconds,
                         run.cost.cells, run.cost.bytes, run.cost.rows, dict(analytic),
-                        note="analytic columns against 50 digits at the scene's rows"))
+                        note="analytic columns against 50 digits at the scene's rows",
+                        cpu_seconds=run.cost.cpu))
         positions = variant(scene, step=run.step, outputs=tuple(c.position for c in chains))
         spent = cost(positions)
         extra = 2 * len(chains) * run.result.rows  # a difference column per rate
@@ -114,6 +116,7 @@ def measure_derivatives(scene: Scene, precise: Precise, runs: list[StepRun],
                 errors[chain.acceleration] = relative(d2 * factor ** 2 - a, a)
             rows.append(Row("derivative", f"{scheme}, {label}", worst(errors), spent.seconds,
                             spent.cells + extra, spent.bytes, spent.rows, errors,
-                            note="positions-only workbook plus the difference columns"))
+                            note="positions-only workbook plus the difference columns",
+                            cpu_seconds=spent.cpu))
         progress(f"derivatives {label}")
     return rows
