@@ -83,12 +83,15 @@ class Record:
         self.command = " ".join(["python", os.path.relpath(sys.argv[0], ROOT)] + args)
         self.started, self.load_start = _now(), _load()
 
+    def describe(self) -> dict:
+        """{"command", "machine", "run"}: what ran, where, when and under what load."""
+        return {"command": self.command, "machine": machine(),
+                "run": {"started": self.started, "finished": _now(),
+                        "load_start": self.load_start, "load_end": _load()}}
+
     def write(self, path: str | Path, figures: dict) -> None:
         """Write the record as JSON to ``path`` (atomically: a temporary file renamed)."""
-        data = {"command": self.command, "machine": machine(),
-                "run": {"started": self.started, "finished": _now(),
-                        "load_start": self.load_start, "load_end": _load()},
-                "figures": figures}
+        data = {**self.describe(), "figures": figures}
         path = Path(path)
         tmp = path.with_name(f".{path.name}.tmp")
         tmp.write_text(json.dumps(data, indent=1) + "\n", encoding="utf-8")

@@ -4,7 +4,7 @@ cached values against the independent reference model; then the cost per design 
 of the 10-deg workbook built in memory (``workbook_bytes``, what ``batch`` pays per
 variant in a worker), against plain numpy on the same variants.
 
-    python bench/generate.py [--variants N] [--json FILE]
+    python bench/generate.py [--variants N] [--steps 10,1,0.1] [--json FILE]
 
 ``--json FILE`` also writes the figures with the machine and the load (bench/benchinfo.py).
 """
@@ -71,6 +71,7 @@ def main() -> None:
     args = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     args.add_argument("--variants", type=int, default=100, help="variants for the per-variant "
                       "figure (default 100)")
+    args.add_argument("--steps", default="10,1,0.1", help="steps in deg (default 10,1,0.1)")
     args.add_argument("--json", metavar="FILE", help="also write the figures, the machine and "
                       "the load to FILE")
     parsed = args.parse_args()
@@ -81,7 +82,7 @@ def main() -> None:
           f"{platform.python_version()}, {platform.platform()}")
     print(f"{'step':>6}{'rows':>7}{'formula cells':>15}{'generate s':>12}{'CPU s':>8}"
           f"{'numpy s':>10}{'ratio':>8}{'worst vs reference':>20}")
-    for step in (10.0, 1.0, 0.1):
+    for step in (float(x) for x in parsed.steps.split(",")):
         scene = load_scene(SCENE, step=step)
         with tempfile.TemporaryDirectory() as out:
             seconds = best(lambda: write_workbook(scene, out, force=True), 3 if step < 1 else 5)
