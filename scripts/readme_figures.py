@@ -192,6 +192,15 @@ def render(text: str, all_data: dict[str, dict], bench: dict[str, dict] | None =
     return BLOCK.sub(block, text)
 
 
+def settle(limit: float = 120.0, below: float = 1.0) -> None:
+    """Wait (at most ``limit`` seconds) for the 1-minute load average to fall below
+    ``below``: the previous run's own load would otherwise count as the next one's."""
+    import time
+    deadline = time.monotonic() + limit
+    while os.getloadavg()[0] >= below and time.monotonic() < deadline:
+        time.sleep(5)
+
+
 def measure(only: list[str] | None = None) -> None:
     """Re-run the tradeoff of each scene (or of ``only``), recording the machine and the
     load around each run."""
@@ -204,6 +213,7 @@ def measure(only: list[str] | None = None) -> None:
             text = re.sub(rf"^{key} = .*$", f"{key} = {value}", text, count=1, flags=re.M)
         copy = DATA / f".{name}.toml"
         copy.write_text(text, encoding="utf-8")
+        settle()
         record = benchinfo.Record()
         try:
             out = subprocess.run([sys.executable, "-m", "workbook_gen.cli", "tradeoff",
@@ -228,6 +238,8 @@ def measure_bench(folder: Path = BENCH, extra: dict[str, list[str]] | None = Non
         if names and name not in names:
             continue
         options = (extra or {}).get(name, [])
+        if extra is None:
+            settle()
         print(f"measuring {name}: python {' '.join(command + options)} ...", file=sys.stderr,
               flush=True)
         subprocess.run([sys.executable, *command, *options, "--json",

@@ -118,6 +118,7 @@ def test_targets_are_computed_from_the_data(figures):
     assert "<= 10 s: not reached; >= 200x: not reached" in batch        # 12 s, 158x
     assert "<= 1 GB: reached" in batch and "1.30x the time" in batch
     assert "<= 1.3x: reached" in batch                                  # 26 / 20
+    assert "(wall time, under load)" in fb.batch_block(_record(BATCH, load=4.0))
     small = copy.deepcopy(BATCH)
     small["files"]["variants"] = 20
     assert "for 1,000 variants: not assessed" in fb.batch_block(_record(small))
