@@ -137,3 +137,26 @@ def test_false_cycles_are_evaluated_and_real_ones_reported(cycles_recalculated):
     assert report.cells_checked == report.formula_cells - 3 >= len(formulas) - 3
     cycles = [f for f in report.findings if f.kind == "circular_reference"]
     assert len(cycles) == 1 and "Cyc!B6" in cycles[0].message
+
+
+def test_a_sheet_listed_without_its_part_is_reported_and_the_rest_audited(
+        cycles_recalculated, tmp_path):
+    """(closedxml__tdf111974.xlsm lists two macro sheets with r:id="")"""
+    target = tmp_path / "unreadable.xlsx"
+    with zipfile.ZipFile(cycles_recalculated) as zin, \
+            zipfile.ZipFile(target, "w", zipfile.ZIP_DEFLATED) as zout:
+        for item in zin.infolist():
+            data = zin.read(item).decode("utf-8", "surrogateescape")
+            if item.filename == "xl/workbook.xml":
+                data, n = re.subn(r"(<sheet [^>]*/>)", r'\1<sheet name="Gone" sheetId="99" '
+                                  r'state="veryHidden" r:id=""/>', data, count=1)
+                assert n == 1
+            elif item.filename == "xl/worksheets/sheet1.xml":
+                data, n = re.subn(r"<f([^>]*)>B3\*2</f>", r"<f\1>Gone!A1*2</f>", data)
+                assert n == 1
+            zout.writestr(item, data.encode("utf-8", "surrogateescape"))
+    report = audit(target)
+    assert report.mismatches == []
+    assert "Gone" in report.not_checked["Cyc!D3"]
+    assert set(report.not_checked) == {"Cyc!D3", "Cyc!B6", "Cyc!C6", "Cyc!D6"}
+    assert [f.cell for f in report.findings if f.kind == "unreadable_sheet"] == ["Gone"]

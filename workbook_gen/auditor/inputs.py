@@ -54,9 +54,11 @@ class AuditInputs:
                                       for m in corners)
                 tables.append(Table(t.name, sheet.name, r1, c1, r2, c2, tuple(t.columns),
                                     t.header_rows, t.totals_rows))
+        from ..xlsx.reader import MISSING_PART
         return BookInfo(self.book.sheet_names,
                         {s.name: dict(s.defined_names) for s in self.book.sheets
-                         if s.defined_names}, tables)
+                         if s.defined_names}, tables,
+                        [name for name, kind in self.book.other_sheets if kind == MISSING_PART])
 
     @property
     def formula_count(self) -> int:

@@ -12,6 +12,7 @@ from collections import defaultdict
 from dataclasses import dataclass
 
 from ..formula import ast
+from ..xlsx.reader import MISSING_PART
 
 # Excel's rules: a letter of any script, '_' or '\' first; then letters, digits, '_', '.',
 # '\' and '?'; not a cell reference, not R1C1-like; at most 255 characters.
@@ -70,6 +71,12 @@ def check_structure(inputs, evaluation, cell_name) -> list[Finding]:
         findings.append(Finding(name, "defined_name_syntax",
                                 f"the defined name does not parse, so the cells that use it "
                                 f"are not checked: {message}"))
+    for name, kind in book.other_sheets:
+        if kind == MISSING_PART:
+            findings.append(Finding(name, "unreadable_sheet",
+                                    f"the workbook lists sheet {name!r} without its part "
+                                    "(no relationship): its cells cannot be read, and the "
+                                    "cells that read it are not checked"))
     for link in book.external_links:
         findings.append(Finding(str(getattr(link, "part", link)), "external_link",
                                 f"the workbook links to {getattr(link, 'target', link)}"))

@@ -33,6 +33,9 @@ class BookInfo:
     sheets: list[str] = field(default_factory=list)  # in workbook order
     local_names: dict[str, dict[str, str]] = field(default_factory=dict)  # sheet -> names
     tables: list[Table] = field(default_factory=list)
+    # sheets the workbook lists whose cells cannot be read (no part): what reads them is
+    # not checked
+    unreadable: list[str] = field(default_factory=list)
 
     def table(self, name: str, sheet: str, row: int, col: int) -> Table | None:
         """The table called ``name``, or ("" ) the one holding cell (sheet, row, col)."""

@@ -146,7 +146,9 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
         raise ValueError(f"unknown dialect {dialect!r}")
     book = book or BookInfo()
     sheets = {k[0] for k in formulas} | {k[0] for k in constants} | set(book.sheets)
+    sheets |= set(book.unreadable)
     store = Store(sheets, book.sheets)
+    store.unreadable = {s.lower() for s in book.unreadable}
     store.put_constants(constants)
     for sheet, row, col in formulas:
         store.note(sheet, row, col)
@@ -360,6 +362,8 @@ def _unit_reason(unit: _Unit, result: Evaluation, bad_names: list[str],
                 "recalculation")
     if bad_names:
         name = bad_names[0]
+        if name.endswith("!"):  # (names hold no "!")
+            return f"reads sheet {name[:-1]!r}, which the file lists without its part"
         return f"defined name {name} does not parse: {result.bad_names.get(name, '')}"
     return None
 
@@ -459,7 +463,8 @@ def _reads(node: ast.Node):
 
 def _shapes(unit: _Unit, store: Store, names: Names) -> tuple[list[Shape], list[str]]:
     """The rectangles of cells a unit reads at its first row (defined names followed),
-    and the names it uses that do not parse."""
+    and the names it uses that do not parse (or ``Sheet!``: a sheet it reads is
+    unreadable)."""
     out: list[Shape] = []
     bad: list[str] = []
     pending = [(unit.node, unit.sheet)]
@@ -491,6 +496,8 @@ def _shapes(unit: _Unit, store: Store, names: Names) -> tuple[list[Shape], list[
             if first.row > last.row:
                 first, last = last, first
             for sheet in sheets:
+                if sheet.lower() in store.unreadable:
+                    bad.append(sheet + "!")
                 out.append(Shape(sheet, first.row, min(first.col, last.col), last.row,
                                  max(first.col, last.col), not first.row_abs, not last.row_abs))
     return out, bad

@@ -42,6 +42,9 @@ _UPPER = "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
 _COLS: dict[str, int] = {}
 
 
+MISSING_PART = "missing"  # other_sheets kind of a sheet listed without a part
+
+
 def read_workbook(path: str | Path, *, max_cells: int = MAX_CELLS,
                   max_uncompressed: int = MAX_UNCOMPRESSED,
                   max_ratio: float = MAX_RATIO) -> Workbook:
@@ -73,8 +76,9 @@ def _read(pkg: Package, path: str, max_cells: int) -> Workbook:
         by_index: dict[int, Sheet] = {}
         for index, el in enumerate(_children(_child(root, "sheets"), "sheet")):
             name = el.get("name") or f"#{index + 1}"
-            if _rid(el) not in rels:
-                raise pkg.error(wb_part, f"sheet {name!r} has no relationship to a part")
+            if _rid(el) not in rels:  # (a macro sheet whose part a tool dropped): unreadable
+                book.other_sheets.append((name, MISSING_PART))
+                continue
             kind, part = rels[_rid(el)]
             if kind != "worksheet":
                 book.other_sheets.append((name, kind or "unknown"))

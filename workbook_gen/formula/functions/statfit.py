@@ -15,7 +15,11 @@ from workbook_gen.xlerror import ExcelError
 
 
 def _pairs(ys, xs):
-    """Paired numbers of two equal-sized areas (pairs with a non-number skipped)."""
+    """Paired numbers of two equal-sized areas (pairs with a non-number skipped); an
+    argument that is an error (an undefined name: #NAME?) is that error."""
+    for arg in (ys, xs):
+        if isinstance(arg, ExcelError):
+            return arg
     a, b = c.flat(c.as_area(ys)), c.flat(c.as_area(xs))
     if len(a) != len(b):
         return ExcelError.NA
