@@ -70,3 +70,33 @@ def test_a_block_formatted_with_another_kind_is_formatted_again(formatted_here, 
     monkeypatch.setattr(summary_only, "BLOCK_ELEMENTS", 70)
     monkeypatch.setattr(summary_only, "value_kind", lambda values: "mixed")
     assert _run(tmp_path, 1) == formatted_here
+
+
+def test_summary_xlsx_is_the_zip_zipfile_writes_for_its_members(formatted_here, tmp_path):
+    """The Variants sheet is deflated as its rows arrive and spliced into XlsxWriter's
+    zip: the file must be byte for byte what zipfile writes (as XlsxWriter calls it:
+    each member from a temporary file dated 1980-01-31, zlib level 1)."""
+    import io
+    import os
+    import tempfile
+    import time
+    import zipfile
+    data = formatted_here[1]
+    target = io.BytesIO()
+    stamp = time.mktime((1980, 1, 31, 0, 0, 0, 0, 0, -1))
+    with zipfile.ZipFile(io.BytesIO(data)) as ours, zipfile.ZipFile(
+            target, "w", zipfile.ZIP_DEFLATED, compresslevel=1) as theirs:
+        for info in ours.infolist():
+            fd, temp = tempfile.mkstemp(dir=tmp_path)
+            with os.fdopen(fd, "wb") as handle:
+                handle.write(ours.read(info))
+            os.utime(temp, (stamp, stamp))
+            theirs.write(temp, info.filename)
+    assert target.getvalue() == data
+
+
+def test_a_sheet_start_not_foreseen_is_corrected(formatted_here, tmp_path, monkeypatch):
+    from workbook_gen.batching import summary
+    monkeypatch.setattr(summary_only, "BLOCK_ELEMENTS", 70)
+    monkeypatch.setattr(summary, "_variants_xml", lambda table: (b"<worksheet>", b""))
+    assert _run(tmp_path, 1) == formatted_here

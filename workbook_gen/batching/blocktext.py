@@ -33,6 +33,7 @@ from xlsxwriter.utility import xl_col_to_name
 TEXT_COLUMNS = ("variant", "file", "status", "audit")
 _CSV_SPECIAL = re.compile(r'[,"\r\n]')
 _EXACT_FLOATS = {float, type(None)}
+_PROBE = 64   # rows that tell a column of few distinct numbers from one of many
 
 
 def value_kind(values: Sequence[object]) -> str:
@@ -66,16 +67,23 @@ def number_texts(values: Sequence[object]) -> list[str]:
 
 
 def _float_texts(values: np.ndarray) -> list[str]:
-    """``repr`` of each float ('' for NaN): each distinct value (bit for bit: -0.0 is
-    not 0.0) formatted once, then spread (``_at`` columns hold a few sweep inputs,
-    the varied parameters a few levels)."""
-    bits, where = np.unique(np.ascontiguousarray(values).view(np.int64), return_inverse=True)
-    distinct = bits.view(np.float64).tolist()
-    text = repr(distinct)[1:-1]
-    texts = text.split(", ")
-    if "nan" in text:
-        texts = ["" if t == "nan" else t for t in texts]
+    """``repr`` of each float ('' for NaN).  A column with few distinct values (``_at``
+    columns hold a few sweep inputs, the varied parameters a few levels) has each
+    distinct value (bit for bit: -0.0 is not 0.0) formatted once, then spread; any
+    other is formatted whole (finding its distinct values would cost half as much
+    as formatting them)."""
+    bits = np.ascontiguousarray(values).view(np.int64)
+    if len(bits) > _PROBE and len(np.unique(bits[:_PROBE])) > _PROBE // 2:
+        return _repr_texts(values.tolist())
+    bits, where = np.unique(bits, return_inverse=True)
+    texts = _repr_texts(bits.view(np.float64).tolist())
     return np.array(texts, dtype=object)[where.reshape(-1)].tolist()
+
+
+def _repr_texts(floats: list[float]) -> list[str]:
+    text = repr(floats)[1:-1]
+    texts = text.split(", ")
+    return ["" if t == "nan" else t for t in texts] if "nan" in text else texts
 
 
 def cell_text(value: object) -> str:

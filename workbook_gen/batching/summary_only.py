@@ -152,4 +152,4 @@ def summary_rows(job: SummaryJob, variants: Sequence[Variant]
     own = tuple((name, kinds[name]) for name in columns if name in figures
                 and name not in job.names and name not in TEXT_COLUMNS)
     filled = frozenset(name for name, _ in own if has_value(data[name]))
-    return block, BlockText(csv_text, xml_text, own, filled)
+    return block, BlockText(csv_text, xml_text.encode(), own, filled)
