@@ -109,9 +109,35 @@ WORKDAYS = [
     "WORKDAY.INTL(44197,10)", "WORKDAY.INTL(44197,10,7)", 'WORKDAY.INTL(44197,-10,"1010100")',
     "WORKDAY.INTL(44197,25,1,Data!$E$1:$E$3)", "WORKDAY.INTL(44197,0)", "WORKDAY.INTL(44197,5,17)",
 ]
+REGRESSION = [
+    f"INDEX(LINEST({NB},{NA}),1)", f"INDEX(LINEST({NB},{NA}),2)", f"INDEX(LINEST({NB}),1)",
+    f"INDEX(LINEST({NB},{NA},FALSE),1)", f"INDEX(LINEST({NB},{NA},TRUE,TRUE),2,1)",
+    f"INDEX(LINEST({NB},{NA},TRUE,TRUE),3,1)", f"INDEX(LINEST({NB},{NA},TRUE,TRUE),3,2)",
+    f"INDEX(LINEST({NB},{NA},TRUE,TRUE),4,1)", f"INDEX(LINEST({NB},{NA},TRUE,TRUE),4,2)",
+    f"INDEX(LINEST({NB},{NA},TRUE,TRUE),5,2)", f"INDEX(LINEST({NB},{NA},TRUE,TRUE),2,2)",
+    "INDEX(LINEST(Data!$B$1:$B$6,Data!$A$1:$A$5),1)", "INDEX(LINEST(Data!$A$1:$A$5,Data!$U$1:$U$5),1)",
+    "INDEX(LINEST(Data!$A$1:$A$5,Data!$U$1:$U$5),2)",
+    f"INDEX(TREND({NB},{NA},Data!$A$1:$A$3),2)", f"INDEX(TREND({NB},{NA}),4)",
+    f"INDEX(TREND({NB},{NA},12,FALSE),1)", f"INDEX(LOGEST({NB},{NA}),1)", f"INDEX(LOGEST({NB},{NA}),2)",
+    f"INDEX(GROWTH({NB},{NA},11),1)", "INDEX(LOGEST(Data!$C$5:$C$6),1)",
+]
+FINANCE = [
+    "VDB(2400,300,10*365,0,1)", "VDB(2400,300,10*12,0,1)", "VDB(2400,300,10,0,1)",
+    "VDB(2400,300,10*12,6,18)", "VDB(2400,300,10*12,6,18,1.5)", "VDB(2400,300,10,0,0.875,1.5)",
+    "VDB(2400,300,10,2,10,2,TRUE)", "VDB(1,0,14,2,3,1.25)", "VDB(2400,300,10,5,4)",
+    "DB(1000000,100000,6,1,7)", "DB(1000000,100000,6,2,7)", "DB(1000000,100000,6,7,7)",
+"SYD(30000,7500,10,1)", "SYD(30000,7500,10,10)",
+    "CUMIPMT(0.09/12,30*12,125000,13,24,0)", "CUMIPMT(0.09/12,30*12,125000,1,1,0)",
+    "CUMIPMT(0.09/12,30*12,125000,1,12,1)", "CUMPRINC(0.09/12,30*12,125000,13,24,0)",
+    "CUMPRINC(0.09/12,30*12,125000,1,1,0)", "CUMPRINC(0.09/12,30*12,125000,2,5,1)",
+    "CUMPRINC(0.09/12,30*12,-125000,1,1,0)", "FVSCHEDULE(1,Data!$T$1:$T$3)",
+    "MIRR(Data!$H$2:$H$7,0.1,0.12)", "MIRR({-120000,39000,30000,21000,37000,46000},0.1,0.12)",
+    "ISPMT(0.1/12,1,36,8000000)", "DOLLARDE(1.02,16)", "DOLLARDE(1.1,32)", "DOLLARFR(1.125,16)",
+    "DOLLARFR(1.125,0)", "TBILLPRICE(39538,39600,0.09)", "TBILLYIELD(39538,39600,98.45)",
+]
 FAMILIES = {"distributions": DISTRIBUTIONS, "stattests": STATTESTS, "complex": COMPLEX,
             "engineering": ENGINEERING, "database": DATABASE, "matrix": MATRIX,
-            "workdays": WORKDAYS}
+            "workdays": WORKDAYS, "regression": REGRESSION, "finance": FINANCE}
 CASES = [(fam, f) for fam, cases in FAMILIES.items() for f in cases]
 
 # LibreOffice 7.4 results that differ from Excel's documented ones (checked against Excel's).
@@ -129,6 +155,12 @@ LO_DIFFERS: dict[str, tuple[object, str]] = {
                              "truncates"),
     'ARABIC("-CDXC")': (-490.0, "Microsoft: a leading minus sign gives a negative number"),
     "COT(0)": (E.DIV0, "Microsoft: COT(0) is #DIV/0!; LibreOffice #NUM!"),
+    "INDEX(LINEST(Data!$B$1:$B$6,Data!$A$1:$A$5),1)": (E.REF, "sizes that do not fit: #REF! in "
+                                                      "Excel (pycel stats.xlsx Stats!P7)"),
+    "INDEX(LINEST(Data!$A$1:$A$5,Data!$U$1:$U$5),1)": (0.0, "a constant x is dropped: slope 0 "
+                                                      "(Excel, pycel stats.xlsx Stats!G5)"),
+    "INDEX(LINEST(Data!$A$1:$A$5,Data!$U$1:$U$5),2)": (3.4, "and the intercept is the mean "
+                                                      "(Stats!H5); LibreOffice: #VALUE!"),
 }
 
 # Microsoft's documented examples, Excel semantics
@@ -180,6 +212,8 @@ def _write_book(path):
             if v is not None:
                 data.cell(r, c, v)
     data["F14"], data["G14"], data["F15"], data["G15"] = "Tree", "Height", "Cherry", ">12"
+    for r, v in enumerate([7, 7, 7, 7, 7], start=1):
+        data.cell(r, 21, v)
     for r, row in enumerate([(2, 5), (1, 3)], start=1):
         for c, v in enumerate(row, start=10):
             data.cell(r, c, v)

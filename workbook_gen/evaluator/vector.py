@@ -173,6 +173,8 @@ class _Compiler:
             # poi__StructuredRefs-lots-with-lookups.xlsx, INDIRECT("A"&ROW(...)-1))
         if entry.lazy:
             raise NotVectorizable(f"{name} is evaluated lazily, cell by cell")
+        if entry.omitted and any(isinstance(a, ast.Missing) for a in node.args):
+            raise NotVectorizable(f"{name} with an omitted argument")
         if name in ("ROW", "COLUMN") and len(node.args) <= 1:
             return self._position(node)
         if any(entry.kind(i) == "ref" and not row_invariant(a) for i, a in enumerate(node.args)):

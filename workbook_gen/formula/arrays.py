@@ -103,7 +103,8 @@ class ArrayEvaluator(Evaluator):
             return super().func(node)
         if node.name in ("IF", "IFERROR", "IFNA"):
             return self._conditional(node)
-        args = [self.arg(a) for a in node.args]
+        args = [None if entry.omitted and isinstance(a, ast.Missing) else self.arg(a)
+                for a in node.args]
         if entry.lazy:  # IFS, SWITCH, CHOOSE ...: every argument is needed element-wise
             if not any(_multi(a) for a in args[:1]):
                 return fx.call(node.name, [lambda v=v: v for v in args], self.ctx)

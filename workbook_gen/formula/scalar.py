@@ -244,5 +244,7 @@ class Evaluator:
             args = [inner.arg(a) for a in node.args]
         else:
             args = [self.arg(a) for a in node.args]
+        if entry.omitted:  # the function tells an omitted argument from a 0
+            args = [None if isinstance(n, ast.Missing) else a for n, a in zip(node.args, args)]
         result = fx.call(node.name, args, self.ctx)
         return _clean(result) if isinstance(result, float) else result

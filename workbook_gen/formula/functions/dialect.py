@@ -73,7 +73,8 @@ LIBREOFFICE_ERRORS: dict[str, dict[ExcelError, ExcelError]] = {
         "BETA.DIST", "BETADIST", "BINOM.DIST", "BINOMDIST", "POISSON", "POISSON.DIST",
         "CHISQ.DIST", "EXPONDIST", "EXPON.DIST", "GAMMALN", "GAMMALN.PRECISE", "GAMMA",
         "GEOMEAN", "HARMEAN", "T.TEST", "TTEST", "IMABS", "IMLN", "IMDIV", "BITAND", "BITOR",
-        "BITXOR", "ACOTH")},
+        "BITXOR", "ACOTH", "VDB", "CUMPRINC", "CUMIPMT")},
+    **{name: {ExcelError.DIV0: ExcelError.VALUE} for name in ("MIRR", "DOLLARFR", "DOLLARDE")},
     **{name: {ExcelError.NA: ExcelError.VALUE} for name in (
         "SUMXMY2", "SUMX2MY2", "SUMX2PY2", "PERCENTRANK", "PERCENTRANK.INC", "PERCENTRANK.EXC")},
     "DGET": {ExcelError.NUM: ExcelError.VALUE},

@@ -1,0 +1,245 @@
+"""Depreciation and more finance: VDB, DB, SYD, CUMIPMT, CUMPRINC, FVSCHEDULE, MIRR,
+ISPMT, DOLLARDE, DOLLARFR, TBILLPRICE, TBILLYIELD.
+
+VDB follows the spreadsheet algorithm (Excel's, also LibreOffice's): declining balance
+at ``factor / life`` per period, switching to straight line over the remaining life in
+the first period where that gives more (unless ``no_switch``); a fractional start or end
+period takes its fraction of that period's depreciation."""
+
+from __future__ import annotations
+
+import math
+
+from workbook_gen.formula.functions import coerce as c
+from workbook_gen.formula.functions.distributions import args_of
+from workbook_gen.formula.functions.math import fsum
+from workbook_gen.formula.functions.registry import register
+from workbook_gen.xlerror import ExcelError
+
+
+def _safe(fn):
+    def wrapped(ctx, *vs):
+        xs = args_of(*vs)
+        if isinstance(xs, ExcelError):
+            return xs
+        try:
+            r = fn(*xs)
+        except (ZeroDivisionError, ValueError, OverflowError):
+            return ExcelError.NUM
+        return r if isinstance(r, ExcelError) else c.result(float(r))
+    return wrapped
+
+
+def vdb(cost, salvage, life, start, end, factor=2.0, no_switch=False):
+    """Depreciation over [start, end] on Excel's schedule: periods of length 1 on a grid
+    through ``start`` (0, f, f+1, f+2, ... with f the fraction of ``start``), each at the
+    declining rate ``factor/life`` of the book value or, from the first period where it
+    is more (unless ``no_switch``), at the straight line over the remaining life; a
+    period cut by the grid or by ``end`` takes its fraction (xlcalculator VDB.xlsx, saved
+    by Excel: half periods)."""
+    if (cost < 0 or salvage < 0 or life <= 0 or start < 0 or end < start or end > life
+            or factor <= 0 or salvage > cost):
+        return ExcelError.NUM
+    rate = min(factor / life, 1.0)
+    f = start - math.floor(start)
+    book, a, total, line = cost, 0.0, 0.0, None
+    while a < end - 1e-12:
+        b = f if 0 < f and a == 0 else a + 1
+        if line is None:
+            ddb = min(book * rate, max(book - salvage, 0.0))
+            sln = (book - salvage) / (life - a)
+            if not no_switch and sln > ddb:
+                line = sln
+            unit = ddb if line is None else line
+        else:
+            unit = line
+        if a >= start - 1e-12:
+            total += unit * (min(b, end) - a)
+        book -= unit * (b - a)
+        a = b
+    return total
+
+
+@register("VDB", "finance", 5, 7)
+def _vdb(ctx, cost, salvage, life, start, end, factor=None, no_switch=None):
+    xs = args_of(cost, salvage, life, start, end, 2.0 if factor is None else factor)
+    ns = False if no_switch is None else c.to_bool(no_switch)
+    for v in (xs, ns):
+        if isinstance(v, ExcelError):
+            return v
+    try:
+        r = vdb(*xs, no_switch=ns)
+    except (ZeroDivisionError, ValueError, OverflowError):
+        return ExcelError.NUM
+    return r if isinstance(r, ExcelError) else c.result(float(r))
+
+
+def db(cost, salvage, life, period, month=12.0):
+    month = math.trunc(month)
+    period = math.trunc(period)
+    if (cost < 0 or salvage < 0 or life <= 0 or period <= 0 or not 1 <= month <= 12
+            or period > life + (0 if month == 12 else 1)):
+        return ExcelError.NUM
+    if cost == 0:
+        return 0.0
+    rate = round(1 - (salvage / cost) ** (1 / life), 3)
+    total = cost * rate * month / 12
+    if period == 1:
+        return total
+    for p in range(2, period + 1):
+        if p == life + 1:
+            d = (cost - total) * rate * (12 - month) / 12
+        else:
+            d = (cost - total) * rate
+        if p == period:
+            return d
+        total += d
+    return ExcelError.NUM
+
+
+register("DB", "finance", 4, 5)(_safe(db))
+
+
+def syd(cost, salvage, life, per):
+    if life <= 0 or per <= 0 or per > life or salvage < 0:
+        return ExcelError.NUM
+    return (cost - salvage) * (life - per + 1) * 2 / (life * (life + 1))
+
+
+register("SYD", "finance", 4, 4)(_safe(syd))
+
+
+def _fv(r, n, pmt, pv, typ):
+    if r == 0:
+        return -(pv + pmt * n)
+    g = (1 + r) ** n
+    return -(pv * g + pmt * (1 + r * typ) * (g - 1) / r)
+
+
+def _pmt(r, n, pv, fv, typ):
+    if r == 0:
+        return -(pv + fv) / n
+    g = (1 + r) ** n
+    return -(pv * g + fv) * r / ((1 + r * typ) * (g - 1))
+
+
+def _cum_args(rate, nper, pv, start, end, typ):
+    start, end, typ = math.trunc(start), math.trunc(end), typ
+    if (rate <= 0 or nper <= 0 or pv <= 0 or start < 1 or end < start or end > nper
+            or typ not in (0, 1)):
+        return None
+    return start, end, int(typ)
+
+
+def cumipmt(rate, nper, pv, start, end, typ):
+    got = _cum_args(rate, nper, pv, start, end, typ)
+    if got is None:
+        return ExcelError.NUM
+    start, end, typ = got
+    pmt = _pmt(rate, nper, pv, 0.0, typ)
+    total = 0.0
+    if start == 1:
+        if typ == 0:
+            total = -pv
+        start += 1
+    for i in range(start, end + 1):
+        total += _fv(rate, i - 2, pmt, pv, 1) - pmt if typ else _fv(rate, i - 1, pmt, pv, 0)
+    return total * rate
+
+
+def cumprinc(rate, nper, pv, start, end, typ):
+    got = _cum_args(rate, nper, pv, start, end, typ)
+    if got is None:
+        return ExcelError.NUM
+    start, end, typ = got
+    pmt = _pmt(rate, nper, pv, 0.0, typ)
+    total = 0.0
+    if start == 1:
+        total = pmt + pv * rate if typ == 0 else pmt
+        start += 1
+    for i in range(start, end + 1):
+        if typ:
+            total += pmt - (_fv(rate, i - 2, pmt, pv, 1) - pmt) * rate
+        else:
+            total += pmt - _fv(rate, i - 1, pmt, pv, 0) * rate
+    return total
+
+
+register("CUMIPMT", "finance", 6, 6)(_safe(cumipmt))
+register("CUMPRINC", "finance", 6, 6)(_safe(cumprinc))
+register("ISPMT", "finance", 4, 4)(_safe(lambda r, per, n, pv: pv * r * (per / n - 1)))
+
+
+@register("FVSCHEDULE", "finance", 2, 2, ("scalar", "range"))
+def _fvschedule(ctx, principal, schedule):
+    p = c.to_number(principal)
+    if isinstance(p, ExcelError):
+        return p
+    for v in c.flat(schedule):
+        if v is None:
+            continue
+        r = v if c.is_number(v) else c.to_number(v) if isinstance(v, str) else ExcelError.VALUE
+        if isinstance(r, ExcelError):
+            return r
+        p *= 1 + r
+    return c.result(p)
+
+
+@register("MIRR", "finance", 3, 3, ("range", "scalar", "scalar"))
+def _mirr(ctx, values, finance_rate, reinvest_rate):
+    xs = c.numbers([c.as_area(values)], ctx)
+    rates = args_of(finance_rate, reinvest_rate)
+    for v in (xs, rates):
+        if isinstance(v, ExcelError):
+            return v
+    fr, rr = rates
+    n = len(xs)
+    pos = fsum(x / (1 + rr) ** i for i, x in enumerate(xs) if x > 0)
+    neg = fsum(x / (1 + fr) ** i for i, x in enumerate(xs) if x < 0)
+    if pos == 0 or neg == 0 or n < 2:
+        return ExcelError.DIV0
+    return c.result((-pos * (1 + rr) ** (n - 1) / neg) ** (1 / (n - 1)) - 1)
+
+
+def _dollar(de):
+    def fn(x, fraction):
+        f = math.trunc(fraction)
+        if f < 0:
+            return ExcelError.NUM
+        if f == 0:
+            return ExcelError.DIV0
+        whole = math.trunc(x)
+        frac = x - whole
+        scale = 10 ** math.ceil(math.log10(f))
+        return whole + (frac * scale / f if de else frac * f / scale)
+    return _safe(fn)
+
+
+register("DOLLARDE", "finance", 2, 2)(_dollar(True))
+register("DOLLARFR", "finance", 2, 2)(_dollar(False))
+
+
+def _dsm(settlement, maturity):
+    s, m = math.trunc(settlement), math.trunc(maturity)
+    if s >= m or m - s > 365:
+        return None
+    return m - s
+
+
+def tbillprice(settlement, maturity, discount):
+    d = _dsm(settlement, maturity)
+    if d is None or discount <= 0:
+        return ExcelError.NUM
+    price = 100 * (1 - discount * d / 360)
+    return ExcelError.NUM if price <= 0 else price
+
+
+def tbillyield(settlement, maturity, price):
+    d = _dsm(settlement, maturity)
+    if d is None or price <= 0:
+        return ExcelError.NUM
+    return (100 - price) / price * 360 / d
+
+
+register("TBILLPRICE", "finance", 3, 3)(_safe(tbillprice))
+register("TBILLYIELD", "finance", 3, 3)(_safe(tbillyield))
