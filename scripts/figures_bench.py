@@ -186,8 +186,8 @@ def read_block(record: dict) -> str:
     ratios = [m["seconds"] / f["ours"] for m in f["openpyxl"]]
     return (f"Reading: our streaming reader is {min(ratios):.1f}x to {max(ratios):.1f}x faster "
             f"than openpyxl's four modes on a {count(f['rows'])} x {f['cols']} workbook of "
-            f"formulas with cached values, {f['openpyxl_formulas_and_values'] / f['ours']:.1f}x "
-            f"than the two openpyxl loads the auditor would need (formulas and values) "
+            f"formulas with cached values, and {f['openpyxl_formulas_and_values'] / f['ours']:.1f}x "
+            f"faster than the two openpyxl loads the auditor would need (formulas and values) "
             f"(`{record['command']}`, {when(record)}).\n")
 
 
