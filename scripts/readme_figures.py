@@ -6,6 +6,10 @@ so the two cannot drift apart.
     python scripts/readme_figures.py --measure        # re-measure the tradeoffs (~20 min)
     python scripts/readme_figures.py --measure --only sewing_machine   # one scene
     python scripts/readme_figures.py --measure-bench  # re-run the benchmarks (~10 min)
+    python scripts/readme_figures.py --measure-bench --quick /tmp/q   # check the chain
+
+Before each scene or benchmark, the measuring waits (at most 2 min) for the 1-minute load
+average to fall below 1, so that one run's own load is not recorded as the next one's.
 
 The data: ``workbook-gen tradeoff SCENE --json``, one file per scene under docs/tradeoff/
 (``--measure`` writes them, with the machine and the load around the run), and the
