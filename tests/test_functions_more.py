@@ -108,6 +108,10 @@ WORKDAYS = [
     'NETWORKDAYS.INTL(44197,44227,"1111111")',
     "WORKDAY.INTL(44197,10)", "WORKDAY.INTL(44197,10,7)", 'WORKDAY.INTL(44197,-10,"1010100")',
     "WORKDAY.INTL(44197,25,1,Data!$E$1:$E$3)", "WORKDAY.INTL(44197,0)", "WORKDAY.INTL(44197,5,17)",
+    "WORKDAY.INTL(44197,10,,Data!$E$1:$E$3)", "NETWORKDAYS.INTL(44197,44227,,Data!$E$1:$E$3)",
+    'CELL("contents",Data!$F$2)', 'CELL("contents",Data!$A$2:$B$3)', 'CELL("row",Data!$C$7)',
+    'CELL("col",Data!$C$7:$D$9)', 'CELL("type",Data!$F$2)', 'CELL("type",Data!$A$2)',
+    'CELL("type",Data!$Z$99)',
 ]
 REGRESSION = [
     f"INDEX(LINEST({NB},{NA}),1)", f"INDEX(LINEST({NB},{NA}),2)", f"INDEX(LINEST({NB}),1)",
@@ -269,6 +273,16 @@ def test_family_agrees_with_libreoffice(recalculated, family):
         if not same(cached, ours):
             wrong.append(f"={formula}: LibreOffice {cached!r}, ours {ours!r}")
     assert not wrong, "\n".join(wrong)
+
+
+def test_cell_information_not_held_by_values_is_not_computed():
+    """CELL("format"...), CELL("width"...), an omitted reference (Excel's last changed
+    cell): the call counts as unsupported, so its cell is "not checked"."""
+    from workbook_gen.formula import unsupported_functions
+    for formula in ('=CELL("format",A1)', '=CELL("width",A1)', '=CELL("contents")',
+                    '=CELL(B1,A1)', '=CELL("filename",A1)'):
+        assert unsupported_functions(parse(formula)) == {"CELL"}, formula
+    assert unsupported_functions(parse('=CELL("contents",A1)+CELL("row",B2:C3)')) == set()
 
 
 @pytest.mark.parametrize("formula,expected", EXCEL, ids=[c[0] for c in EXCEL])

@@ -72,7 +72,9 @@ class DictResolver:
 def unsupported_functions(node: ast.Node) -> set[str]:
     """Names of the functions ``node`` calls that are outside the supported list."""
     return {n.name for n in ast.walk(node)
-            if isinstance(n, ast.Func) and n.name not in fx.SUPPORTED}
+            if isinstance(n, ast.Func) and (n.name not in fx.SUPPORTED or (
+                fx.REGISTRY[n.name].accepts is not None
+                and not fx.REGISTRY[n.name].accepts(n.args)))}
 
 
 def evaluate(node: ast.Node, resolver: Resolver, *, dialect: str = "excel",

@@ -87,3 +87,34 @@ _ERROR_TYPES = {ExcelError.NULL: 1.0, ExcelError.DIV0: 2.0, ExcelError.VALUE: 3.
 @register("ERROR.TYPE", "info", 1, 1)
 def _error_type(ctx, v):
     return _ERROR_TYPES.get(v, ExcelError.NA) if isinstance(v, ExcelError) else ExcelError.NA
+
+
+# CELL: only the kinds of information the values hold; the others (format, width, color,
+# filename...) and the omitted reference (Excel's last changed cell) are not computed:
+# such calls count as unsupported, their cells "not checked".
+_CELL_INFO = ("contents", "row", "col", "type")
+
+
+def _cell_accepts(args) -> bool:
+    from workbook_gen.formula import ast
+    return (len(args) == 2 and isinstance(args[0], ast.String)
+            and args[0].value.strip().lower() in _CELL_INFO
+            and isinstance(args[1], (ast.CellRef, ast.RangeRef)))
+
+
+@register("CELL", "info", 1, 2, ("scalar", "ref"), accepts=_cell_accepts)
+def _cell(ctx, info, ref=None):
+    kind = c.to_text(info)
+    if isinstance(kind, ExcelError):
+        return kind
+    kind = kind.strip().lower()
+    if not isinstance(ref, Range) or ref.ref is None or kind not in _CELL_INFO:
+        return ExcelError.VALUE
+    if kind == "row":
+        return float(ref.ref.row1)
+    if kind == "col":
+        return float(ref.ref.col1)
+    first = ref.rows[0][0] if ref.rows and ref.rows[0] else None
+    if kind == "contents":
+        return 0.0 if first is None else first
+    return "b" if first is None else "l" if isinstance(first, str) else "v"

@@ -93,6 +93,7 @@ class Function:
     position: bool = False        # reads the calling cell's position (ROW(), COLUMN())
     range_numbers: bool = False   # its ranges keep only numbers (SUM): booleans skipped
     omitted: bool = False         # an omitted argument (LINEST(y,,FALSE)) arrives as None, not 0
+    accepts: Callable | None = None  # accepts(arg nodes): False where it cannot compute the call
 
     def kind(self, i: int) -> str:
         return self.kinds[min(i, len(self.kinds) - 1)] if self.kinds else "scalar"
@@ -108,7 +109,8 @@ REGISTRY: dict[str, Function] = {}
 def register(name: str, family: str, min_args: int, max_args: int | None = None,
              kinds: tuple[str, ...] | str = "scalar", *, volatile: bool = False,
              vector: Callable | None = None, position: bool = False,
-             range_numbers: bool = False, aliases=(), omitted: bool = False):
+             range_numbers: bool = False, aliases=(), omitted: bool = False,
+             accepts: Callable | None = None):
     """Decorator: add ``fn`` to the registry under ``name`` (and ``aliases``)."""
     if isinstance(kinds, str):
         kinds = (kinds,)
@@ -120,7 +122,7 @@ def register(name: str, family: str, min_args: int, max_args: int | None = None,
     def deco(fn):
         for n in (name, *aliases):
             REGISTRY[n] = Function(n, family, fn, min_args, max_args, kinds, volatile,
-                                   vector, position, range_numbers, omitted)
+                                   vector, position, range_numbers, omitted, accepts)
         return fn
     return deco
 

@@ -48,7 +48,7 @@ def _args(weekend, holidays, all_allowed=False):
     return off, hol
 
 
-@register("NETWORKDAYS.INTL", "date", 2, 4, ("scalar", "scalar", "scalar", "range"))
+@register("NETWORKDAYS.INTL", "date", 2, 4, ("scalar", "scalar", "scalar", "range"), omitted=True)
 def _networkdays_intl(ctx, start, end, weekend=None, holidays=None):
     a, b = serial_arg(start), serial_arg(end)
     got = _args(weekend, holidays, True)  # every day off: 0 working days
@@ -62,7 +62,7 @@ def _networkdays_intl(ctx, start, end, weekend=None, holidays=None):
     return float(n if a <= b else -n)
 
 
-@register("WORKDAY.INTL", "date", 2, 4, ("scalar", "scalar", "scalar", "range"))
+@register("WORKDAY.INTL", "date", 2, 4, ("scalar", "scalar", "scalar", "range"), omitted=True)
 def _workday_intl(ctx, start, days, weekend=None, holidays=None):
     s, k = serial_arg(start), c.to_number(days)
     got = _args(weekend, holidays)
