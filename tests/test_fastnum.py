@@ -138,3 +138,38 @@ def test_magnitudes_from_the_generated_subtree_values_are_the_node_by_node_ones(
             a = magnitude(q.expr, result.columns, result.params, result.rows, fast)
             b = magnitude(q.expr, result.columns, result.params, result.rows, slow)
             assert np.array_equal(a.view(np.int64), b.view(np.int64)), (name, q.name)
+
+
+def _sequential(named, cols, params, n):
+    cols, out = dict(cols), {}
+    for name, tree in named:
+        out[name] = cols[name] = compile_numpy(tree)(cols, params, n)
+    return out
+
+
+def test_a_set_of_trees_in_one_function_gives_each_trees_bits():
+    from workbook_gen.expr.fastnum import generate_set
+    x = Var("x")
+    shadow = (("a", sin(x)), ("x", x * 2.0), ("b", sin(x)))   # "x" read, then given
+    negative = (("a", x + Num(-0.0)), ("b", Var("a") * 1.0))
+    cols = {"x": _column([0.0, 1.0, -2.0, 3.0, 4.0, 0.5], [0] * ROWS)}
+    for named in (shadow, negative):
+        fast, slow = generate_set(named)(cols, {}, ROWS), _sequential(named, cols, {}, ROWS)
+        assert list(fast) == list(slow) and all(_same(fast[k], slow[k]) for k in fast)
+    for name, sets in SCENES:
+        scene = load_scene(f"templates/{name}.toml", overrides=sets)
+        result = evaluate(scene)
+        model = result.model
+        cols = {scene.template.input.name: result.columns[scene.template.input.name]}
+        named = tuple((q.name, q.expr) for q in model.columns) + (("\x00s", model.status),)
+        fast, slow = generate_set(named)(cols, result.params, result.rows), \
+            _sequential(named, cols, result.params, result.rows)
+        assert list(fast) == list(slow) and all(_same(fast[k], slow[k]) for k in fast), name
+        cols = dict(result.columns)
+        cols["status"] = xm.XArray(result.status, np.zeros(result.rows, np.uint8))
+        terms, trees = plan(model)
+        named = tuple((t.name, t.expr) for t in terms) + tuple(
+            (f"c{i}", tree) for i, tree in enumerate(trees))
+        fast, slow = generate_set(named)(cols, result.params, result.rows), \
+            _sequential(named, cols, result.params, result.rows)
+        assert all(_same(fast[k], slow[k]) for k in slow), name

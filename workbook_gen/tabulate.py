@@ -9,11 +9,12 @@ import pandas as pd
 
 from . import xlmath as xm
 from .errors import CannotAssembleError
-from .expr.numeric import compiled
+from .expr.numeric import compiled, compiled_set
 from .model import Model, select
 from .scene import Scene
 
 STATUS_OK = "ok"
+_STATUS = "\x00status"  # the status tree's result among the columns' (no quantity's name)
 
 
 @dataclass(frozen=True)
@@ -41,9 +42,9 @@ def evaluate(scene: Scene) -> Evaluated:
     inputs = np.array(scene.sweep.values())
     n = len(inputs)
     columns = {scene.template.input.name: xm.array(inputs)}
-    for quantity in model.columns:
-        columns[quantity.name] = compiled(quantity.expr)(columns, params, n)
-    status = compiled(model.status)(columns, params, n)
+    named = tuple((q.name, q.expr) for q in model.columns) + ((_STATUS, model.status),)
+    columns.update(compiled_set(named)(columns, params, n))
+    status = columns.pop(_STATUS)
     texts = np.where(status.err != 0, "cannot assemble", status.val).astype(object)
     if not np.any(texts != "cannot assemble"):
         raise CannotAssembleError(

@@ -221,16 +221,22 @@ _NAMESPACE = {
 }
 
 
-def _print(tree: Node) -> tuple[list[str], list[Node], str]:
+def _negative_zero(tree: Node) -> bool:
+    return any(isinstance(k, Num) and math.copysign(1.0, k.value) < 0 for k in walk(tree))
+
+
+def _print(tree: Node, names: dict | None = None, lines: list | None = None
+           ) -> tuple[list[str], list[Node] | None, str]:
     """One line per distinct subtree, children first: the lines, the subtrees in order
-    (None where a tree holds a -0 literal: see below) and the root's name."""
-    names: dict[object, str] = {}
-    lines: list[str] = []
+    (None where a tree holds a -0 literal: see below) and the root's name.  ``names``
+    and ``lines``: those of trees printed before into the same function (a Var whose
+    name is in ``names`` reads that local)."""
+    names = {} if names is None else names
+    lines = [] if lines is None else lines
     nodes: list[Node] = []
     # Equal subtrees are computed once; Num(0.0) == Num(-0.0) but their columns differ
     # in sign, so a tree holding a -0 literal is printed without sharing.
-    negative_zero = any(isinstance(k, Num) and math.copysign(1.0, k.value) < 0
-                        for k in walk(tree))
+    negative_zero = _negative_zero(tree)
     key = id if negative_zero else (lambda node: node)
 
     def emit(node: Node) -> str:
@@ -260,7 +266,7 @@ def _print(tree: Node) -> tuple[list[str], list[Node], str]:
             expr = f"UNARY[{node.fn!r}]({args[0]})"
         else:
             expr = f"{_CALLS[node.fn]}({', '.join(args)})"
-        name = f"t{len(names)}"
+        name = f"t{len(lines)}"
         names[key(node)] = name
         nodes.append(node)
         lines.append(f"        {name} = {expr}")
@@ -300,3 +306,43 @@ def generate_subtrees(tree: Node) -> tuple[Callable, list[Node]] | None:
     names = ", ".join(f"t{i}" for i in range(len(nodes)))
     return _compile("def f(cols, params, n):\n    with _errstate(all='ignore'):\n"
                     + "\n".join(lines) + f"\n    return ({names},)\n"), nodes
+
+
+def _one_by_one(named: tuple[tuple[str, Node], ...]) -> Callable:
+    each = [(name, generate(tree)) for name, tree in named]
+
+    def f(cols, params, n):
+        cols, out = dict(cols), {}
+        for name, tree_f in each:
+            out[name] = cols[name] = tree_f(cols, params, n)
+        return out
+    return f
+
+
+def generate_set(named: tuple[tuple[str, Node], ...]) -> Callable:
+    """``f(columns, params, n) -> {name: XArray}`` for trees evaluated in order, each as
+    ``numeric.compile_numpy(tree)(columns, params, n)`` gives it with the results of the
+    trees before it added to ``columns`` under their names: one function for a whole
+    set (a scene's Table columns, the Checks' terms and residuals), each distinct
+    subtree once.  (Tree by tree where a -0 literal or a name read before it is given
+    would make sharing subtrees wrong.)"""
+    if any(_negative_zero(tree) for _, tree in named):
+        return _one_by_one(named)
+    names: dict = {}
+    lines: list[str] = []
+    results = []
+    for name, tree in named:
+        if Var(name) in names:   # read from the columns before: shared subtrees would lie
+            return _one_by_one(named)
+        if isinstance(tree, Var) and Var(tree.name) not in names:
+            given = f"cols[{tree.name!r}]"   # the column itself, as compile_numpy gives it
+            results.append((name, given))
+            lines.append(f"        t{len(lines)} = _var({given})")
+            names[Var(name)] = f"t{len(lines) - 1}"
+            continue
+        _, _, last = _print(tree, names, lines)
+        results.append((name, f"_heavy({last})"))
+        names[Var(name)] = last
+    out = ", ".join(f"{n!r}: {r}" for n, r in results)
+    return _compile("def f(cols, params, n):\n    with _errstate(all='ignore'):\n"
+                    + "\n".join(lines) + f"\n        return {{{out}}}\n")

@@ -87,3 +87,7 @@ def _compile_call(node: Call) -> Compiled:
 #: which stays the reference), once per tree in a process (trees are hashable, their
 #: hash cached): a batch evaluates the same template's trees for every variant.
 compiled = lru_cache(maxsize=4096)(fastnum.generate)
+
+#: Trees evaluated in order, each seeing those before it as columns (``fastnum.generate_set``:
+#: one generated function for a scene's Table columns, or the Checks' terms and residuals).
+compiled_set = lru_cache(maxsize=256)(fastnum.generate_set)

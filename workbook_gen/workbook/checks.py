@@ -15,7 +15,7 @@ from xlsxwriter.utility import xl_col_to_name
 from .. import xlmath as xm
 from ..tabulate import Evaluated
 from ..expr import Node, Var, eq, if_
-from ..expr.numeric import compiled
+from ..expr.numeric import compiled_set
 from .conditions import write_conditions
 from ..xlerror import ExcelError
 from .layout import (CHECK_FIRST_ROW, CHECKS, STATUS, TableLayout, add_sheet, excel_text,
@@ -66,14 +66,14 @@ def residuals(result: Evaluated) -> tuple[dict[str, xm.XArray], dict[str, xm.XAr
     columns[STATUS] = status
     ok = xm.compare("=", status, xm.const("ok", result.rows))
     skipped = xm.const(SKIPPED, result.rows)
-    held = {}
-    for term in terms:
-        # The residuals read a term in their "ok" branch only, where the cell holds
-        # the unguarded value: evaluate them over that.
-        columns[term.name] = compiled(term.expr)(columns, result.params, result.rows)
-        held[term.name] = xm.where(ok, columns[term.name], skipped)
-    values = {c.name: xm.where(ok, compiled(tree)(columns, result.params, result.rows), skipped)
-              for c, tree in zip(result.model.checks, trees)}
+    # The residuals read a term in their "ok" branch only, where the cell holds the
+    # unguarded value: evaluate them over that (terms first, each seeing those before).
+    named = tuple((t.name, t.expr) for t in terms) + tuple(
+        (f"\x00check {i}", tree) for i, tree in enumerate(trees))
+    out = compiled_set(named)(columns, result.params, result.rows)
+    held = {t.name: xm.where(ok, out[t.name], skipped) for t in terms}
+    values = {c.name: xm.where(ok, out[f"\x00check {i}"], skipped)
+              for i, c in enumerate(result.model.checks)}
     return values, held
 
 
