@@ -107,9 +107,20 @@ def read_inputs(path: str | Path) -> AuditInputs:
         raise WorkbookReadError(f"{path}: no such file")
     book = read_workbook(path)
     inputs = AuditInputs(book)
+    formulas, cached, constants = inputs.formulas, inputs.cached, inputs.constants
     for sheet in book.sheets:
+        name = sheet.name
         for cell in sheet.cells.values():
-            key = (sheet.name, cell.row, cell.col)
+            kind = cell.formula_type
+            if kind is None and not cell.array_master:  # the common cases first, as below
+                constants[(name, cell.row, cell.col)] = cell.value
+                continue
+            if kind == "normal" and cell.formula is not None and cell.array_master is None:
+                key = (name, cell.row, cell.col)
+                formulas[key] = cell.formula
+                cached[key] = cell.value
+                continue
+            key = (name, cell.row, cell.col)
             if cell.is_array or (cell.array_master and cell.formula is None):
                 inputs.array_cells.append(key)
                 inputs.constants[key] = cell.value

@@ -192,7 +192,7 @@ class Store:
             return Obj([None] * n)
         if last < len(c.val) and not c.irr[first:last + 1].any():
             return Num(c.val[first:last + 1], c.err[first:last + 1])
-        return Obj([self.get(sheet, r, col) for r in range(first, last + 1)])
+        return Obj(_python_values(c, first, last))
 
     def column_values(self, sheet: str, col: int, r1: int, r2: int) -> list:
         """The values of rows ``r1..r2`` of a column, as Python values."""
@@ -201,7 +201,7 @@ class Store:
             return [None] * (r2 - r1 + 1)
         if r2 < len(c.val) and not c.irr[r1:r2 + 1].any():
             return to_items(Num(c.val[r1:r2 + 1], c.err[r1:r2 + 1]))
-        return [self.get(sheet, r, col) for r in range(r1, r2 + 1)]
+        return _python_values(c, r1, r2)
 
     def rect(self, sheet: str, r1: int, c1: int, r2: int, c2: int) -> Range:
         """Values of a rectangle, row by row. Cached: evaluation in dependency order
@@ -230,6 +230,24 @@ class Store:
                 if r1 <= r <= r2 and c.irr[r]:
                     scale = max(scale, value_scale(v))
         return scale
+
+
+def _python_values(c: _Column, first: int, last: int) -> list:
+    """``[Store.get(sheet, r, col) for r in range(first, last + 1)]`` of column ``c``,
+    with Python work only for the cells that hold text, booleans, nothing or errors."""
+    out = [None] * (last - first + 1)
+    lo, hi = max(first, 1), min(last, len(c.val) - 1)
+    if hi < lo:
+        return out
+    values = c.val[lo:hi + 1].tolist()
+    irr, err = c.irr[lo:hi + 1], c.err[lo:hi + 1]
+    objs = c.objs
+    for i in np.flatnonzero(irr).tolist():
+        values[i] = objs.get(lo + i)
+    for i in np.flatnonzero((err != 0) & ~irr).tolist():
+        values[i] = ExcelError.from_code(int(err[i]))
+    out[lo - first:hi - first + 1] = values
+    return out
 
 
 def to_items(num: Num) -> list:

@@ -103,7 +103,13 @@ def read_sheet(pkg: Package, part: str, sheet: Sheet, strings: list[str], budget
                 continue
             cell = Cell(ref, r_, col, value)
             if f is not None:
-                _formula(cell, f, shared, pending, arrays)
+                if f.attrib:
+                    _formula(cell, f, shared, pending, arrays)
+                else:  # a plain <f>: what _formula records for it
+                    text = f.text or None
+                    if text is not None and text.startswith("="):
+                        text = text[1:]
+                    cell.formula, cell.formula_type = text, "normal"
             cells[ref] = cell
         row.clear()
     for cell in pending:
