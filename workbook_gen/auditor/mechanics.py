@@ -72,6 +72,11 @@ def _column(column_of, sheet: str, col: int, rows: range):
     return column_of(sheet, col, rows.start, rows.stop - 1)
 
 
+def _row(sheet, row: int) -> list:
+    """``sheet.row(row)``, without indexing every row of the sheet."""
+    return sorted((c for c in sheet.cells.values() if c.row == row), key=lambda c: c.col)
+
+
 def _sheet(book, name: str):
     return book.sheet(name) if name in book.sheet_names else None
 
@@ -113,7 +118,7 @@ def check_mechanics(book, value_of, column_of) -> MechanicsReport | None:
     solved = reference.solve(mechanism, params, inputs, options)
     flagged: dict[str, int] = {}
     singular = np.zeros(len(rows), dtype=bool)
-    for cell in table.row(1)[1:]:
+    for cell in _row(table, 1)[1:]:
         if cell.value == "status":
             for i, text in enumerate(_column(column_of, "Table", cell.col, rows)):
                 if isinstance(text, str) and text not in ("ok", "cannot assemble"):
@@ -122,7 +127,7 @@ def check_mechanics(book, value_of, column_of) -> MechanicsReport | None:
     noise = ColumnNoise(table, rows, lambda col: _column(column_of, "Table", col, rows),
                         lambda name: _name_value(book, value_of, name))
     quantities = []
-    for cell in table.row(1)[1:]:
+    for cell in _row(table, 1)[1:]:
         match = _HEADER.match(str(cell.value))
         name = match.group(1) if match else None
         if name not in solved:
@@ -193,7 +198,7 @@ def _residuals(book, value_of) -> tuple[dict[str, float], float | None]:
         return {}, None
     tolerance = value_of("Checks", 1, 2)
     out = {}
-    for cell in checks.row(7)[1:]:
+    for cell in _row(checks, 7)[1:]:
         if cell.value in ("cannot assemble", "flagged"):
             break  # the residuals end here: the flags, then the terms they share
         value = value_of("Checks", 4, cell.col)
@@ -205,7 +210,7 @@ def _paper_table(table, column_of, solved, inputs, rows):
     """The lever's angular acceleration against the model in percent, per 10 deg."""
     if PAPER_QUANTITY not in solved:
         return []
-    col = next((c.col for c in table.row(1) if str(c.value).startswith(PAPER_QUANTITY + " ")),
+    col = next((c.col for c in _row(table, 1) if str(c.value).startswith(PAPER_QUANTITY + " ")),
                None)
     if col is None:
         return []

@@ -33,6 +33,7 @@ import numpy as np
 from ..errors import WorkbookGenError
 from ..formula import ast, parse
 from ..formula.ast import to_relative
+from ..xlsx.model import column_letters
 
 _DIGITS = re.compile(r"[0-9]+")
 Pair = tuple[np.ndarray, np.ndarray]  # values, noise magnitudes
@@ -54,6 +55,7 @@ class ColumnNoise:
         self.sheet, self.rows = sheet, rows
         self._values, self._name_value = values, name_value
         self._memo: dict[int, np.ndarray | None] = {}
+        self._numbers_memo: dict[int, np.ndarray] = {}
 
     def of(self, col: int) -> np.ndarray | None:
         if col not in self._memo:
@@ -69,15 +71,17 @@ class ColumnNoise:
         if first is None or not first.has_formula:
             return np.abs(self._numbers(col))  # an input column: exact as given
         texts = []
+        cells, letters = self.sheet.cells, column_letters(col)  # sheet.cell, quicker
         for row in self.rows:
-            cell = self.sheet.cell(row, col)
+            cell = cells.get(f"{letters}{row}")
             source = self.sheet.formula_source(cell) if cell is not None else None
             if source is None:
                 raise _Unsupported
             texts.append(source)
         # One tree for the column: the same text but for numbers on every row (cheap),
         # and the same relative form on the first and last rows (exact).
-        if len({_DIGITS.sub("#", text) for text, _ in texts}) != 1:
+        # (one substitution over all texts: formula text never holds a NUL)
+        if len(set(_DIGITS.sub("#", "\0".join(text for text, _ in texts)).split("\0"))) != 1:
             raise _Unsupported
         trees = [ast.shift(parse(text), *_offset(origin, row, col))
                  for (text, origin), row in ((texts[0], self.rows.start),
@@ -91,8 +95,12 @@ class ColumnNoise:
         return np.broadcast_to(np.abs(noise), (len(self.rows),)).copy()
 
     def _numbers(self, col: int) -> np.ndarray:
-        return np.array([v if isinstance(v, (int, float)) and not isinstance(v, bool)
-                         else np.nan for v in self._values(col)], dtype=float)
+        """The column's numbers (NaN elsewhere); the same array at every call."""
+        if col not in self._numbers_memo:
+            self._numbers_memo[col] = np.array(
+                [v if isinstance(v, (int, float)) and not isinstance(v, bool) else np.nan
+                 for v in self._values(col)], dtype=float)
+        return self._numbers_memo[col]
 
     # -- the tree, over all rows at once ------------------------------------------------
     def _eval(self, node, base_row: int) -> Pair:
