@@ -228,18 +228,27 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
     columns: dict[tuple[str, int], ColumnStats] = {}
     mismatches, explained, checked = [], 0, 0
     max_abs = max_rel = 0.0
-    by_column: dict[tuple[str, int], list] = {}
-    for key in inputs.cached:
-        if key not in skipped and key in values:
-            by_column.setdefault((key[0], key[2]), []).append(key)
-    store, given = evaluation.store, inputs.cached
-    for (sheet, col), keys in by_column.items():
+    # per column: the cells to check, and those whose cached value is a number that
+    # the evaluator computed as a whole column (compared as arrays below)
+    by_column: dict[tuple[str, int], tuple[list, list, list]] = {}
+    evaluated, aggregates = values.keyset, set(local.values)
+    for key, value in inputs.cached.items():
+        if key in skipped or key not in evaluated:
+            continue
+        lists = by_column.get((key[0], key[2]))
+        if lists is None:
+            lists = by_column[(key[0], key[2])] = ([], [], [])
+        lists[0].append(key)
+        if type(value) is float and key not in aggregates:
+            lists[1].append(key)
+            lists[2].append(value)
+    store = evaluation.store
+    for (sheet, col), (keys, fast, numbers) in by_column.items():
         stats = columns[(sheet, col)] = ColumnStats(sheet, xl_col_to_name(col - 1))
-        fast = [k for k in keys if type(given[k]) is float and k not in local.values]
         if fast:
             column = store.cols[(sheet, col)]
             rows = np.array([k[1] for k in fast])
-            cached = np.array([given[k] for k in fast])
+            cached = np.array(numbers)
             plain = ~column.irr[rows] & (column.err[rows] == 0)
             if not plain.all():
                 fast = [k for k, p in zip(fast, plain) if p]

@@ -84,6 +84,11 @@ class CellMap(Mapping):
     def __contains__(self, key):  # without reading the value (Mapping's would)
         return key in self._keys
 
+    @property
+    def keyset(self):
+        """The keys, for membership tests without a Python call each."""
+        return self._keys
+
     def __iter__(self):
         return iter(self._keys)
 

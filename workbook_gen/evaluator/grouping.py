@@ -44,7 +44,8 @@ def _escape(text: str) -> str:
 
 def template(text: str) -> tuple[str, list[int]] | None:
     """``text`` as a ``str.format`` template whose fields are the rows of its relative
-    references, with the row of each field; None if a row is written oddly (``A05``)."""
+    references, with the row of each field (references to the same row share a field);
+    None if a row is written oddly (``A05``)."""
     spans = []
     for token in tk.tokenize(text):
         if token.kind != tk.REF:
@@ -55,12 +56,16 @@ def template(text: str) -> tuple[str, list[int]] | None:
             if not m.group(3):
                 spans.append((offset + m.start(4), offset + m.end(4)))
     pieces, rows, at = [], [], 0
+    field: dict[int, int] = {}  # row -> its field
     for a, b in spans:
         if text[a] == "0":
             return None
         pieces.append(_escape(text[at:a]))
-        pieces.append("{%d}" % len(rows))
-        rows.append(int(text[a:b]))
+        row = int(text[a:b])
+        if row not in field:
+            field[row] = len(rows)
+            rows.append(row)
+        pieces.append("{%d}" % field[row])
         at = b
     pieces.append(_escape(text[at:]))
     return "".join(pieces), rows
@@ -99,11 +104,17 @@ def find_runs(column: list[tuple[int, str]], sheet: str, col: int,
         shape = template(text) if j < len(column) and column[j][0] == row + 1 else None
         if shape is not None:
             fmt, rows = shape[0].format, shape[1]
-            while j < len(column) and column[j][0] == row + (j - i):
-                dr = j - i
-                if column[j][1] != fmt(*[r + dr for r in rows]):
-                    break
-                j += 1
+            n = len(column)
+            if len(rows) == 1:  # the usual case: references to the cell's own row
+                r0 = rows[0] - i
+                while j < n and column[j][0] == row + (j - i) and column[j][1] == fmt(r0 + j):
+                    j += 1
+            else:
+                while j < n and column[j][0] == row + (j - i):
+                    dr = j - i
+                    if column[j][1] != fmt(*[r + dr for r in rows]):
+                        break
+                    j += 1
         runs.append(Run(sheet, col, row, row + (j - i) - 1, node))
         i = j
     return runs
