@@ -88,8 +88,16 @@ def _stats(y, x, coef, b, kept, const):
     if ss_resid <= 1e-20 * ss_total:  # an exact fit: rounding noise is no residual
         ss_resid = 0.0
     ss_reg = ss_total - ss_resid
-    df = n - len(kept) - (1 if const else 0)
     k = x.shape[1]
+    # Microsoft: each x column removed for collinearity adds 1 to df; a constant column
+    # (collinear with the intercept only) does not: Excel gives df 0 for 3 points and
+    # two constant columns (pycel stats.xlsx LinestArrayExp!F21:H25)
+    moving = [j for j in range(k) if np.ptp(x[:, j]) > 0 or not const]
+    df = n - k - (1 if const else 0) + sum(1 for j in moving if j not in kept)
+    if df == 0:  # as many parameters as points: Excel reports an exact fit
+        ss_resid, ss_reg = 0.0, ss_total
+        return ([0.0] * k, 0.0 if const else ExcelError.NA, 1.0 if ss_total else ExcelError.NUM,
+                0.0, ExcelError.NUM, 0.0, ss_reg, ss_resid)
     se = [0.0] * k
     se_b = ExcelError.NA
     if df > 0 and kept:
