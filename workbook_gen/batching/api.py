@@ -8,6 +8,8 @@ it in the folder's journal; the summaries are written last.
 
 from __future__ import annotations
 
+import contextlib
+import gc
 import json
 import logging
 import math
@@ -93,6 +95,27 @@ def batch(scene: str | Path | Scene, vary: Sequence[str] | None = None,
     ``client`` (a Dask ``Client``) or ``scheduler`` (its address) runs the variants on
     a Dask cluster.  ``summary_only``: the summary without the workbooks, evaluated over
     all variants at once.  Raises SceneError (bad input) before writing anything."""
+    with _no_cycle_collection():
+        return _batch(scene, vary, design, out, jobs, client, summary_only, sets, step,
+                      samples, seed, audit, force, scheduler, progress)
+
+
+@contextlib.contextmanager
+def _no_cycle_collection():
+    """The cycle collector off while a batch runs: it makes no reference cycles worth
+    collecting, but holds ~10^5 variants and 10^7 summary cells whose allocation made
+    the collector walk them all again and again (~10% of the command's time)."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
+
+
+def _batch(scene, vary, design, out, jobs, client, summary_only, sets, step, samples, seed,
+           audit, force, scheduler, progress):
     text, source, given_sets, given_step = _read(scene)
     sets = {**given_sets, **dict(sets or {})}
     step = step if step is not None else given_step
