@@ -169,3 +169,20 @@ def test_rows_kept_by_what_decides_them_give_xlsxwriters_bytes():
     for swap in (False, True, False, True):   # the kept rows are reused from the 2nd on
         assert _cells_xml(Sheet, swap) == _cells_xml(_NoRowMemo, swap)
     assert _cells_xml(Sheet, False) != _cells_xml(Sheet, True)
+
+
+def test_parts_deflated_once_per_process_give_zlibs_bytes():
+    """package.py keeps the deflated bytes of small parts (the same for every variant):
+    a workbook packaged from kept parts is the one packaged from scratch, and every
+    entry's data is zlib's at our level."""
+    from workbook_gen.scene import load_scene
+    from workbook_gen.workbook import package, workbook_bytes
+
+    scene = load_scene("templates/four_bar.toml", step=20.0)
+    package._DEFLATED.clear()
+    fresh = workbook_bytes(scene, "x.xlsx")
+    assert package._DEFLATED   # small parts were kept
+    assert workbook_bytes(scene, "x.xlsx") == fresh   # now from the kept parts
+    with zipfile.ZipFile(io.BytesIO(fresh)) as z:
+        for info in z.infolist():
+            assert info.compress_size == _deflated_size(z.read(info), package.COMPRESSLEVEL)

@@ -55,7 +55,56 @@ class _ZipFile(zipfile.ZipFile):
     def writestr(self, zinfo_or_arcname, data, compress_type=None, compresslevel=None):
         if compresslevel is None:
             compresslevel = self._level  # the in-memory path passes ZipInfo objects
-        return super().writestr(zinfo_or_arcname, data, compress_type, compresslevel)
+        if isinstance(data, str):
+            data = data.encode("utf-8")   # as zipfile does
+        self._part = data if self._level is not None and len(data) <= _KEPT_SIZE else None
+        try:
+            return super().writestr(zinfo_or_arcname, data, compress_type, compresslevel)
+        finally:
+            self._part = None
+
+    def _open_to_write(self, zinfo, force_zip64=False):
+        dest = super()._open_to_write(zinfo, force_zip64)
+        part = getattr(self, "_part", None)
+        if part is not None and dest._compressor is not None:
+            dest._compressor = _Kept(dest._compressor,
+                                     (zinfo.compress_type, zinfo._compresslevel, part))
+        return dest
+
+
+#: Deflated parts kept per process by (method, level, bytes): most parts of a workbook
+#: (styles, theme, charts, drawings, rels, content types) are the same for every design
+#: variant of a scene, and deflate gives the same bytes for the same input.
+_DEFLATED: dict[tuple, tuple[bytes, bytes]] = {}
+_DEFLATED_LIMIT = 512
+_KEPT_SIZE = 1 << 16   # larger parts (the Table, the Checks) differ between variants
+
+
+class _Kept:
+    """The compressor of one ``writestr`` (one ``compress`` of the whole part, then
+    ``flush``): the bytes kept for ``key``, else the real compressor's, then kept."""
+
+    def __init__(self, real, key: tuple):
+        self.real, self.key, self.kept, self.calls = real, key, _DEFLATED.get(key), 0
+        self.out = b""
+
+    def compress(self, data) -> bytes:
+        self.calls += 1
+        if self.calls > 1 or bytes(data) != self.key[2]:
+            raise RuntimeError("a kept part must be compressed in one call")
+        if self.kept is not None:
+            return self.kept[0]
+        self.out = self.real.compress(data)
+        return self.out
+
+    def flush(self) -> bytes:
+        if self.kept is not None:
+            return self.kept[1]
+        tail = self.real.flush()
+        if len(_DEFLATED) >= _DEFLATED_LIMIT:
+            _DEFLATED.clear()
+        _DEFLATED[self.key] = (self.out, tail)
+        return tail
 
 
 if xlsxwriter.workbook.ZipFile is zipfile.ZipFile:
