@@ -100,3 +100,16 @@ def test_a_sheet_start_not_foreseen_is_corrected(formatted_here, tmp_path, monke
     monkeypatch.setattr(summary_only, "BLOCK_ELEMENTS", 70)
     monkeypatch.setattr(summary, "_variants_xml", lambda table: (b"<worksheet>", b""))
     assert _run(tmp_path, 1) == formatted_here
+
+
+def test_the_folder_key_of_the_variants_is_their_json(tmp_path):
+    import json
+    from workbook_gen.batching.api import variants_json
+    from workbook_gen.batching.variants import Variant, from_specs
+    plans = [from_specs(["l_AB=normal:32:8", "l_BC=uniform:20:110"], ["l_AB", "l_BC"], [],
+                        50, 1).variants,
+             (Variant(1, 'a "quoted", label', (("l_AB", 1e-05),)), Variant(2, "é\n", ()),
+              Variant(3, "x1", (("l_AB", -0.0), ("l_BC", 1e16)))), ()]
+    for variants in plans:
+        assert variants_json(variants) == json.dumps(
+            [[v.label, [[k, repr(x)] for k, x in v.values]] for v in variants])

@@ -28,7 +28,7 @@ from .job import JobSpec, run_chunk
 from .summary import SummaryWriter
 from .summary_only import SummaryJob, block_size, summary_rows
 from .table import Table
-from .variants import Design, from_design, from_specs
+from .variants import Design, Variant, from_design, from_specs
 
 log = logging.getLogger(__name__)
 _FIRST_BLOCK = 32   # variants in the first --summary-only block
@@ -54,6 +54,25 @@ def _design(base: Scene, vary, design, sets, samples, seed) -> Design:
             raise SceneError("--samples and --seed go with a random --vary, not --design")
         return from_design(design, names, list(sets))
     return from_specs(list(vary or ()), names, list(sets), samples, seed)
+
+
+def variants_json(variants: Sequence[Variant]) -> str:
+    """``json.dumps([[label, [[name, repr(value)], ...]], ...])`` of the variants (the
+    folder's key: same text), written directly: a float's repr needs no escaping, a
+    label of ASCII letters and digits none either (others go through json)."""
+    names: dict[str, str] = {}
+    parts = []
+    for v in variants:
+        label = v.label
+        label = f'"{label}"' if label.isascii() and label.isalnum() else json.dumps(label)
+        cells = []
+        for k, x in v.values:
+            name = names.get(k)
+            if name is None:
+                name = names[k] = json.dumps(k)
+            cells.append(f'[{name}, "{x!r}"]')
+        parts.append(f"[{label}, [{', '.join(cells)}]]")
+    return f"[{', '.join(parts)}]"
 
 
 def _command(source, vary, design, sets, step, samples, seed, summary_only, audit) -> str:
@@ -134,8 +153,7 @@ def _batch(scene, vary, design, out, jobs, client, summary_only, sets, step, sam
     identity = {"version": VERSION, "scene": source, "text": text, "sets": sorted(
         (k, repr(v)) for k, v in sets.items()), "step": step, "summary_only": summary_only,
         "audit": audit, "names": list(plan.names), "count": len(plan),
-        "variants": digest(json.dumps([[v.label, [[k, repr(x)] for k, x in v.values]]
-                                       for v in plan.variants]).encode())}
+        "variants": digest(variants_json(plan.variants).encode())}
     folder = Folder(folder_path, base.name, identity)
     resume = folder.check(force)
     own = runners.connect(scheduler) if scheduler is not None and client is None else None
