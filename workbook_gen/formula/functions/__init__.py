@@ -17,7 +17,7 @@ from __future__ import annotations
 from workbook_gen.formula.functions import (  # noqa: F401  (each module registers its family)
     date, eng, finance, info, logical, lookup, math, reference, statfit, stats, text,
     distributions, discrete, stattests, workdays, complex, engineering, database, matrix,
-    regress, depreciation,
+    regress, depreciation, bessel,
 )
 from workbook_gen.formula.functions.dialect import (
     LIBREOFFICE_DIFFERENCES, Difference, dialect_of, libreoffice_error, libreoffice_result,

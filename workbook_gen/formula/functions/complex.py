@@ -1,6 +1,7 @@
 """Complex numbers as Excel writes them, text like "3+4i" or "-2.5j": COMPLEX and the IM*
 family. A complex argument is such text (suffix i or j, "i" alone is 1i) or a real
-number; unreadable text is #NUM!, a boolean #VALUE!, suffixes i and j mixed #VALUE!.
+number; unreadable text is #NUM!, a boolean #VALUE!, suffixes i and j mixed #NUM!; an empty
+cell is 0.
 Results are written with 15 significant digits (Excel's number-to-text); powers, roots
 and logarithms go through the polar form as Excel does."""
 
@@ -43,6 +44,12 @@ def parse(v) -> tuple[complex, str | None] | ExcelError:
 
 
 def _part(x: float) -> str:
+    """15 significant digits; from 1E-05 to 1 written out in full as Excel writes the
+    parts (formulas test.xlsx: "0.0000692442674613868-1.00005873951153j"), smaller in
+    E notation ("3.82126757337684E-22-j")."""
+    if 1e-5 <= abs(x) < 1:
+        digits = 15 - 1 - math.floor(math.log10(abs(x)))
+        return f"{x:.{digits}f}".rstrip("0").rstrip(".")
     return c.number_to_text(x)
 
 
@@ -61,13 +68,15 @@ def write(z: complex, sfx: str = "i") -> str | ExcelError:
 
 def _suffix(*sfxs):
     got = {s for s in sfxs if s is not None}
-    if len(got) > 1:
-        return ExcelError.VALUE
+    if len(got) > 1:  # "i" and "j" mixed (formulas test.xlsx ENGINEERING!T51: #NUM!)
+        return ExcelError.NUM
     return got.pop() if got else "i"
 
 
 @register("COMPLEX", "eng", 2, 3)
 def _complex(ctx, real, imag, suffix="i"):
+    if isinstance(real, bool) or isinstance(imag, bool):
+        return ExcelError.VALUE  # an Analysis ToolPak function: no booleans
     a, b = c.to_number(real), c.to_number(imag)
     s = "i" if suffix is None else c.to_text(suffix)
     for x in (a, b, s):
@@ -150,10 +159,36 @@ _unary("IMLOG2", lambda z: _ln(z) / math.log(2))
 _unary("IMEXP", _exp)
 _unary("IMSIN", _sin)
 _unary("IMCOS", _cos)
-_unary("IMTAN", lambda z: _sin(z) / _cos(z))
-_unary("IMCOT", lambda z: _cos(z) / _sin(z))
-_unary("IMSEC", lambda z: 1 / _cos(z))
-_unary("IMCSC", lambda z: 1 / _sin(z))
+# tan, cot, sec, csc by the double-angle forms, whose digits are Excel's (formulas
+# test.xlsx: IMTAN("3.1+2j"), IMCOT("7+25j") = "3.82126757337684E-22-j")
+def _tan(z):
+    a, b = z.real, z.imag
+    den = math.cos(2 * a) + math.cosh(2 * b)
+    return complex(math.sin(2 * a) / den, math.sinh(2 * b) / den)
+
+
+def _cot(z):
+    a, b = z.real, z.imag
+    den = math.cosh(2 * b) - math.cos(2 * a)
+    return complex(math.sin(2 * a) / den, -math.sinh(2 * b) / den)
+
+
+def _sec(z):
+    a, b = z.real, z.imag
+    den = math.cosh(2 * b) + math.cos(2 * a)
+    return complex(2 * math.cos(a) * math.cosh(b) / den, 2 * math.sin(a) * math.sinh(b) / den)
+
+
+def _csc(z):
+    a, b = z.real, z.imag
+    den = math.cosh(2 * b) - math.cos(2 * a)
+    return complex(2 * math.sin(a) * math.cosh(b) / den, -2 * math.cos(a) * math.sinh(b) / den)
+
+
+_unary("IMTAN", _tan)
+_unary("IMCOT", _cot)
+_unary("IMSEC", _sec)
+_unary("IMCSC", _csc)
 _unary("IMSINH", _sinh)
 _unary("IMCOSH", _cosh)
 _unary("IMSECH", lambda z: 1 / _cosh(z))
@@ -198,8 +233,6 @@ def _many(fn, start):
         acc, sfxs = start, []
         for a in args:
             for v in (c.flat(a) if isinstance(a, Range) else [a]):
-                if isinstance(a, Range) and v is None:
-                    continue
                 got = parse(v)
                 if isinstance(got, ExcelError):
                     return got

@@ -20,10 +20,14 @@ from workbook_gen.xlerror import ExcelError
 DPS = 30
 
 
-def args_of(*vs):
-    """Scalar arguments as numbers (booleans and numeric text convert), or the first error."""
+def args_of(*vs, booleans: bool = True):
+    """Scalar arguments as numbers (booleans and numeric text convert), or the first error.
+    ``booleans=False``: a boolean is #VALUE!, as in the engineering functions that came
+    from Excel's Analysis ToolPak (formulas test.xlsx: BESSELI(TRUE,1), ERF(TRUE))."""
     out = []
     for v in vs:
+        if not booleans and isinstance(v, bool):
+            return ExcelError.VALUE
         x = c.to_number(v)
         if isinstance(x, ExcelError):
             return x

@@ -106,6 +106,8 @@ def _from_kelvin(k: float, scale) -> float:
 
 @register("CONVERT", "eng", 3, 3)
 def _convert(ctx, value, src, dst):
+    if isinstance(value, bool):  # Analysis ToolPak functions take no booleans
+        return ExcelError.VALUE  # (formulas test.xlsx ENGINEERING!Y16)
     x = c.to_number(value)
     if isinstance(x, ExcelError):
         return x
@@ -212,6 +214,8 @@ for _s in _BASES:
 
 @register("DELTA", "eng", 1, 2)
 def _delta(ctx, a, b=0.0):
+    if isinstance(a, bool) or isinstance(b, bool):
+        return ExcelError.VALUE  # no booleans (formulas test.xlsx ENGINEERING!Y20, Y25)
     x, y = c.to_number(a), c.to_number(b)
     for v in (x, y):
         if isinstance(v, ExcelError):
@@ -221,6 +225,8 @@ def _delta(ctx, a, b=0.0):
 
 @register("GESTEP", "eng", 1, 2)
 def _gestep(ctx, a, b=0.0):
+    if isinstance(a, bool) or isinstance(b, bool):
+        return ExcelError.VALUE  # no booleans (formulas test.xlsx ENGINEERING!Y20, Y25)
     x, y = c.to_number(a), c.to_number(b)
     for v in (x, y):
         if isinstance(v, ExcelError):

@@ -1,4 +1,4 @@
-"""Engineering and other math: ERF, ERFC (.PRECISE), BESSELI/J/K/Y, BITAND/OR/XOR/LSHIFT/
+"""Engineering and other math: ERF, ERFC (.PRECISE), BITAND/OR/XOR/LSHIFT/
 RSHIFT, ROMAN, ARABIC, BASE, DECIMAL, the reciprocal trigonometric functions (COT, CSC,
 SEC and hyperbolic, ACOT, ACOTH), MULTINOMIAL, SERIESSUM. Special functions by mpmath
 at 30 digits, rounded to a float."""
@@ -16,8 +16,9 @@ from workbook_gen.xlerror import ExcelError
 
 
 @register("ERF", "eng", 1, 2)
-def _erf(ctx, lower, upper=None):
-    xs = args_of(lower) if upper is None else args_of(lower, upper)
+def _erf(ctx, *limits):
+    """ERF(lower) or ERF(lower, upper): an empty upper cell is 0, not omitted."""
+    xs = args_of(*limits, booleans=False)
     if isinstance(xs, ExcelError):
         return xs
     with mpmath.workdps(DPS):
@@ -26,24 +27,14 @@ def _erf(ctx, lower, upper=None):
         return c.result(float(mpmath.erf(xs[1]) - mpmath.erf(xs[0])))
 
 
-register("ERF.PRECISE", "eng", 1, 1)(numeric(mpmath.erf))
-register("ERFC", "eng", 1, 1, aliases=("ERFC.PRECISE",))(numeric(mpmath.erfc))
+def _no_bool(fn):
+    def scalar(ctx, x):
+        return ExcelError.VALUE if isinstance(x, bool) else fn(ctx, x)
+    return scalar
 
 
-def _bessel(kind):
-    def fn(x, n):
-        n = math.trunc(n)
-        if n < 0:
-            return ExcelError.NUM
-        if kind in "KY" and x <= 0:
-            return ExcelError.NUM
-        return {"I": mpmath.besseli, "J": mpmath.besselj, "K": mpmath.besselk,
-                "Y": mpmath.bessely}[kind](n, x)
-    return numeric(fn)
-
-
-for _k in "":  # BESSEL*: Excel's own approximations differ from the exact values at 1e-8
-    register("BESSEL" + _k, "eng", 2, 2)(_bessel(_k))
+register("ERF.PRECISE", "eng", 1, 1)(_no_bool(numeric(mpmath.erf)))
+register("ERFC", "eng", 1, 1, aliases=("ERFC.PRECISE",))(_no_bool(numeric(mpmath.erfc)))
 
 
 def _bit_arg(x):
