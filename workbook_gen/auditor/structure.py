@@ -127,6 +127,8 @@ def _unresolved(inputs, evaluation, cell_name) -> list[Finding]:
                                         f"no sheet named {sheet!r}"))
             if isinstance(node, ast.Name):
                 upper = node.name.upper()
+                if upper.startswith(("_XLPM.", "_XLETA.")):  # a LAMBDA's parameter, a function
+                    continue
                 known = (upper in local_any if node.sheet else
                          upper in names or (run.sheet, upper) in local)
                 if not known:

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
+from workbook_gen.formula.functions import lambdas
 from workbook_gen.formula import values as xv
 from workbook_gen.formula.scalar import Evaluator
 from workbook_gen.formula.values import Range
@@ -157,7 +158,7 @@ class ArrayEvaluator(Evaluator):
 
 def evaluate_array(node: ast.Node, resolver, dialect: str, cell) -> object:
     """The value of an array formula: a value or an array Range."""
-    return ArrayEvaluator(resolver, dialect, None, cell).arg(node)
+    return lambdas.final(ArrayEvaluator(resolver, dialect, None, cell).arg(node))
 
 
 def spread(value, rows: int, cols: int) -> list[list]:

@@ -15,6 +15,7 @@ from typing import Callable, Protocol
 
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
+from workbook_gen.formula.functions import lambdas
 from workbook_gen.formula import values as xv
 from workbook_gen.formula.values import Range, Ref, Value
 from workbook_gen.formula.tokenizer import CELL_PARTS, column_number, split_sheet
@@ -90,7 +91,7 @@ def evaluate(node: ast.Node, resolver: Resolver, *, dialect: str = "excel",
     if dialect not in ("excel", "libreoffice"):
         raise ValueError(f"unknown dialect {dialect!r}")
     ev = Evaluator(resolver, dialect, on_unsupported, cell)
-    result = ev.ctx.scalar(ev.arg(node))
+    result = ev.ctx.scalar(lambdas.final(ev.arg(node)))
     return 0.0 if result is None else result
 
 
@@ -153,9 +154,14 @@ class Evaluator:
             value = self.resolver.range(node.sheet, ref.row1, ref.col1, ref.row2, ref.col2)
             return (value if isinstance(value, Range) else Range.of(value)).with_ref(ref)
         if isinstance(node, ast.Name):
+            value = lambdas.bound(self, node)  # a LAMBDA's parameter or a LET's name
+            if value is not None:
+                return value
             value = self.resolver.name(node.name, node.sheet)
             return Range.of(value) if isinstance(value, list) else value
         if isinstance(node, ast.Func):
+            if node.name in lambdas.SPECIAL:
+                return lambdas.special(self, node)
             return self.func(node)
         if isinstance(node, (ast.Array, ast.RefOp, ast.Sheets3D, ast.StructRef)):
             from workbook_gen.formula import refops
