@@ -1,5 +1,5 @@
 """LAMBDA, LET and the functions that call a LAMBDA: SCAN, REDUCE, MAP, BYROW, BYCOL,
-MAKEARRAY (Excel 365). Excel saves their parameters as ``_xlpm.name``.
+MAKEARRAY (Excel 365; Microsoft lists them as logical functions). Excel saves their parameters as ``_xlpm.name``.
 
 ``LAMBDA(x, y, body)`` evaluates to a :class:`Closure`; the functions given one call it
 with values, and the body is evaluated by the formula's own evaluator (so inside an array
@@ -129,17 +129,17 @@ def _calls(fn, count: int):
     return None
 
 
-@register("LAMBDA", "lambda", 1, 254, "lazy")
+@register("LAMBDA", "logical", 1, 254, "lazy")
 def _lambda(ctx, *args):  # evaluated by special(); reached only through fx.call
     return ExcelError.CALC
 
 
-@register("LET", "lambda", 3, 253, "lazy")
+@register("LET", "logical", 3, 253, "lazy")
 def _let(ctx, *args):
     return ExcelError.CALC
 
 
-@register("SCAN", "lambda", 3, 3, "range")
+@register("SCAN", "logical", 3, 3, "range")
 def _scan(ctx, initial, array, fn):
     rows = _rows(array)
     if isinstance(rows, ExcelError):
@@ -158,7 +158,7 @@ def _scan(ctx, initial, array, fn):
     return Range.array_of(out)
 
 
-@register("REDUCE", "lambda", 3, 3, "range")
+@register("REDUCE", "logical", 3, 3, "range")
 def _reduce(ctx, initial, array, fn):
     rows = _rows(array)
     if isinstance(rows, ExcelError):
@@ -175,7 +175,7 @@ def _reduce(ctx, initial, array, fn):
     return acc
 
 
-@register("MAP", "lambda", 2, 254, "range")
+@register("MAP", "logical", 2, 254, "range")
 def _map(ctx, *args):
     fn, arrays = args[-1], [_rows(a) for a in args[:-1]]
     for a in arrays:
@@ -205,17 +205,17 @@ def _by(array, fn, by_row: bool):
     return Range.array_of([[v] for v in values] if by_row else [values])
 
 
-@register("BYROW", "lambda", 2, 2, "range")
+@register("BYROW", "logical", 2, 2, "range")
 def _byrow(ctx, array, fn):
     return _by(array, fn, True)
 
 
-@register("BYCOL", "lambda", 2, 2, "range")
+@register("BYCOL", "logical", 2, 2, "range")
 def _bycol(ctx, array, fn):
     return _by(array, fn, False)
 
 
-@register("MAKEARRAY", "lambda", 3, 3, ("scalar", "scalar", "range"))
+@register("MAKEARRAY", "logical", 3, 3, ("scalar", "scalar", "range"))
 def _makearray(ctx, rows, cols, fn):
     from workbook_gen.formula.functions import coerce
     if isinstance(rows, str) or isinstance(cols, str):
