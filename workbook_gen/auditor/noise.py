@@ -72,9 +72,13 @@ class ColumnNoise:
             return np.abs(self._numbers(col))  # an input column: exact as given
         texts = []
         cells, letters = self.sheet.cells, column_letters(col)  # sheet.cell, quicker
+        source_of = self.sheet.formula_source
         for row in self.rows:
             cell = cells.get(f"{letters}{row}")
-            source = self.sheet.formula_source(cell) if cell is not None else None
+            if cell is not None and cell.formula is not None:  # formula_source's first case
+                texts.append((cell.formula, cell.ref))
+                continue
+            source = source_of(cell) if cell is not None else None
             if source is None:
                 raise _Unsupported
             texts.append(source)

@@ -155,8 +155,12 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     store = Store(sheets, book.sheets)
     store.unreadable = {s.lower() for s in book.unreadable}
     store.put_constants(constants)
-    for sheet, row, col in formulas:
-        store.note(sheet, row, col)
+    for sheet, row, col in formulas:  # store.note, inline: one call less per formula
+        e = store.extent.get(sheet) or store.extent.setdefault(sheet, [0, 0])
+        if row > e[0]:
+            e[0] = row
+        if col > e[1]:
+            e[1] = col
     name_table = Names(dict(names), book.local_names,
                        prepare=lambda node: resolve(node, book, "", 0, 0))
     keys = formulas

@@ -131,19 +131,26 @@ class Store:
 
     def put_constants(self, constants) -> None:
         """Every constant cell {(sheet, row, col): value}, a column at a time."""
-        columns: dict[tuple[str, int], list] = {}
+        columns: dict[tuple[str, int], tuple[list, list]] = {}
         for (sheet, row, col), value in constants.items():
-            columns.setdefault((sheet, col), []).append((row, value))
-        for (sheet, col), cells in columns.items():
-            rows = np.array([r for r, _ in cells])
+            lists = columns.get((sheet, col))
+            if lists is None:
+                lists = columns[(sheet, col)] = ([], [])
+            lists[0].append(row)
+            lists[1].append(value)
+        for (sheet, col), (row_list, values) in columns.items():
+            rows = np.array(row_list)
             self.note(sheet, int(rows.max()), col)
             c = self._column(sheet, col, int(rows.max()))
-            plain = np.array([type(v) is float for _, v in cells], bool)
+            plain = np.array([type(v) is float for v in values], bool)
+            everyone = plain.all()
+            numbers = np.array(values if everyone else [v for v, p in zip(values, plain) if p],
+                               dtype=float)
             # + 0.0: a cell never holds -0 in Excel (a file may say "-0")
-            c.val[rows[plain]] = np.array([v for _, v in cells if type(v) is float]) + 0.0
+            c.val[rows[plain]] = numbers + 0.0
             c.err[rows[plain]], c.irr[rows[plain]] = 0, False
-            for row, value in (cell for cell, p in zip(cells, plain) if not p):
-                self.put(sheet, row, col, value)
+            for i in () if everyone else np.flatnonzero(~plain).tolist():
+                self.put(sheet, row_list[i], col, values[i])
 
     def put_block(self, sheet: str, col: int, first: int, block, scale: np.ndarray) -> None:
         """Write a Num or a list of values to rows ``first ..``."""
