@@ -106,8 +106,11 @@ def find_runs(column: list[tuple[int, str]], sheet: str, col: int,
             fmt, rows = shape[0].format, shape[1]
             n = len(column)
             if len(rows) == 1:  # the usual case: references to the cell's own row
-                r0 = rows[0] - i
-                while j < n and column[j][0] == row + (j - i) and column[j][1] == fmt(r0 + j):
+                r0, first = rows[0] - i, row - i
+                while j < n:
+                    r, t = column[j]
+                    if r != first + j or t != fmt(r0 + j):
+                        break
                     j += 1
             else:
                 while j < n and column[j][0] == row + (j - i):
@@ -127,7 +130,10 @@ def group_formulas(formulas, budget: float | None = None) -> tuple[list[Run], di
     allowed = [int((budget - COST_CELL * len(formulas)) / COST_PARSED)]
     columns: dict[tuple[str, int], list[tuple[int, str]]] = {}
     for (sheet, row, col), text in formulas.items():
-        columns.setdefault((sheet, col), []).append((row, text))
+        cells = columns.get((sheet, col))
+        if cells is None:
+            cells = columns[(sheet, col)] = []
+        cells.append((row, text))
     runs: list[Run] = []
     errors: dict = {}
     for (sheet, col), cells in columns.items():

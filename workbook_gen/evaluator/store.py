@@ -159,8 +159,8 @@ class Store:
             c = self._column(sheet, col, first + n - 1)
             sl = slice(first, first + n)
             c.val[sl], c.err[sl], c.irr[sl], c.scale[sl] = block.val, block.err, False, scale
-            for r in range(first, first + n):
-                c.objs.pop(r, None)
+            for r in [r for r in c.objs if first <= r < first + n] if c.objs else ():
+                del c.objs[r]
             return
         items = block.items if isinstance(block, Obj) else to_items(block)
         n = len(items)

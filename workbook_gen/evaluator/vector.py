@@ -241,7 +241,8 @@ class _Compiler:
 def block_scale(b) -> np.ndarray:
     if isinstance(b, Num):
         return np.where(b.err == 0, np.abs(b.val), 0.0)
-    return np.array([value_scale(v) for v in b.items])
+    return np.array([0.0 if v is None or type(v) is str else value_scale(v)  # (text: 0)
+                     for v in b.items])
 
 
 def _if(cond_fn, then_fn, other_fn, env):
