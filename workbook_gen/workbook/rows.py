@@ -24,7 +24,7 @@ from itertools import repeat
 from typing import Callable, Sequence
 
 from xlsxwriter.utility import xl_col_to_name
-from xlsxwriter.worksheet import Worksheet
+from xlsxwriter.worksheet import CellStringTuple, Worksheet
 
 from ..expr.excel import RowTemplate
 
@@ -110,16 +110,21 @@ class Sheet(Worksheet):
             info = (info.height, None if row_format is None else row_format._get_xf_index(),
                     info.hidden, info.level, info.collapsed)
         key = [row, info, self.default_row_height, self.original_row_height]
+        col_info = self.col_info
         for col in sorted(cells):
             cell = cells[col]
             fmt = cell.format
             if not fmt:
                 fmt = row_format if row_format else None
-                if fmt is None and col in self.col_info:
-                    fmt = self.col_info[col].column_format
-            key.append((col, type(cell), None if fmt is None else fmt._get_xf_index(),
-                        tuple(_value_key(v) for f, v in zip(cell._fields, cell)
-                              if f != "format")))
+                if fmt is None and col in col_info:
+                    fmt = col_info[col].column_format
+            style = None if fmt is None else fmt._get_xf_index()
+            if type(cell) is CellStringTuple:   # most cells: (column, style, text)
+                key.append((col, style, cell.string))
+            else:
+                key.append((col, type(cell), style,
+                            tuple(_value_key(v) for f, v in zip(cell._fields, cell)
+                                  if f != "format")))
         return tuple(key)
 
     def _write_single_row(self, current_row_num=0) -> None:
