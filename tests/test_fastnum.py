@@ -129,7 +129,7 @@ def scene_step_ok(name: str) -> bool:
 
 def test_magnitudes_from_the_generated_subtree_values_are_the_node_by_node_ones():
     from workbook_gen.expr.magnitude import magnitude, scope
-    for name, sets in SCENES[:8]:
+    for name, sets in SCENES:
         result = evaluate(load_scene(f"templates/{name}.toml", overrides=sets))
         fast = scope(result.columns, result.params, result.rows)
         slow = scope(result.columns, result.params, result.rows)

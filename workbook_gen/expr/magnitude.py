@@ -38,8 +38,63 @@ def magnitude(node: Node, columns: Mapping[str, xm.XArray], params: Mapping[str,
     subtrees are measured, each subtree once."""
     values = _Values(columns, params, n) if shared is None else shared
     values.prime(node)
+    printed = None if values.primed is None else _printed(node)
     with np.errstate(all="ignore"):
+        if printed is not None:
+            g, nodes = printed
+            return np.abs(g([values.primed[k] for k in nodes]))
         return np.abs(_m(node, values))
+
+
+_ABS_OF_VALUE = "_abs(v[{i}])"
+
+
+def _source(nodes: list[Node]) -> str:
+    """``_magnitude`` printed for each distinct subtree (``nodes``, children first): the
+    same numpy expressions, in the same order, over the subtrees' values ``v``."""
+    index = {node: i for i, node in enumerate(nodes)}
+    lines = []
+    for i, node in enumerate(nodes):
+        k = [index[c] for c in children(node)]
+        text = _ABS_OF_VALUE.format(i=i)
+        if isinstance(node, Neg):
+            text = f"m{k[0]}"
+        elif isinstance(node, Bin):
+            ma, mb, a, b = f"m{k[0]}", f"m{k[1]}", f"v[{k[0]}]", f"v[{k[1]}]"
+            if node.op in ("+", "-"):
+                text = f"{ma} + {mb}"
+            elif node.op == "*":
+                text = f"_abs({b}) * {ma} + _abs({a}) * {mb}"
+            elif node.op == "/":
+                text = f"{ma} / _abs({b}) + _abs({a}) * {mb} / ({b} * {b})"
+            elif node.op == "^" and isinstance(node.right, Num):
+                text = f"_abs({b} * _power({a}, {b} - 1)) * {ma} + _abs(_power({a}, {b}))"
+        elif isinstance(node, Call):
+            if node.fn == "IF" and len(node.args) == 3:
+                text = f"_where(v[{k[0]}] != 0, m{k[1]}, m{k[2]})"
+            elif node.fn in _DERIVATIVE:
+                text = f"_abs(_D[{node.fn!r}](v[{k[0]}])) * m{k[0]} + " + text
+            elif node.fn == "ATAN2":
+                x, y, mx, my = f"v[{k[0]}]", f"v[{k[1]}]", f"m{k[0]}", f"m{k[1]}"
+                text = f"(_abs({y}) * {mx} + _abs({x}) * {my}) / ({x} * {x} + {y} * {y}) + " + text
+            elif node.fn in ("MIN", "MAX"):
+                text = f"_max([{', '.join(f'm{j}' for j in k)}], axis=0)"
+        lines.append(f"    m{i} = {text}")
+    return "def g(v):\n" + "\n".join(lines) + f"\n    return m{len(nodes) - 1}\n"
+
+
+@lru_cache(maxsize=1024)
+def _printed(tree: Node):
+    """``g(values) -> magnitude`` of ``tree`` (before the final abs) and the subtrees
+    whose values it takes, in order; None where a tree holds a -0 literal."""
+    generated = _subtrees(tree)
+    if generated is None:
+        return None
+    nodes = generated[1]
+    scope = {"_abs": np.abs, "_power": np.power, "_where": np.where, "_max": np.max,
+             "_D": _DERIVATIVE}
+    exec(compile(_source(nodes), "<magnitude>", "exec"), scope)
+    return scope["g"], nodes
 
 
 def scope(columns: Mapping[str, xm.XArray], params: Mapping[str, float], n: int) -> "_Values":
