@@ -62,9 +62,22 @@ def _n(ctx, v):
     return float(v) if c.is_number(v) else 0.0
 
 
-@register("T", "info", 1, 1)
+@register("T", "info", 1, 1, "range")
 def _t(ctx, v):
+    """A reference gives its first cell, not the implicit intersection (POI
+    FormulaEvalTestData: T(J1351:J1353) in row 1352 is "" from the empty J1351)."""
+    if isinstance(v, Range) and ctx.dialect == "libreoffice":
+        v = ctx.scalar(v)  # LibreOffice 7.4 intersects (#VALUE! outside the range)
+    elif isinstance(v, Range):
+        v = v.rows[0][0] if v.rows and v.rows[0] else None
     return v if isinstance(v, (str, ExcelError)) else ""
+
+
+@register("HYPERLINK", "info", 1, 2)
+def _hyperlink(ctx, link, friendly=None):
+    """The text the cell shows: the friendly name, else the link."""
+    shown = link if friendly is None else friendly
+    return 0.0 if shown is None else shown
 
 
 @register("TYPE", "info", 1, 1, "range")

@@ -44,7 +44,7 @@ register("ROWS", "lookup", 1, 1, "ref")(lambda ctx, v: _extent(v, 0))
 register("COLUMNS", "lookup", 1, 1, "ref")(lambda ctx, v: _extent(v, 1))
 
 
-@register("OFFSET", "lookup", 3, 5, ("ref", "scalar"), volatile=True)
+@register("OFFSET", "lookup", 3, 5, ("ref", "scalar"), volatile=True, omitted=True)
 def _offset(ctx, base, rows, cols, height=None, width=None):
     if isinstance(base, ExcelError):
         return base
