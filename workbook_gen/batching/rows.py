@@ -104,9 +104,10 @@ def figure_values(model: Model, params: Mapping[str, np.ndarray], variants: int
 
 def summarise(model: Model, inputs: np.ndarray, columns: Mapping[str, xm.XArray],
               status: np.ndarray, figures: Mapping[str, list[object]],
-              variants: int) -> dict[str, list[object]]:
+              variants: int, arrays: bool = False) -> dict[str, list[object]]:
     """For each of ``value_columns(model)`` and ``status`` (``ok`` or ``partial``), a list
-    with one entry per variant (NaN or None: no number)."""
+    with one entry per variant (NaN or None: no number); ``arrays``: the columns of
+    floats as float arrays instead (NaN: no number)."""
     table: dict[str, np.ndarray | list] = {}
     extremes = {}
     for q in model.outputs():
@@ -121,8 +122,10 @@ def summarise(model: Model, inputs: np.ndarray, columns: Mapping[str, xm.XArray]
     missing = (np.asarray(status, dtype=object).reshape(variants, len(inputs))
                == CANNOT_ASSEMBLE).sum(axis=1)
     table["rows_not_assembled"] = missing
-    out = {name: (table[name].tolist() if isinstance(table[name], np.ndarray)
-                  else list(table[name])) for name in value_columns(model)}
+    table["rows_not_assembled"] = missing.tolist()
+    out = {name: (table[name] if arrays else table[name].tolist())
+           if isinstance(table[name], np.ndarray) else list(table[name])
+           for name in value_columns(model)}
     out["status"] = ["partial" if m else "ok" for m in out["rows_not_assembled"]]
     return out
 

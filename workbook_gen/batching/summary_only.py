@@ -75,7 +75,8 @@ def _block(base: Scene, plan: Plan, spec: JobSpec, variants: Sequence[Variant]
         inputs = np.array(base.sweep.values())
         columns, status = plan.evaluate(params, inputs, count)
         figures = figure_values(plan.model, params, count)
-        made = summarise(plan.model, inputs, columns, status_texts(status), figures, count)
+        made = summarise(plan.model, inputs, columns, status_texts(status), figures, count,
+                         arrays=True)
         if count == size:
             out.update({name: made[name] for name in names + ["status"]})
         else:

@@ -51,6 +51,8 @@ class Table:
         first = variants[0].index - 1
         contiguous = variants[-1].index - variants[0].index == len(variants) - 1
         for name, values in block.items():
+            if isinstance(values, np.ndarray):
+                values = values.tolist()
             column = self.data[name]
             if contiguous:
                 column[first:first + len(variants)] = values
