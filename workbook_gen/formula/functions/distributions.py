@@ -75,7 +75,8 @@ def with_flag(fn):
 
 
 def invert(cdf, p, lo, hi):
-    """x with cdf(x) = p by bisection over [lo, hi] (hi doubled until it brackets)."""
+    """x with cdf(x) = p: bracketed (hi doubled until cdf(hi) >= p), then the
+    Anderson-Bjorck root finder (a few evaluations), bisection if it strays."""
     p = mpmath.mpf(p)
     for _ in range(2000):
         if cdf(hi) >= p:
@@ -84,6 +85,13 @@ def invert(cdf, p, lo, hi):
     else:
         return ExcelError.NUM
     lo, hi = mpmath.mpf(lo), mpmath.mpf(hi)
+    try:
+        x = mpmath.findroot(lambda t: cdf(t) - p, (lo, hi), solver="anderson",
+                            tol=mpmath.mpf(10) ** -(2 * DPS - 20), maxsteps=200)
+        if lo <= x <= hi and abs(cdf(x) - p) <= abs(p) * mpmath.mpf(10) ** -18 + mpmath.mpf(10) ** -28:
+            return x
+    except (ValueError, ZeroDivisionError):
+        pass
     for _ in range(200):
         mid = (lo + hi) / 2
         if cdf(mid) < p:
