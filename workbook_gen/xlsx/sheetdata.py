@@ -58,7 +58,7 @@ def read_sheet(pkg: Package, part: str, sheet: Sheet, strings: list[str], budget
         row_no = int(r) if r and r.isdigit() else row_no + 1
         if row_no > MAX_ROW or n_rows > MAX_ROW:
             raise pkg.error(where, f"row {row_no} beyond Excel's {MAX_ROW} rows")
-        col = 0
+        col, row_digits = 0, str(row_no)
         for c in row:
             if local.get(c.tag) != "c":
                 continue
@@ -67,7 +67,10 @@ def read_sheet(pkg: Package, part: str, sheet: Sheet, strings: list[str], budget
                 raise pkg.error(where, f"more than {max_cells} cells (max_cells); "
                                        "raise max_cells to read this workbook")
             ref = c.get("r")
-            if ref is None:
+            if ref is not None and ref.endswith(row_digits) and (
+                    col := cols.get(ref[:-len(row_digits)], 0)):
+                r_ = row_no  # the usual spelling, in this row: what the branches below find
+            elif ref is None:
                 col, r_ = col + 1, row_no
                 ref = f"{column_letters(col)}{r_}"
             else:
