@@ -22,8 +22,10 @@ CORPUS = Path("/work/shared/corpus/xlsx")
 
 # reached on 2026-11-23 (44 fully audited, 52,919 of 56,808 formula cells recomputed, 12
 # files with disagreements, 1 refused); the first two may only move up, the others down
-MIN_FULLY_AUDITED = 44
-MIN_RECOMPUTED_CELLS = 52_500
+# 19:45: the corpus's functions (distributions, complex, LINEST, VDB, CELL...): 60 fully
+# audited, 12 files with disagreements (formulas__test.xlsx among them)
+MIN_FULLY_AUDITED = 60
+MIN_RECOMPUTED_CELLS = 55_000
 MAX_DISAGREEING_FILES = 12
 MAX_REFUSED = 1   # closedxml__tdf111974.xlsm: a sheet whose part is missing (r:id="")
 # files whose cached values are wrong or odd: the audit is right to report them, always
@@ -31,6 +33,7 @@ KNOWN_DISAGREEMENTS = {
     "phpspreadsheet__issue.2301.xlsx",   # K57: a stale cached "H" (AO56 is empty: "M")
     "sheetjs__LONumbers.xlsx",           # LibreOffice 4.1 cached an empty inline string
     "closedxml__named-ranges-global.xlsx",  # LibreOffice flattened an array formula
+    "closedxml__database.xlsx",  # LibreOffice 3.4's database range "database1" is not in the file
 }
 
 

@@ -17,7 +17,7 @@ from __future__ import annotations
 from workbook_gen.formula.functions import (  # noqa: F401  (each module registers its family)
     date, eng, finance, info, logical, lookup, math, reference, statfit, stats, text,
     distributions, discrete, stattests, workdays, complex, engineering, database, matrix,
-    regress, depreciation, bessel,
+    regress, depreciation, bessel, textbytes,
     lambdas, dynamic,  # (helper corpb: the LAMBDA family, array shaping)
 )
 from workbook_gen.formula.functions.dialect import (

@@ -19,10 +19,16 @@ def _texts(*vs):
     return bad if bad is not None else out
 
 
+_ABSENT = object()  # an argument not given at all (an empty cell given is 0)
+
+
 def _count(v, default=0):
-    """An integer argument (truncated); ``default`` when it is omitted or empty."""
-    if v is None:
+    """An integer argument (truncated); ``default`` when it is not given, 0 for an empty
+    cell (formulas test.xlsx: LEFT("ciao",H21) with H21 empty is "", FIND(..,..,H17) #VALUE!)."""
+    if v is _ABSENT:
         return default
+    if v is None:
+        return 0
     x = c.to_number(v)
     return x if isinstance(x, ExcelError) else int(x)
 
@@ -34,7 +40,7 @@ def _len(ctx, v):
 
 
 def _side(take_left: bool):
-    def fn(ctx, v, n=None):
+    def fn(ctx, v, n=_ABSENT):
         t, k = c.to_text(v), _count(n, 1)
         for x in (t, k):
             if isinstance(x, ExcelError):
@@ -129,7 +135,7 @@ def _exact(ctx, a, b):
 
 
 def _find(case: bool):
-    def fn(ctx, needle, hay, start=None):
+    def fn(ctx, needle, hay, start=_ABSENT):
         ts = _texts(needle, hay)
         s = _count(start, 1)
         if isinstance(ts, ExcelError):
