@@ -42,10 +42,11 @@ def _escape(text: str) -> str:
     return text.replace("{", "{{").replace("}", "}}")
 
 
-def template(text: str) -> tuple[str, list[int]] | None:
+def template(text: str) -> tuple[str, list[int], list[str]] | None:
     """``text`` as a ``str.format`` template whose fields are the rows of its relative
-    references, with the row of each field (references to the same row share a field);
-    None if a row is written oddly (``A05``)."""
+    references, with the row of each field (references to the same row share a field) and
+    the text between fields (so that with one field, ``str(row).join(between)`` is the
+    template filled); None if a row is written oddly (``A05``)."""
     spans = []
     for token in tk.tokenize(text):
         if token.kind != tk.REF:
@@ -55,11 +56,12 @@ def template(text: str) -> tuple[str, list[int]] | None:
         for m in tk.CELL_PARTS.finditer(body):
             if not m.group(3):
                 spans.append((offset + m.start(4), offset + m.end(4)))
-    pieces, rows, at = [], [], 0
+    pieces, rows, between, at = [], [], [], 0
     field: dict[int, int] = {}  # row -> its field
     for a, b in spans:
         if text[a] == "0":
             return None
+        between.append(text[at:a])
         pieces.append(_escape(text[at:a]))
         row = int(text[a:b])
         if row not in field:
@@ -67,8 +69,9 @@ def template(text: str) -> tuple[str, list[int]] | None:
             rows.append(row)
         pieces.append("{%d}" % field[row])
         at = b
+    between.append(text[at:])
     pieces.append(_escape(text[at:]))
-    return "".join(pieces), rows
+    return "".join(pieces), rows, between
 
 
 # The audit's CPU cost on a 2-core machine (measured, see xlsx/limits.py): up to 44 us a
@@ -106,10 +109,10 @@ def find_runs(column: list[tuple[int, str]], sheet: str, col: int,
             fmt, rows = shape[0].format, shape[1]
             n = len(column)
             if len(rows) == 1:  # the usual case: references to the cell's own row
-                r0, first = rows[0] - i, row - i
+                r0, first, between = rows[0] - i, row - i, shape[2]
                 while j < n:
                     r, t = column[j]
-                    if r != first + j or t != fmt(r0 + j):
+                    if r != first + j or t != str(r0 + j).join(between):
                         break
                     j += 1
             else:
