@@ -301,6 +301,29 @@ def test_bessel_functions_give_excels_bits():
         assert got == inputs.cached[("Engineering", row, 2)], (name, got)
 
 
+def test_text_time_formats_as_excel_wrote_them():
+    """TEXT with fractional seconds, elapsed [h]/[m]/[s], rounding carried into the day and
+    serials before March 1900: every cached result of an Excel-saved file (sheetjs
+    issue2717.xlsx, 32 formats)."""
+    import os
+    path = os.path.join(CORPUS, "sheetjs__issue2717_issue2717.xlsx")
+    if not os.path.isfile(path):
+        pytest.fail(f"the corpus is missing: {path}")
+    inputs = read_inputs(path)
+    wrong = []
+    for row in range(2, 38):
+        fmt = inputs.constants.get(("precision", row, 4))
+        x = inputs.constants.get(("precision", row, 1 if row <= 15 else 3))
+        if fmt is None or ("precision", row, 5) not in inputs.cached:
+            continue
+        if x is None:
+            x = inputs.cached[("precision", row, 3)]
+        got = evaluate(parse(f'=TEXT({x!r},"{fmt}")'), DictResolver({}), dialect="excel")
+        if got != inputs.cached[("precision", row, 5)]:
+            wrong.append((row, fmt, got, inputs.cached[("precision", row, 5)]))
+    assert not wrong, wrong
+
+
 def test_cell_information_not_held_by_values_is_not_computed():
     """CELL("format"...), CELL("width"...), an omitted reference (Excel's last changed
     cell): the call counts as unsupported, so its cell is "not checked"."""

@@ -80,33 +80,55 @@ def parse_date_text(text: str) -> float | ExcelError:
 
 # -- TEXT's date formats ------------------------------------------------------------------
 
-_DATE_TOKENS = re.compile(r"yyyy|yy|mmmm|mmm|mm|m|dddd|ddd|dd|d|hh|h|ss|s|am/pm|a/p|\"[^\"]*\"|.",
-                          re.IGNORECASE)
+_DATE_TOKENS = re.compile(r"\[h+\]|\[m+\]|\[s+\]|(?<=s)\.0+|(?<=\])\.0+|yyyy|yy|mmmm|mmm|mm|m|dddd|"
+                          r"ddd|dd|d|hh|h|ss|s|am/pm|a/p|\"[^\"]*\"|.", re.IGNORECASE)
+FRACTION = re.compile(r"(?<=[sS\]])\.0+")  # fractional seconds: "ss.000", "[ss].00"
 
 
 def format_date(x: float, fmt: str) -> str | ExcelError:
-    from workbook_gen.formula.functions.date import _ymd_date, from_serial
-    ymd = from_serial(x)
+    """TEXT's date and time formats. The value is first rounded to the format's smallest
+    unit (a second, or 1/10^k s with "ss.000"), carrying into the day as Excel does
+    (0.999999 as "dd hh:mm:ss" is 01 00:00:00); elapsed [h], [m], [s]; weekdays counted
+    from serial 1, a Sunday (serial 0 is "Saturday, 0 January 1900"); sheetjs
+    issue2717.xlsx, saved by Excel."""
+    from workbook_gen.formula.functions.date import from_serial
+    if x < 0:
+        return ExcelError.VALUE
+    tokens = _DATE_TOKENS.findall(fmt)
+    digits = max((len(t) - 1 for t in tokens if t.startswith(".")), default=0)
+    scale = 10 ** digits
+    units = math.floor(x * 86400 * scale + 0.5)
+    day, rest = divmod(units, 86400 * scale)
+    secs, part = divmod(rest, scale)
+    ymd = from_serial(day)
     if isinstance(ymd, ExcelError):
         return ymd
     y, m, d = ymd
-    wd = _ymd_date(ymd).weekday()
-    secs = int(round((x - math.floor(x)) * 86400.0)) % 86400
+    wd = (day + 5) % 7  # Monday 0 ... Sunday 6
     hh, mi, ss = secs // 3600, secs // 60 % 60, secs % 60
-    tokens = _DATE_TOKENS.findall(fmt)
     ampm = any(t.lower() in ("am/pm", "a/p") for t in tokens)
+    elapsed = next((t.lower()[1] for t in tokens if t.startswith("[")), None)
     out = []
     for i, tok in enumerate(tokens):
         low = tok.lower()
-        prev = next((t.lower() for t in reversed(tokens[:i]) if t.isalpha()), "")
-        nxt = next((t.lower() for t in tokens[i + 1:] if t.isalpha()), "")
+        prev = next((t.lower().strip("[]") for t in reversed(tokens[:i]) if t[-1:].isalpha() or
+                     t.endswith("]")), "")
+        nxt = next((t.lower().strip("[]") for t in tokens[i + 1:] if t[:1].isalpha() or
+                    t.startswith("[")), "")
         minute = low in ("m", "mm") and (prev.startswith("h") or nxt.startswith("s"))
-        if low == "yyyy":
+        if low.startswith("["):
+            total = {"h": units // (3600 * scale), "m": units // (60 * scale),
+                     "s": units // scale}[low[1]]
+            out.append(str(total).zfill(len(low) - 2))
+        elif low.startswith("."):
+            out.append("." + str(part).zfill(digits)[:len(low) - 1])
+        elif low == "yyyy":
             out.append(f"{y:04d}")
         elif low == "yy":
             out.append(f"{y % 100:02d}")
         elif minute:
-            out.append(f"{mi:02d}" if low == "mm" else str(mi))
+            mm = mi if elapsed != "h" else mi
+            out.append(f"{mm:02d}" if low == "mm" else str(mm))
         elif low == "mmmm":
             out.append(calendar.month_name[m])
         elif low == "mmm":

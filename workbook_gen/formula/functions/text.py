@@ -277,7 +277,8 @@ def _format_section(x: float, fmt: str, ctx) -> str | ExcelError:
     f = fmt.strip()
     if f.upper() in ("", "GENERAL"):
         return c.number_to_text(x)
-    bare = re.sub(r'"[^"]*"', "", f)
+    from workbook_gen.formula.functions.datetext import FRACTION
+    bare = FRACTION.sub("", re.sub(r'"[^"]*"', "", f))  # "ss.000": seconds, not digits
     if re.search(r"[dmyhs]", bare, re.IGNORECASE) and not re.search(r"[0#]", bare):
         return format_date(x, f)
     start = next((i for i, ch in enumerate(f) if ch in "#0"), None)
