@@ -22,7 +22,7 @@ CORPUS = Path("/work/shared/corpus/xlsx/formulas__test.xlsx")
 FAMILY = ("LAMBDA(", "LET(", "SCAN(", "REDUCE(", "MAP(", "BYROW(", "BYCOL(", "MAKEARRAY(")
 SHAPING = ("CHOOSECOLS(", "CHOOSEROWS(", "TOCOL(", "TOROW(", "TAKE(", "DROP(", "EXPAND(",
            "VSTACK(", "HSTACK(", "WRAPROWS(", "WRAPCOLS(", "SEQUENCE(", "TEXTBEFORE(",
-           "TEXTAFTER(", "ARRAYTOTEXT(", "VALUETOTEXT(")
+           "TEXTAFTER(", "ARRAYTOTEXT(", "VALUETOTEXT(", "FILTER(", "SORT(")
 
 
 @pytest.fixture(scope="module")
@@ -71,6 +71,10 @@ def test_array_shaping_cells_saved_by_excel_are_recomputed_and_agree(report):
     ('_xlfn.TEXTAFTER("a-b-c","-",-1)', "c"),
     ('_xlfn.TEXTBEFORE("a-b-c","-",2)', "a-b"),
     ('_xlfn.ARRAYTOTEXT({1,"x";TRUE,2},1)', '{1,"x";TRUE,2}'),
+    ("SUM(_xlfn._xlws.FILTER({1,2,3,4},{1,0,1,0}))", 4.0),
+    ('_xlfn._xlws.FILTER({1,2},{0,0},"none")', "none"),
+    ('INDEX(_xlfn._xlws.SORT({3;"a";1;TRUE}),2)', 3.0),
+    ('ROWS(_xlfn.UNIQUE({"a";"A";"b";1;1}))', 3.0),
 ])
 def test_lambda_family_by_hand(formula, value):
     assert evaluate(parse(formula), DictResolver({})) == value
