@@ -24,10 +24,13 @@ CORPUS = Path("/work/shared/corpus/xlsx")
 # files with disagreements, 1 refused); the first two may only move up, the others down
 # 19:45: the corpus's functions (distributions, complex, LINEST, VDB, CELL...): 60 fully
 # audited, 12 files with disagreements (formulas__test.xlsx among them)
-MIN_FULLY_AUDITED = 60
-MIN_RECOMPUTED_CELLS = 55_000
+# 19:50: volatile cells by contract, false cycles settled, the LAMBDA family and dynamic
+# arrays, a sheet without its part reported (closedxml__tdf111974.xlsm no longer refused):
+# 61 fully audited, 56,484 of 57,335 recomputed, nothing refused (helper corpb)
+MIN_FULLY_AUDITED = 61
+MIN_RECOMPUTED_CELLS = 56_000
 MAX_DISAGREEING_FILES = 12
-MAX_REFUSED = 1   # closedxml__tdf111974.xlsm: a sheet whose part is missing (r:id="")
+MAX_REFUSED = 0
 # files whose cached values are wrong or odd: the audit is right to report them, always
 KNOWN_DISAGREEMENTS = {
     "phpspreadsheet__issue.2301.xlsx",   # K57: a stale cached "H" (AO56 is empty: "M")
