@@ -186,3 +186,19 @@ def test_parts_deflated_once_per_process_give_zlibs_bytes():
     with zipfile.ZipFile(io.BytesIO(fresh)) as z:
         for info in z.infolist():
             assert info.compress_size == _deflated_size(z.read(info), package.COMPRESSLEVEL)
+
+
+def test_drawings_kept_per_process_give_the_fresh_bytes():
+    """package.py keeps a drawing part's XML by its anchors, sizes and kinds: scenes of
+    different chart layouts written in turn give what each gives from scratch."""
+    from workbook_gen.scene import load_scene
+    from workbook_gen.workbook import package, workbook_bytes
+
+    scenes = [load_scene(f"templates/{n}.toml", step=30.0)
+              for n in ("slider_crank", "four_bar", "slider_crank")]
+    fresh = []
+    for scene in scenes:
+        package._DRAWING_XML.clear()
+        fresh.append(workbook_bytes(scene, "x.xlsx"))
+    kept = [workbook_bytes(scene, "x.xlsx") for scene in scenes]
+    assert len(package._DRAWING_XML) == 2 and kept == fresh

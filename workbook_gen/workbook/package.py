@@ -16,6 +16,8 @@ from __future__ import annotations
 
 import io
 import zipfile
+from enum import Enum
+from functools import partial
 
 import xlsxwriter
 import xlsxwriter.workbook
@@ -123,6 +125,58 @@ class Book(xlsxwriter.Workbook):
     def sheet(self, name: str) -> Sheet:
         return self.add_worksheet(name, worksheet_class=MemorySheet if self.in_memory
                                   else Sheet)
+
+    def _prepare_drawings(self) -> None:
+        super()._prepare_drawings()
+        for drawing in self.drawings:
+            key = _drawing_key(drawing)
+            if key is not None:
+                drawing._assemble_xml_file = partial(_assemble_kept, drawing, key)
+
+
+# A drawing part (where the charts sit) is a function of its anchors, sizes, names and
+# kinds, all plain values: the same for every variant of a scene.  Its XML is kept per
+# process by their text, as the charts' (charts.py).
+_DRAWING_XML: dict[str, str] = {}
+_DRAWING_XML_LIMIT = 256
+
+
+def _plain(value) -> bool:
+    if isinstance(value, (list, tuple)):
+        return all(_plain(v) for v in value)
+    return value is None or isinstance(value, (bool, int, float, str, Enum))
+
+
+def _drawing_key(drawing) -> str | None:
+    """Everything the drawing's XML is made of, as text; None if any is not plain."""
+    items = []
+    for info in drawing.drawings:
+        try:
+            fields = tuple(sorted(vars(info).items()))
+        except TypeError:
+            return None
+        if not all(_plain(v) for _, v in fields):
+            return None
+        items.append(fields)
+    return repr((type(drawing).__name__, drawing.embedded, drawing.orientation, items))
+
+
+def _assemble_kept(drawing, key: str) -> None:
+    """``drawing._assemble_xml_file()``, from the XML kept for ``key``."""
+    found = _DRAWING_XML.get(key)
+    if found is None:
+        fh, internal = drawing.fh, drawing.internal_fh
+        drawing.fh, drawing.internal_fh = io.StringIO(), False
+        try:
+            type(drawing)._assemble_xml_file(drawing)
+            found = drawing.fh.getvalue()
+        finally:
+            drawing.fh, drawing.internal_fh = fh, internal
+        if len(_DRAWING_XML) >= _DRAWING_XML_LIMIT:
+            _DRAWING_XML.clear()
+        _DRAWING_XML[key] = found
+    drawing.fh.write(found)
+    drawing._xml_close()
 
 
 class MemorySheet(Sheet):
