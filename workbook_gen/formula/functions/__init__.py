@@ -18,7 +18,7 @@ from workbook_gen.formula.functions import (  # noqa: F401  (each module registe
     date, eng, finance, info, logical, lookup, math, reference, statfit, stats, text,
     distributions, discrete, stattests, workdays, complex, engineering, database, matrix,
     regress, depreciation, bessel, textbytes,
-    lambdas, dynamic, arrayops,  # (helper corpb: LAMBDA family, dynamic arrays)
+    lambdas, dynamic, arrayops, regex,  # (helper corpb: LAMBDA, dynamic arrays, regex)
 )
 from workbook_gen.formula.functions.dialect import (
     LIBREOFFICE_DIFFERENCES, Difference, dialect_of, libreoffice_error, libreoffice_result,

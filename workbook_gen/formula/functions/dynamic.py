@@ -341,3 +341,42 @@ def _arraytotext(ctx, array, fmt=OMITTED):
     if grid == [[None]]:  # (Excel: one empty cell has no strict form; in an array it is "")
         return ExcelError.VALUE
     return "{" + ";".join(",".join(_value_text(x, True) for x in r) for r in grid) + "}"
+
+
+def _split(text: str, delims: list[str], fold: bool) -> list[str]:
+    parts, last = [], 0
+    for start, stop in _find_all(text, [d for d in delims if d], fold):
+        parts.append(text[last:start])
+        last = stop
+    return parts + [text[last:]]
+
+
+@register("TEXTSPLIT", "text", 2, 6, ("scalar", "range", "range", "scalar", "scalar",
+                                      "scalar"))
+def _textsplit(ctx, text, col_delimiter, row_delimiter=OMITTED, ignore_empty=OMITTED,
+               match_mode=OMITTED, pad=OMITTED):
+    t = c.to_text(text)
+    if isinstance(t, ExcelError):
+        return t
+    cols = _delims(col_delimiter) if col_delimiter is not None else []
+    rows = (_delims(row_delimiter) if row_delimiter not in (OMITTED, None) else [])
+    for v in (cols, rows):
+        if isinstance(v, ExcelError):
+            return v
+    skip = False if ignore_empty in (OMITTED, None) else c.to_bool(ignore_empty)
+    mode = _int(match_mode, 0)
+    for v in (skip, mode):
+        if isinstance(v, ExcelError):
+            return v
+    if mode not in (0, 1) or not any(cols + rows):
+        return ExcelError.VALUE
+    lines = _split(t, rows, mode == 1) if any(rows) else [t]
+    grid = [_split(line, cols, mode == 1) if any(cols) else [line] for line in lines]
+    if skip:
+        grid = [[x for x in r if x != ""] for r in grid]
+        grid = [r for r in grid if r]
+    if not grid:
+        return ExcelError.CALC
+    width = max(len(r) for r in grid)
+    fill = ExcelError.NA if pad is OMITTED else 0.0 if pad is None else pad
+    return _out([r + [fill] * (width - len(r)) for r in grid])
