@@ -67,3 +67,26 @@ def test_nothing_to_share_gives_no_terms():
     tree = Var("x") * 2 + 1
     assert common_terms((tree,)) == ((), (tree,))
     assert MIN_SAVING > 0
+
+
+def test_cells_of_a_guarded_column_are_those_of_the_guard_tree():
+    """checks._cells: the cached values (and error codes) of IF(status="ok", r, "n/a")
+    without object arrays, equal to xm.where's, errors and -0 included."""
+    import numpy as np
+    from workbook_gen import xlmath as xm
+    from workbook_gen.workbook.checks import SKIPPED, _cells, _max_abs
+    from workbook_gen.workbook.table import cached_values
+    status = xm.XArray(np.array(["ok", "toggle", "ok", "ok", "cannot assemble", "ok"],
+                                dtype=object), np.zeros(6, np.uint8))
+    ok = xm.compare("=", status, xm.const("ok", 6))
+    val = np.array([1e-12, np.nan, -0.0, np.nan, 3.0, -2e-9])
+    from workbook_gen.xlerror import ExcelError
+    num = ExcelError.NUM.code
+    err = np.array([0, num, 0, num, 0, 0], np.uint8)   # #NUM! in a skipped row and an ok one
+    for e in (err, np.zeros(6, np.uint8)):
+        column = xm.XArray(np.where(e != 0, np.nan, np.nan_to_num(val)), e)
+        guarded = xm.where(ok, column, xm.const(SKIPPED, 6))
+        cells, codes = _cells(column, ok)
+        assert cells == cached_values(guarded) and np.array_equal(codes, guarded.err)
+        assert [repr(v) for v in cells] == [repr(v) for v in cached_values(guarded)]
+        assert _max_abs(cells, codes) == ("#NUM!" if e.any() else 2e-9)  # 3.0 is skipped

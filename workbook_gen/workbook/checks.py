@@ -58,31 +58,53 @@ def plan(model) -> tuple[tuple[Term, ...], tuple[Node, ...]]:
     return common_terms(tuple(c.expr for c in model.checks))
 
 
-def residuals(result: Evaluated) -> tuple[dict[str, xm.XArray], dict[str, xm.XArray]]:
-    """Each check's guarded residual per row, and each term's, as the cells hold them."""
+def _unguarded(result: Evaluated):
+    """Each term's and check's value where the row is "ok" (the cells' "ok" branch), and
+    the "ok" condition; each check under "\x00check i"."""
     terms, trees = plan(result.model)
     columns = dict(result.columns)
     status = xm.XArray(result.status, np.zeros(result.rows, np.uint8))
     columns[STATUS] = status
     ok = xm.compare("=", status, xm.const("ok", result.rows))
-    skipped = xm.const(SKIPPED, result.rows)
     # The residuals read a term in their "ok" branch only, where the cell holds the
     # unguarded value: evaluate them over that (terms first, each seeing those before).
     named = tuple((t.name, t.expr) for t in terms) + tuple(
         (f"\x00check {i}", tree) for i, tree in enumerate(trees))
-    out = compiled_set(named)(columns, result.params, result.rows)
+    return compiled_set(named)(columns, result.params, result.rows), ok
+
+
+def residuals(result: Evaluated) -> tuple[dict[str, xm.XArray], dict[str, xm.XArray]]:
+    """Each check's guarded residual per row, and each term's, as the cells hold them."""
+    out, ok = _unguarded(result)
+    skipped = xm.const(SKIPPED, result.rows)
+    terms, _ = plan(result.model)
     held = {t.name: xm.where(ok, out[t.name], skipped) for t in terms}
     values = {c.name: xm.where(ok, out[f"\x00check {i}"], skipped)
               for i, c in enumerate(result.model.checks)}
     return values, held
 
 
-def _max_abs(column: xm.XArray) -> float | str:
+def _cells(column: xm.XArray, ok: xm.XArray) -> tuple[list, np.ndarray]:
+    """``cached_values(xm.where(ok, column, "n/a"))`` and that column's error codes,
+    without the object arrays for a plain numeric column."""
+    if column.is_text or column.boolean or ok.err.any():
+        guarded_column = xm.where(ok, column, xm.const(SKIPPED, len(column.val)))
+        return cached_values(guarded_column), guarded_column.err
+    picks = ok.val != 0
+    cells = [v if p else SKIPPED for v, p in zip(column.val.tolist(), picks.tolist())]
+    err = np.where(picks, column.err, 0).astype(np.uint8)
+    if err.any():
+        for i in np.flatnonzero(err):
+            cells[i] = ExcelError.from_code(int(err[i])).value
+    return cells, err
+
+
+def _max_abs(cells: list, err: np.ndarray) -> float | str:
     """What MAX(MAX(r),-MIN(r)) gives: the first error of the range if any (Excel's
     MAX propagates it), else the largest magnitude; texts are skipped, none left is 0."""
-    if column.err.any():
-        return ExcelError.from_code(int(column.err[np.flatnonzero(column.err)[0]])).value
-    numbers = [abs(v) for v in column.val if not isinstance(v, str)]
+    if err.any():
+        return ExcelError.from_code(int(err[np.flatnonzero(err)[0]])).value
+    numbers = [abs(v) for v in cells if not isinstance(v, str)]
     return max(numbers, default=0.0)
 
 
@@ -97,11 +119,12 @@ def write_checks(workbook, formats, result: Evaluated, layout: TableLayout,
                  progress=None) -> None:
     sheet = add_sheet(workbook, CHECKS)
     checks = result.model.checks
-    values, held = residuals(result)
+    out, ok = _unguarded(result)
     terms, trees = plan(result.model)
+    cells = {c.name: _cells(out[f"\x00check {i}"], ok) for i, c in enumerate(checks)}
     flag_col = len(checks) + 1
     local = tuple((t.name, xl_col_to_name(flag_col + 2 + i)) for i, t in enumerate(terms))
-    maxima = {name: _max_abs(column) for name, column in values.items()}
+    maxima = {name: _max_abs(*found) for name, found in cells.items()}
     spec = result.scene.template.input
 
     sheet.write_string(0, 0, "tolerance", formats["label"])
@@ -153,14 +176,14 @@ def write_checks(workbook, formats, result: Evaluated, layout: TableLayout,
 
     texts = result.status.tolist()
     columns = [Column(0, result.inputs.tolist(), layout.formula(Var(spec.name), True))]
-    columns += [Column(c, cached_values(values[check.name]),
+    columns += [Column(c, cells[check.name][0],
                        layout.formula(guarded(tree), True, local))
                 for (c, col, check), tree in zip(named, trees)]
     columns.append(Column(flag_col, [1 if t == "cannot assemble" else 0 for t in texts],
                           layout.formula(cannot_assemble_flag(), True)))
     columns.append(Column(flag_col + 1, [1 if is_flagged(t) else 0 for t in texts],
                           layout.formula(flagged_flag(), True)))
-    columns += [Column(i, cached_values(held[term.name]),
+    columns += [Column(i, _cells(out[term.name], ok)[0],
                        layout.formula(guarded(term.expr), True, local))
                 for i, term in enumerate(terms, start=flag_col + 2)]
     sheet.write_rows(CHECK_FIRST_ROW - 1, columns, progress)
