@@ -22,7 +22,7 @@ CORPUS = Path("/work/shared/corpus/xlsx/formulas__test.xlsx")
 FAMILY = ("LAMBDA(", "LET(", "SCAN(", "REDUCE(", "MAP(", "BYROW(", "BYCOL(", "MAKEARRAY(")
 SHAPING = ("CHOOSECOLS(", "CHOOSEROWS(", "TOCOL(", "TOROW(", "TAKE(", "DROP(", "EXPAND(",
            "VSTACK(", "HSTACK(", "WRAPROWS(", "WRAPCOLS(", "SEQUENCE(", "TEXTBEFORE(",
-           "TEXTAFTER(", "ARRAYTOTEXT(", "VALUETOTEXT(", "FILTER(", "SORT(", "TEXTSPLIT(",
+           "TEXTAFTER(", "ARRAYTOTEXT(", "VALUETOTEXT(", "FILTER(", "SORT(", "SORTBY(", "TEXTSPLIT(",
            "REGEXTEST(", "REGEXEXTRACT(", "REGEXREPLACE(")
 
 
@@ -77,6 +77,8 @@ def test_array_shaping_cells_saved_by_excel_are_recomputed_and_agree(report):
     ('INDEX(_xlfn._xlws.SORT({3;"a";1;TRUE}),2)', 3.0),
     ('ROWS(_xlfn.UNIQUE({"a";"A";"b";1;1}))', 3.0),
     ('COLUMNS(_xlfn.TEXTSPLIT("a,b,,c",","))', 4.0),
+    ("INDEX(_xlfn.SORTBY({10;20;30},{2;3;1}),1)", 30.0),
+    ("INDEX(_xlfn.SORTBY({10;20;30},{1;1;2},-1,{3;2;1},1),2)", 20.0),
     ('COLUMNS(_xlfn.TEXTSPLIT("a,b,,c",",",,TRUE))', 3.0),
     ('_xlfn.REGEXREPLACE("2024-01-31","(\\d+)-(\\d+)-(\\d+)","$3/$2/$1")', "31/01/2024"),
     ('_xlfn.REGEXEXTRACT("ab12cd345","[0-9]+")', "12"),

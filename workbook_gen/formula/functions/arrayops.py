@@ -1,4 +1,5 @@
-"""Dynamic-array functions that select from an array (Excel 365): FILTER, UNIQUE, SORT.
+"""Dynamic-array functions that select from an array (Excel 365): FILTER, UNIQUE, SORT,
+SORTBY.
 
 Arrays arrive whole; the result is an array Range (spilled by the formula). Nothing left
 (FILTER without ``if_empty``, UNIQUE with every value repeated) is #VALUE!: the value the
@@ -118,3 +119,35 @@ def _sort(ctx, array, index=OMITTED, order=OMITTED, by_col=OMITTED):
         return ExcelError.VALUE
     ordered = sorted(lines, key=lambda line: _rank(line[k - 1]), reverse=o == -1)
     return _out([list(r) for r in zip(*ordered)] if flag else ordered)
+
+
+@register("SORTBY", "lookup", 2, 254, "range")
+def _sortby(ctx, array, *by):
+    rows = _grid(array)
+    if isinstance(rows, ExcelError):
+        return rows
+    keys, orders = [], []
+    for i in range(0, len(by), 2):
+        key = _grid(by[i])
+        order = _int(_single(by[i + 1]) if i + 1 < len(by) else OMITTED, 1)
+        for v in (key, order):
+            if isinstance(v, ExcelError):
+                return v
+        if order not in (1, -1):
+            return ExcelError.VALUE
+        keys.append(key)
+        orders.append(order)
+    # every by_array is one column as tall as the array (sort rows) or one row as wide
+    # (sort columns), all the same way
+    if all(len(k[0]) == 1 and len(k) == len(rows) for k in keys):
+        by_col, values = False, [[r[0] for r in k] for k in keys]
+    elif all(len(k) == 1 and len(k[0]) == len(rows[0]) for k in keys):
+        by_col, values = True, [k[0] for k in keys]
+    else:
+        return ExcelError.VALUE
+    lines = [list(col) for col in zip(*rows)] if by_col else rows
+    order = list(range(len(lines)))
+    for vals, o in reversed(list(zip(values, orders))):  # stable: last key first
+        order.sort(key=lambda i, vals=vals: _rank(vals[i]), reverse=o == -1)
+    ordered = [lines[i] for i in order]
+    return _out([list(r) for r in zip(*ordered)] if by_col else ordered)
