@@ -26,9 +26,10 @@ CORPUS = Path("/work/shared/corpus/xlsx")
 # audited, 12 files with disagreements (formulas__test.xlsx among them)
 # 19:50: volatile cells by contract, false cycles settled, the LAMBDA family and dynamic
 # arrays, a sheet without its part reported (closedxml__tdf111974.xlsm no longer refused):
-# 61 fully audited, 56,484 of 57,335 recomputed, nothing refused (helper corpb)
+# 61 fully audited, 56,484 of 57,335 recomputed, nothing refused (helper corpb); 20:10:
+# regular expressions, TEXTSPLIT, SORTBY: coverage.py 56,752 of 57,344 (99.0%)
 MIN_FULLY_AUDITED = 61
-MIN_RECOMPUTED_CELLS = 56_000
+MIN_RECOMPUTED_CELLS = 56_600
 MAX_DISAGREEING_FILES = 12
 MAX_REFUSED = 0
 # files whose cached values are wrong or odd: the audit is right to report them, always
