@@ -300,12 +300,26 @@ def generate_subtrees(tree: Node) -> tuple[Callable, list[Node]] | None:
     """``f(columns, params, n)`` -> the (val, err or None, boolean) of every distinct
     subtree of ``tree``, in the order of the list returned with it (each as
     ``compile_numpy(subtree)`` gives it); None for a tree holding a -0 literal."""
-    lines, nodes, _ = _print(tree)
-    if nodes is None:
-        return None
-    names = ", ".join(f"t{i}" for i in range(len(nodes)))
+    found = generate_subtrees_of((tree,))
+    return None if found is None else found[:2]
+
+
+def generate_subtrees_of(trees: tuple[Node, ...]) -> tuple[Callable, list[Node], list[int]] | None:
+    """``generate_subtrees`` over several trees at once (the distinct subtrees of all of
+    them, each once), and the index of each tree's root in the list."""
+    names: dict = {}
+    lines: list[str] = []
+    nodes: list[Node] = []
+    roots = []
+    for tree in trees:
+        _, new, last = _print(tree, names, lines)
+        if new is None:
+            return None
+        nodes += new
+        roots.append(int(last[1:]))
+    listed = ", ".join(f"t{i}" for i in range(len(nodes)))
     return _compile("def f(cols, params, n):\n    with _errstate(all='ignore'):\n"
-                    + "\n".join(lines) + f"\n    return ({names},)\n"), nodes
+                    + "\n".join(lines) + f"\n    return ({listed},)\n"), nodes, roots
 
 
 def _one_by_one(named: tuple[tuple[str, Node], ...]) -> Callable:

@@ -37,6 +37,10 @@ def magnitude(node: Node, columns: Mapping[str, xm.XArray], params: Mapping[str,
     ``shared``: a ``scope(columns, params, n)`` over which several trees that share
     subtrees are measured, each subtree once."""
     values = _Values(columns, params, n) if shared is None else shared
+    measured = values.measured.get(node)
+    if measured is not None:
+        with np.errstate(all="ignore"):
+            return np.abs(measured)
     values.prime(node)
     printed = None if values.primed is None else _printed(node)
     with np.errstate(all="ignore"):
@@ -83,6 +87,26 @@ def _source(nodes: list[Node]) -> str:
     return "def g(v):\n" + "\n".join(lines) + f"\n    return m{len(nodes) - 1}\n"
 
 
+def _compile_g(text: str):
+    scope = {"_abs": np.abs, "_power": np.power, "_where": np.where, "_max": np.max,
+             "_D": _DERIVATIVE}
+    exec(compile(text, "<magnitude>", "exec"), scope)
+    return scope["g"]
+
+
+@lru_cache(maxsize=256)
+def _printed_set(trees: tuple[Node, ...]):
+    """The values of all subtrees of ``trees`` (each distinct one once) and ``g(values)``
+    -> each tree's magnitude before the final abs, as ``_printed`` gives it."""
+    generated = fastnum.generate_subtrees_of(trees)
+    if generated is None:
+        return None
+    f, nodes, roots = generated
+    text = _source(nodes).rsplit("\n    return ", 1)[0]
+    text += "\n    return (" + "".join(f"m{r}, " for r in roots) + ")\n"
+    return f, nodes, _compile_g(text)
+
+
 @lru_cache(maxsize=1024)
 def _printed(tree: Node):
     """``g(values) -> magnitude`` of ``tree`` (before the final abs) and the subtrees
@@ -91,10 +115,7 @@ def _printed(tree: Node):
     if generated is None:
         return None
     nodes = generated[1]
-    scope = {"_abs": np.abs, "_power": np.power, "_where": np.where, "_max": np.max,
-             "_D": _DERIVATIVE}
-    exec(compile(_source(nodes), "<magnitude>", "exec"), scope)
-    return scope["g"], nodes
+    return _compile_g(_source(nodes)), nodes
 
 
 def scope(columns: Mapping[str, xm.XArray], params: Mapping[str, float], n: int) -> "_Values":
@@ -147,6 +168,24 @@ class _Values:
         self.floats: dict[int, tuple[Node, np.ndarray]] = {}   # __call__'s, by node id
         self.primed: dict[Node, np.ndarray] | None = {}   # prime()'s, by subtree
         self.magnitudes: dict[int, tuple[Node, np.ndarray]] = {}   # _m's
+        self.measured: dict[Node, np.ndarray] = {}   # measure()'s, before the abs
+
+    def measure(self, trees: tuple[Node, ...]) -> None:
+        """The magnitudes of all ``trees`` at once, each distinct subtree once (kept for
+        ``magnitude``); nothing where a tree holds a -0 literal."""
+        printed = _printed_set(trees)
+        if printed is None:
+            return
+        f, nodes, g = printed
+        floats = []
+        for val, err, _ in f(self.columns, self.params, self.n):
+            if val.dtype == object:
+                floats.append(np.zeros(self.n))
+            else:
+                floats.append(val if err is None else np.where(err != 0, np.nan, val))
+        with np.errstate(all="ignore"):
+            for tree, m in zip(trees, g(floats)):
+                self.measured.setdefault(tree, m)
 
     def prime(self, tree: Node) -> None:
         """Every subtree's value of ``tree``, in one call of its generated function."""

@@ -68,6 +68,7 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
     extremes: dict[str, tuple[int, object, object]] = {}
     row = 1
     shared = scope(result.columns, result.params, result.rows)  # outputs share subtrees
+    shared.measure(tuple(q.expr for q in result.model.outputs()))
     for q in result.model.outputs():
         column = result.columns[q.name]
         rng = layout.column(q.name)
