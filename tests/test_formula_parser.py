@@ -288,3 +288,11 @@ def test_nesting_too_deep_is_a_syntax_error_not_a_crash():
     with pytest.raises(FormulaSyntaxError, match="nested deeper than"):
         parse("=" + "(" * 1000 + "1" + ")" * 1000)
     assert render(parse("=" + "SIN(" * 64 + "1" + ")" * 64)) == "SIN(" * 64 + "1" + ")" * 64
+
+
+def test_a_deleted_reference_on_a_named_sheet_is_ref_error():
+    """Excel keeps the sheet of a deleted reference: 'OP LTR'!#REF! (closedxml__tdf111974)."""
+    from workbook_gen.formula import ast as _ast
+    from workbook_gen.xlerror import ExcelError as _E
+    for text in ("'OP LTR'!#REF!", "Sheet1!#REF!"):
+        assert parse(text) == _ast.ErrorLit(_E.REF)

@@ -148,7 +148,8 @@ class _Parser:
         if kind == tk.BOOL:
             return ast.Bool(token.text.upper() == "TRUE")
         if kind == tk.ERROR:
-            return ast.ErrorLit(ExcelError.from_text(token.text))
+            # ('Sheet 1'!#REF!: the error after the sheet of a deleted reference)
+            return ast.ErrorLit(ExcelError.from_text(token.text[token.text.rindex("#"):]))
         if kind == tk.REF:
             return self._reference(token)
         if kind == tk.NAME:

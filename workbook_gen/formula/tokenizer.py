@@ -59,6 +59,7 @@ _END = r"(?![\w.(!\[\u00a1-\uffff])"
 _REF_RE = re.compile(rf"(?:{_SHEET})?{_CELL}(?::{_CELL})?{_END}")
 _COLS_RE = re.compile(rf"(?:{_SHEET})?\$?[A-Za-z]{{1,3}}:\$?[A-Za-z]{{1,3}}{_END}")
 _ROWS_RE = re.compile(rf"(?:{_SHEET})?\$?[0-9]{{1,7}}:\$?[0-9]{{1,7}}{_END}")
+_SHEET_ERROR_RE = re.compile(rf"{_SHEET}#REF!")  # a deleted reference: 'Sheet 1'!#REF!
 _WORD_RE = re.compile(rf"(?:{_SHEET})?[A-Za-z_\\\u00a1-\uffff][\w.?\\\u00a1-\uffff]*")
 _NUMBER_RE = re.compile(r"(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
 _STRING_RE = re.compile(r'"(?:[^"]|"")*"')
@@ -237,6 +238,10 @@ class Tokenizer:
             if m and self._valid_ref(m.group(0)):
                 self._add(REF, m.group(0))
                 return
+        m = _SHEET_ERROR_RE.match(self.formula, self.offset)
+        if m is not None:
+            self._add(ERROR, m.group(0))
+            return
         m = _WORD_RE.match(self.formula, self.offset)
         if m is None:
             if self.formula[self.offset] == "'":
