@@ -37,15 +37,15 @@ from dataclasses import dataclass, field
 from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.evaluator import cycles, graph, volatile as vol
 from workbook_gen.evaluator.book import BookInfo, resolve
-from workbook_gen.evaluator.taint import Shape, Taint
+from workbook_gen.evaluator.taint import Taint
 from workbook_gen.evaluator.grouping import Run, group_formulas
-from workbook_gen.evaluator.ops import Const
-from workbook_gen.evaluator.store import Names, Num, Obj, SheetResolver, Store, value_scale
-from workbook_gen.evaluator.vector import Env, NotVectorizable, compile_block
+from workbook_gen.evaluator.store import Names, SheetResolver, Store, value_scale
+from workbook_gen.evaluator.units import Unit, evaluate_unit, rects, shapes_of, singles
+from workbook_gen.evaluator.vector import NotVectorizable, compile_block
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
 from workbook_gen.formula.parser import parse
-from workbook_gen.formula.scalar import Evaluator, evaluate, unsupported_functions
+from workbook_gen.formula.scalar import evaluate, unsupported_functions
 from workbook_gen.xlerror import ExcelError
 
 log = logging.getLogger(__name__)
@@ -55,8 +55,6 @@ VOLATILE = fx.VOLATILE | {"NOW", "TODAY", "RAND", "RANDBETWEEN", "RANDARRAY", "O
                           "INDIRECT"}
 # volatile and not reproducible: the cached value is from another moment or another draw
 CHANGING = vol.CHANGING
-# functions that use a reference's position or size, never its cells' values
-REFERENCE_ONLY = frozenset({"ROW", "COLUMN", "ROWS", "COLUMNS", "ISREF", "AREAS"})
 CYCLE_VALUE = ExcelError.REF
 SYNTAX_VALUE = ExcelError.NAME
 EXTERNAL_VALUE = ExcelError.REF
@@ -115,23 +113,6 @@ class Evaluation:
     seconds: dict[str, float] = field(default_factory=dict)  # grouping, graph, vector, scalar
     store: Store | None = None  # the values column by column, for array-wise comparison
     runs: list = field(default_factory=list)  # (sheet, col, first, last, tree) of every formula
-
-
-@dataclass
-class _Unit:
-    sheet: str
-    col: int
-    first: int
-    last: int
-    node: ast.Node
-    block: object = None   # compiled vector Block, or None for a single cell
-    area: tuple[int, int] | None = None  # an array formula: its last row and column
-
-    def cells(self):
-        if self.area is not None:
-            return [(self.sheet, r, c) for r in range(self.first, self.area[0] + 1)
-                    for c in range(self.col, self.area[1] + 1)]
-        return [(self.sheet, r, self.col) for r in range(self.first, self.last + 1)]
 
 
 def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object],
@@ -201,8 +182,8 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     clock = time.perf_counter()
     deps = []
     while True:
-        shapes = [_shapes(u, store, name_table) for u in units]
-        inputs = [_rects(u, s) for u, s in zip(units, shapes)]
+        shapes = [shapes_of(u, store, name_table) for u in units]
+        inputs = [rects(u, s) for u, s in zip(units, shapes)]
         deps = graph.build([(u.sheet, u.col, u.first, u.area[0] if u.area else u.last)
                             for u in units], inputs,
                            [(i, u.sheet, c, u.first, u.area[0]) for i, u in enumerate(units)
@@ -213,7 +194,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
         if not split:
             break
         units = [s for i, u in enumerate(units)
-                 for s in (_singles(u) if i in split else [u])]
+                 for s in (singles(u) if i in split else [u])]
 
     result.seconds["graph"] = time.perf_counter() - clock
     spent = {"vector": 0.0, "scalar": 0.0}
@@ -240,7 +221,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
                 continue
             clock = time.perf_counter()
             try:
-                _evaluate(units[u], store, name_table, dialect)
+                evaluate_unit(units[u], store, name_table, dialect)
             except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
                     AttributeError, RecursionError) as exc:  # a defect must not lose the file
                 log.warning("evaluator failure at %s: %r", _where(units[u].cells()[0]), exc)
@@ -279,7 +260,7 @@ def _external(node: ast.Node) -> bool:
                for n in ast.walk(node))
 
 
-def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -> list[_Unit]:
+def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -> list[Unit]:
     units = []
     for run in runs:
         if _external(run.node):
@@ -287,9 +268,9 @@ def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -
                 result.external.append((run.sheet, r, run.col))
                 store.put(run.sheet, r, run.col, EXTERNAL_VALUE)
             continue
-        unit = _Unit(run.sheet, run.col, run.first, run.last, run.node)
+        unit = Unit(run.sheet, run.col, run.first, run.last, run.node)
         if run.last > run.first and vol.calls(run.node):  # checked cell by cell
-            units.extend(_singles(unit))
+            units.extend(singles(unit))
             continue
         if vectorize and run.last > run.first:
             try:
@@ -298,12 +279,12 @@ def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -
             except NotVectorizable as exc:
                 log.debug("cell by cell: %s!%s%s..: %s", run.sheet, run.col, run.first, exc)
         units.extend([unit] if unit.block is not None or run.last == run.first
-                     else _singles(unit))
+                     else singles(unit))
     return units
 
 
 def _array_units(arrays, book: BookInfo, result: Evaluation, taint: Taint,
-                 store: Store) -> list[_Unit]:
+                 store: Store) -> list[Unit]:
     """One unit per array formula, filling its rectangle."""
     units = []
     for (sheet, row, col), (text, area) in arrays.items():
@@ -317,17 +298,11 @@ def _array_units(arrays, book: BookInfo, result: Evaluation, taint: Taint,
                             f"formula syntax: {exc}")
             continue
         result.runs.append(Run(sheet, col, row, row, node))
-        units.append(_Unit(sheet, col, row, row, node, area=area))
+        units.append(Unit(sheet, col, row, row, node, area=area))
     return units
 
 
-def _singles(unit: _Unit) -> list[_Unit]:
-    """A run as single cells, each with its own (shifted) tree."""
-    return [_Unit(unit.sheet, unit.col, r, r, ast.shift(unit.node, r - unit.first, 0))
-            for r in range(unit.first, unit.last + 1)]
-
-
-def _report_functions(units: list[_Unit], result: Evaluation) -> None:
+def _report_functions(units: list[Unit], result: Evaluation) -> None:
     for u in units:
         called = {n.name for n in ast.walk(u.node) if isinstance(n, ast.Func)}
         if not called:
@@ -359,7 +334,7 @@ def _changing(result: Evaluation, cell: Cell) -> list[str]:
     return [f for f in result.volatile.get(cell, ()) if f in CHANGING]
 
 
-def _unit_reason(unit: _Unit, result: Evaluation, bad_names: list[str],
+def _unit_reason(unit: Unit, result: Evaluation, bad_names: list[str],
                  by_contract: bool = False) -> str | None:
     """Why a unit cannot be recomputed at all, or None."""
     cell = (unit.sheet, unit.first, unit.col)
@@ -377,7 +352,7 @@ def _unit_reason(unit: _Unit, result: Evaluation, bad_names: list[str],
     return None
 
 
-def _spread(unit: _Unit, shaped: tuple, taint: Taint, result: Evaluation,
+def _spread(unit: Unit, shaped: tuple, taint: Taint, result: Evaluation,
             by_contract: bool = False) -> None:
     """Mark the unit's cells that cannot be recomputed or read a cell that cannot."""
     shapes, bad_names = shaped
@@ -398,16 +373,16 @@ def _spread(unit: _Unit, shaped: tuple, taint: Taint, result: Evaluation,
                     taint.add(unit.sheet, unit.col, cell[1], cell[1], origin)
 
 
-def _settle_cycle(members: list[_Unit], shaped: list, taint: Taint, result: Evaluation,
+def _settle_cycle(members: list[Unit], shaped: list, taint: Taint, result: Evaluation,
                   store: Store, names: Names, dialect: str) -> bool:
     """A cycle of the reference graph that the values do not take (:mod:`cycles`): its
     cells evaluated, True; a real cycle: False (nothing marked)."""
     if any(m.area is not None or vol.calls(m.node) for m in members):
         return False  # Excel reads every cell an array formula mentions: a cycle there is real
     try:
-        settled = cycles.settle(members, _Unit.cells, lambda c: store.get(*c),
+        settled = cycles.settle(members, Unit.cells, lambda c: store.get(*c),
                                 lambda c, v: store.put(*c, v),
-                                lambda unit: _fresh(store) or _evaluate(unit, store, names,
+                                lambda unit: _fresh(store) or evaluate_unit(unit, store, names,
                                                                         dialect))
     except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
             AttributeError, RecursionError) as exc:
@@ -435,7 +410,7 @@ def _fresh(store: Store) -> None:
     store.rect_cache.clear()
 
 
-def _settle(unit: _Unit, store: Store, names: Names, dialect: str, clock: vol.Clock,
+def _settle(unit: Unit, store: Store, names: Names, dialect: str, clock: vol.Clock,
             result: Evaluation) -> None:
     """A single cell calling TODAY/NOW/RAND/RANDBETWEEN: its cached value checked against
     the function's contract, and kept for its dependents to read."""
@@ -454,118 +429,3 @@ def _settle(unit: _Unit, store: Store, names: Names, dialect: str, clock: vol.Cl
         else:
             result.contract[cell] = outcome
     store.put(*cell, cached, value_scale(cached))
-
-
-def _reads(node: ast.Node):
-    """The references and names whose cells a formula reads: not the references given to
-    functions that use only their position or size (``ROWS(A1:A9)`` reads no cell)."""
-    stack = [node]
-    while stack:
-        n = stack.pop()
-        if isinstance(n, (ast.CellRef, ast.RangeRef, ast.Name, ast.Sheets3D)):
-            yield n
-        elif isinstance(n, ast.Func) and n.name in REFERENCE_ONLY:
-            stack.extend(a for a in n.args if not isinstance(a, (ast.CellRef, ast.RangeRef)))
-        else:
-            stack.extend(ast.children(n))
-
-
-def _shapes(unit: _Unit, store: Store, names: Names) -> tuple[list[Shape], list[str]]:
-    """The rectangles of cells a unit reads at its first row (defined names followed),
-    and the names it uses that do not parse (or ``Sheet!``: a sheet it reads is
-    unreadable)."""
-    out: list[Shape] = []
-    bad: list[str] = []
-    pending = [(unit.node, unit.sheet)]
-    seen_names: set[tuple] = set()
-    while pending:
-        node, home = pending.pop()
-        for n in _reads(node):
-            if isinstance(n, ast.Name):
-                key = (n.name.upper(), n.sheet, home)
-                if key in seen_names:
-                    continue
-                seen_names.add(key)
-                target = names.node(n.name, n.sheet, home)
-                if target is not None:
-                    pending.append((target, home if n.sheet is None else store.sheet(n.sheet)))
-                elif (label := names.error(n.name, n.sheet, home)) is not None:
-                    bad.append(label)
-                continue
-            if isinstance(n, ast.Sheets3D):
-                sheets = store.sheets_between(n.sheet, n.sheet2) or []
-                ref = n.ref
-            else:
-                ref = n
-                sheets = [home if n.sheet is None else store.sheet(n.sheet)]
-            if isinstance(ref, ast.CellRef):
-                first = last = ref
-            else:
-                first, last = ref.first, ref.last
-            if first.row > last.row:
-                first, last = last, first
-            for sheet in sheets:
-                if sheet.lower() in store.unreadable:
-                    bad.append(sheet + "!")
-                out.append(Shape(sheet, first.row, min(first.col, last.col), last.row,
-                                 max(first.col, last.col), not first.row_abs, not last.row_abs))
-    return out, bad
-
-
-def _rects(unit: _Unit, shaped: tuple) -> list[graph.Rect]:
-    """The rectangles of cells a unit reads over all its rows."""
-    span = unit.last - unit.first
-    return [(s.sheet, s.row1, s.col1, s.row2 + (span if s.rel2 else 0), s.col2)
-            for s in shaped[0]]
-
-
-def _evaluate(unit: _Unit, store: Store, names: Names, dialect: str = "excel") -> None:
-    resolver = SheetResolver(store, names, unit.sheet)
-    cell = (unit.sheet, unit.first, unit.col)
-    if unit.area is not None:
-        from workbook_gen.formula.arrays import evaluate_array, spread
-        rows, cols = unit.area[0] - unit.first + 1, unit.area[1] - unit.col + 1
-        values = spread(evaluate_array(unit.node, resolver, dialect, cell), rows, cols)
-        scale = cell_scale(unit.node, resolver)
-        for i, row in enumerate(values):
-            for j, value in enumerate(row):
-                store.put(unit.sheet, unit.first + i, unit.col + j, value, scale)
-        return
-    if unit.block is None:
-        value = evaluate(unit.node, resolver, dialect=dialect, cell=cell)
-        store.put(unit.sheet, unit.first, unit.col, value, cell_scale(unit.node, resolver))
-        return
-    reference = Evaluator(resolver, dialect, None, cell)
-    reference.ctx.intersect = False  # a part computed once must not depend on the row
-    env = Env(unit.last - unit.first + 1, store.block, reference.arg, dialect)
-    try:
-        value = unit.block.run(env)
-    except fx.RowDependent:  # implicit intersection after all: cell by cell
-        for single in _singles(unit):
-            _evaluate(single, store, names, dialect)
-        return
-    scale = unit.block.scale(env)
-    if isinstance(value, Const):
-        value = Obj([0.0 if value.value is None else value.value] * env.n)
-    elif isinstance(value, Obj):
-        value = Obj([0.0 if v is None else v for v in value.items])
-    elif not isinstance(value, Num):
-        raise TypeError(f"unexpected block value {type(value).__name__}")
-    store.put_block(unit.sheet, unit.col, unit.first, value, scale)
-
-
-def cell_scale(node: ast.Node, resolver: SheetResolver) -> float:
-    """Largest magnitude among the numbers a formula reads: literals, cells, names."""
-    scale = 0.0
-    for n in ast.walk(node):
-        if isinstance(n, ast.Number):
-            scale = max(scale, abs(n.value))
-        elif isinstance(n, ast.CellRef):
-            scale = max(scale, value_scale(resolver.cell(n.sheet, n.row, n.col)))
-        elif isinstance(n, ast.RangeRef):
-            r1, r2 = sorted((n.first.row, n.last.row))
-            c1, c2 = sorted((n.first.col, n.last.col))
-            scale = max(scale, resolver.range_scale(n.sheet, r1, c1, r2, c2))
-        elif isinstance(n, ast.Name):
-            scale = max(scale, value_scale(resolver.name(n.name, n.sheet)))
-    return scale

@@ -1,0 +1,159 @@
+"""A unit of evaluation (a run of R1C1-identical formulas, a single cell or an array
+formula): which cells it reads (``shapes_of``, ``rects``) and how it is evaluated
+(``evaluate_unit``: a compiled block over the run's rows, the scalar evaluator for a cell,
+the array evaluator over an array formula's rectangle). :mod:`engine` orders the units and
+decides what is checked."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from workbook_gen.evaluator import graph
+from workbook_gen.evaluator.ops import Const
+from workbook_gen.evaluator.store import Names, Num, Obj, SheetResolver, Store, value_scale
+from workbook_gen.evaluator.taint import Shape
+from workbook_gen.evaluator.vector import Env
+from workbook_gen.formula import ast
+from workbook_gen.formula import functions as fx
+from workbook_gen.formula.scalar import Evaluator, evaluate
+
+# functions that use a reference's position or size, never its cells' values
+REFERENCE_ONLY = frozenset({"ROW", "COLUMN", "ROWS", "COLUMNS", "ISREF", "AREAS"})
+
+
+@dataclass
+class Unit:
+    sheet: str
+    col: int
+    first: int
+    last: int
+    node: ast.Node
+    block: object = None   # compiled vector Block, or None for a single cell
+    area: tuple[int, int] | None = None  # an array formula: its last row and column
+
+    def cells(self):
+        if self.area is not None:
+            return [(self.sheet, r, c) for r in range(self.first, self.area[0] + 1)
+                    for c in range(self.col, self.area[1] + 1)]
+        return [(self.sheet, r, self.col) for r in range(self.first, self.last + 1)]
+
+
+def singles(unit: Unit) -> list[Unit]:
+    """A run as single cells, each with its own (shifted) tree."""
+    return [Unit(unit.sheet, unit.col, r, r, ast.shift(unit.node, r - unit.first, 0))
+            for r in range(unit.first, unit.last + 1)]
+
+
+def _reads(node: ast.Node):
+    """The references and names whose cells a formula reads: not the references given to
+    functions that use only their position or size (``ROWS(A1:A9)`` reads no cell)."""
+    stack = [node]
+    while stack:
+        n = stack.pop()
+        if isinstance(n, (ast.CellRef, ast.RangeRef, ast.Name, ast.Sheets3D)):
+            yield n
+        elif isinstance(n, ast.Func) and n.name in REFERENCE_ONLY:
+            stack.extend(a for a in n.args if not isinstance(a, (ast.CellRef, ast.RangeRef)))
+        else:
+            stack.extend(ast.children(n))
+
+
+def shapes_of(unit: Unit, store: Store, names: Names) -> tuple[list[Shape], list[str]]:
+    """The rectangles of cells a unit reads at its first row (defined names followed),
+    and the names it uses that do not parse (or ``Sheet!``: a sheet it reads is
+    unreadable)."""
+    out: list[Shape] = []
+    bad: list[str] = []
+    pending = [(unit.node, unit.sheet)]
+    seen_names: set[tuple] = set()
+    while pending:
+        node, home = pending.pop()
+        for n in _reads(node):
+            if isinstance(n, ast.Name):
+                key = (n.name.upper(), n.sheet, home)
+                if key in seen_names:
+                    continue
+                seen_names.add(key)
+                target = names.node(n.name, n.sheet, home)
+                if target is not None:
+                    pending.append((target, home if n.sheet is None else store.sheet(n.sheet)))
+                elif (label := names.error(n.name, n.sheet, home)) is not None:
+                    bad.append(label)
+                continue
+            if isinstance(n, ast.Sheets3D):
+                sheets = store.sheets_between(n.sheet, n.sheet2) or []
+                ref = n.ref
+            else:
+                ref = n
+                sheets = [home if n.sheet is None else store.sheet(n.sheet)]
+            if isinstance(ref, ast.CellRef):
+                first = last = ref
+            else:
+                first, last = ref.first, ref.last
+            if first.row > last.row:
+                first, last = last, first
+            for sheet in sheets:
+                if sheet.lower() in store.unreadable:
+                    bad.append(sheet + "!")
+                out.append(Shape(sheet, first.row, min(first.col, last.col), last.row,
+                                 max(first.col, last.col), not first.row_abs, not last.row_abs))
+    return out, bad
+
+
+def rects(unit: Unit, shaped: tuple) -> list[graph.Rect]:
+    """The rectangles of cells a unit reads over all its rows."""
+    span = unit.last - unit.first
+    return [(s.sheet, s.row1, s.col1, s.row2 + (span if s.rel2 else 0), s.col2)
+            for s in shaped[0]]
+
+
+def evaluate_unit(unit: Unit, store: Store, names: Names, dialect: str = "excel") -> None:
+    resolver = SheetResolver(store, names, unit.sheet)
+    cell = (unit.sheet, unit.first, unit.col)
+    if unit.area is not None:
+        from workbook_gen.formula.arrays import evaluate_array, spread
+        rows, cols = unit.area[0] - unit.first + 1, unit.area[1] - unit.col + 1
+        values = spread(evaluate_array(unit.node, resolver, dialect, cell), rows, cols)
+        scale = cell_scale(unit.node, resolver)
+        for i, row in enumerate(values):
+            for j, value in enumerate(row):
+                store.put(unit.sheet, unit.first + i, unit.col + j, value, scale)
+        return
+    if unit.block is None:
+        value = evaluate(unit.node, resolver, dialect=dialect, cell=cell)
+        store.put(unit.sheet, unit.first, unit.col, value, cell_scale(unit.node, resolver))
+        return
+    reference = Evaluator(resolver, dialect, None, cell)
+    reference.ctx.intersect = False  # a part computed once must not depend on the row
+    env = Env(unit.last - unit.first + 1, store.block, reference.arg, dialect)
+    try:
+        value = unit.block.run(env)
+    except fx.RowDependent:  # implicit intersection after all: cell by cell
+        for single in singles(unit):
+            evaluate_unit(single, store, names, dialect)
+        return
+    scale = unit.block.scale(env)
+    if isinstance(value, Const):
+        value = Obj([0.0 if value.value is None else value.value] * env.n)
+    elif isinstance(value, Obj):
+        value = Obj([0.0 if v is None else v for v in value.items])
+    elif not isinstance(value, Num):
+        raise TypeError(f"unexpected block value {type(value).__name__}")
+    store.put_block(unit.sheet, unit.col, unit.first, value, scale)
+
+
+def cell_scale(node: ast.Node, resolver: SheetResolver) -> float:
+    """Largest magnitude among the numbers a formula reads: literals, cells, names."""
+    scale = 0.0
+    for n in ast.walk(node):
+        if isinstance(n, ast.Number):
+            scale = max(scale, abs(n.value))
+        elif isinstance(n, ast.CellRef):
+            scale = max(scale, value_scale(resolver.cell(n.sheet, n.row, n.col)))
+        elif isinstance(n, ast.RangeRef):
+            r1, r2 = sorted((n.first.row, n.last.row))
+            c1, c2 = sorted((n.first.col, n.last.col))
+            scale = max(scale, resolver.range_scale(n.sheet, r1, c1, r2, c2))
+        elif isinstance(n, ast.Name):
+            scale = max(scale, value_scale(resolver.name(n.name, n.sheet)))
+    return scale
