@@ -125,22 +125,22 @@ def _take(rows, n, m, drop: bool):
     return _out(rows)
 
 
-@register("TAKE", "lookup", 2, 3, ("range", "scalar", "scalar"))
-def _take_fn(ctx, array, rows, cols=OMITTED):
+def _take_or_drop(array, rows, cols, drop: bool):
     grid = _grid(array)
     n = _ints(_int(rows), _int(cols))
     if isinstance(grid, ExcelError) or isinstance(n, ExcelError):
         return grid if isinstance(grid, ExcelError) else n
-    return _take(grid, n[0], n[1], False)
+    return _take(grid, n[0], n[1], drop)
+
+
+@register("TAKE", "lookup", 2, 3, ("range", "scalar", "scalar"))
+def _take_fn(ctx, array, rows, cols=OMITTED):
+    return _take_or_drop(array, rows, cols, False)
 
 
 @register("DROP", "lookup", 2, 3, ("range", "scalar", "scalar"))
 def _drop_fn(ctx, array, rows, cols=OMITTED):
-    grid = _grid(array)
-    n = _ints(_int(rows), _int(cols))
-    if isinstance(grid, ExcelError) or isinstance(n, ExcelError):
-        return grid if isinstance(grid, ExcelError) else n
-    return _take(grid, n[0], n[1], True)
+    return _take_or_drop(array, rows, cols, True)
 
 
 @register("EXPAND", "lookup", 2, 4, ("range", "scalar", "scalar", "scalar"))

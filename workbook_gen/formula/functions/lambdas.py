@@ -129,6 +129,15 @@ def _calls(fn, count: int):
     return None
 
 
+def _folded(array, fn) -> list[list] | ExcelError:
+    """The rows SCAN and REDUCE fold ``fn`` over, or the error that stops them."""
+    rows = _rows(array)
+    if isinstance(rows, ExcelError):
+        return rows
+    bad = _calls(fn, sum(len(r) for r in rows))
+    return rows if bad is None else bad
+
+
 @register("LAMBDA", "logical", 1, 254, "lazy")
 def _lambda(ctx, *args):  # evaluated by special(); reached only through fx.call
     return ExcelError.CALC
@@ -141,12 +150,9 @@ def _let(ctx, *args):
 
 @register("SCAN", "logical", 3, 3, "range")
 def _scan(ctx, initial, array, fn):
-    rows = _rows(array)
+    rows = _folded(array, fn)
     if isinstance(rows, ExcelError):
         return rows
-    bad = _calls(fn, sum(len(r) for r in rows))
-    if bad is not None:
-        return bad
     acc = initial  # (an array too: the LAMBDA decides what to make of it)
     out = []
     for row in rows:
@@ -160,12 +166,9 @@ def _scan(ctx, initial, array, fn):
 
 @register("REDUCE", "logical", 3, 3, "range")
 def _reduce(ctx, initial, array, fn):
-    rows = _rows(array)
+    rows = _folded(array, fn)
     if isinstance(rows, ExcelError):
         return rows
-    bad = _calls(fn, sum(len(r) for r in rows))
-    if bad is not None:
-        return bad
     acc = initial  # (an array too: the LAMBDA decides what to make of it)
     for row in rows:
         for x in row:
