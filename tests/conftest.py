@@ -31,3 +31,13 @@ def generate(tmp_path_factory):
 @pytest.fixture(scope="session")
 def sewing_workbook(generate):
     return generate()
+
+
+@pytest.fixture(scope="session")
+def corpus_audits():
+    """{file name: Outcome} for every workbook of ../shared/corpus/xlsx, audited once."""
+    from corpus_audits import CORPUS, audit_corpus
+    if not CORPUS.is_dir():
+        pytest.fail(f"the corpus is missing: {CORPUS} (see /work/shared/corpus/README.md)",
+                    pytrace=False)
+    return audit_corpus()

@@ -13,7 +13,6 @@ from pathlib import Path
 
 import pytest
 
-from workbook_gen import audit
 from workbook_gen.formula.functions import lambdas
 from workbook_gen.formula.parser import parse
 from workbook_gen.formula.scalar import DictResolver, evaluate
@@ -27,17 +26,20 @@ SHAPING = ("CHOOSECOLS(", "CHOOSEROWS(", "TOCOL(", "TOROW(", "TAKE(", "DROP(", "
 
 
 @pytest.fixture(scope="module")
-def report():
-    if not CORPUS.is_file():
-        pytest.fail(f"the corpus is missing: {CORPUS} (see /work/shared/corpus/README.md)")
-    return audit(CORPUS)
+def report(corpus_audits):
+    return corpus_audits[CORPUS.name].report
 
 
-def test_lambda_cells_saved_by_excel_are_recomputed_and_agree(report):
+@pytest.fixture(scope="module")
+def texts():
+    """{cell as the report names it: formula text} of formulas__test.xlsx."""
     from workbook_gen.auditor.inputs import read_inputs
     inputs = read_inputs(CORPUS)
-    cells = {report_name for report_name, key in inputs.cell_keys().items()
-             if any(f in inputs.text_of(key).upper() for f in FAMILY)}
+    return {name: inputs.text_of(key).upper() for name, key in inputs.cell_keys().items()}
+
+
+def test_lambda_cells_saved_by_excel_are_recomputed_and_agree(report, texts):
+    cells = {name for name, text in texts.items() if any(f in text for f in FAMILY)}
     assert len(cells) >= 100
     disagree = {m.cell for m in report.mismatches} & cells
     assert disagree == set(), sorted(disagree)[:10]
@@ -48,11 +50,8 @@ def test_lambda_cells_saved_by_excel_are_recomputed_and_agree(report):
     assert not any("_xlpm." in f.message for f in report.findings)
 
 
-def test_array_shaping_cells_saved_by_excel_are_recomputed_and_agree(report):
-    from workbook_gen.auditor.inputs import read_inputs
-    inputs = read_inputs(CORPUS)
-    cells = {name for name, key in inputs.cell_keys().items()
-             if any(f in inputs.text_of(key).upper() for f in SHAPING)}
+def test_array_shaping_cells_saved_by_excel_are_recomputed_and_agree(report, texts):
+    cells = {name for name, text in texts.items() if any(f in text for f in SHAPING)}
     assert len(cells) >= 200
     assert {m.cell for m in report.mismatches} & cells == set()
     assert not any(c in cells for c in report.not_checked)
