@@ -12,6 +12,7 @@ between references that are not one token (``INDEX(..):INDEX(..)``), then the sp
 from __future__ import annotations
 
 import re
+from functools import lru_cache
 
 from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.formula import ast
@@ -25,8 +26,13 @@ MAX_DEPTH = 128  # nesting of parentheses, functions and signs (Excel allows 64 
 _FUNC_PREFIXES = ("_xlfn._xlws.", "_xlfn.", "_xlws.")
 
 
+@lru_cache(maxsize=8192)
 def parse(formula: str) -> ast.Node:
     """The AST of ``formula`` (the leading ``=`` is optional).
+
+    Trees are immutable, so the same text parsed again (by the grouping, the evaluator,
+    the noise estimate and the checks of one audit, or the next workbook's audit in the
+    same process) is the same tree, kept in a bounded cache.
 
     Raises FormulaSyntaxError with a message such as
     ``unexpected ')' at position 16 in '=SQRT(B2^2+C2^2))'``.

@@ -226,8 +226,25 @@ class Template:
         return {o.name: o.default for o in self.options}
 
     def with_options(self, options: Mapping[str, object]) -> "Template":
-        """The template configured for ``options`` (missing ones take their defaults)."""
-        return self.configure(self, {**self.option_defaults, **options})
+        """The template configured for ``options`` (missing ones take their defaults).
+
+        Templates are immutable and configuring one is pure, so each (template, options)
+        is configured once per process: loading a scene asks for the same configuration
+        once per requested quantity."""
+        chosen = {**self.option_defaults, **options}
+        key = (id(self), tuple(sorted(chosen.items())))
+        hit = _CONFIGURED.get(key)
+        if hit is None or hit[0] is not self:
+            if len(_CONFIGURED) >= _MAX_CONFIGURED:
+                _CONFIGURED.clear()
+            hit = _CONFIGURED[key] = (self, self.configure(self, chosen))
+        return hit[1]
+
+
+# (id of the template, its options) -> (the template, configured); the template is kept so
+# that its id is not reused while the entry lives
+_CONFIGURED: dict[tuple[int, tuple], tuple[Template, Template]] = {}
+_MAX_CONFIGURED = 256
 
 
 def _check_refs(template: str, what: str, expr: Node, known: set[str], params: set[str],
