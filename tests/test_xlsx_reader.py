@@ -280,6 +280,25 @@ def test_openpyxl_written_file(tmp_path):
     assert_same_as_openpyxl(path)
 
 
+def test_hidden_rows(tmp_path):
+    """Rows written hidden (by hand or by a filter: both are <row hidden="1">) are listed
+    per sheet, whether or not they hold cells; openpyxl, which wrote them, says which."""
+    path = tmp_path / "hidden.xlsx"
+    wb = openpyxl.Workbook()
+    ws = wb.active
+    for r in range(1, 8):
+        ws.cell(r, 1, r)
+    for r in (3, 5, 9):  # 9: a hidden row without cells
+        ws.row_dimensions[r].hidden = True
+    wb.create_sheet("Other")["A1"] = 1
+    wb.save(path)
+    book = read_workbook(path)
+    expected = {r for r, dim in openpyxl.load_workbook(path).active.row_dimensions.items()
+                if dim.hidden}
+    assert book.sheets[0].hidden_rows == expected == {3, 5, 9}
+    assert book.sheet("Other").hidden_rows == set()
+
+
 def test_libreoffice_saved_file(lo_file):
     """LibreOffice 7.4 rewrites every attribute and style; formulas and values must survive.
 

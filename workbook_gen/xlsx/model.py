@@ -68,6 +68,7 @@ class Sheet:
     shared_formulas: dict[int, SharedFormula] = field(default_factory=dict)
     dimension: str | None = None
     tables: list[TableDef] = field(default_factory=list)
+    hidden_rows: set[int] = field(default_factory=set)  # <row hidden="1">: hidden or filtered
     _rows: dict[int, list[Cell]] | None = field(default=None, repr=False)
 
     def __getitem__(self, ref: str) -> Cell:

@@ -58,6 +58,8 @@ def read_sheet(pkg: Package, part: str, sheet: Sheet, strings: list[str], budget
         row_no = int(r) if r and r.isdigit() else row_no + 1
         if row_no > MAX_ROW or n_rows > MAX_ROW:
             raise pkg.error(where, f"row {row_no} beyond Excel's {MAX_ROW} rows")
+        if row.get("hidden") in ("1", "true"):  # hidden by hand or by a filter
+            sheet.hidden_rows.add(row_no)
         col, row_digits = 0, str(row_no)
         for c in row:
             if local.get(c.tag) != "c":
