@@ -24,12 +24,15 @@ from itertools import repeat
 from typing import Callable, Sequence
 
 from xlsxwriter.utility import xl_col_to_name
-from xlsxwriter.worksheet import CellStringTuple, Worksheet
+from xlsxwriter.worksheet import (CellBlankTuple, CellFormulaTuple, CellNumberTuple,
+                                  CellStringTuple, Worksheet, _preserve_whitespace)
+from xlsxwriter.xmlwriter import XMLwriter
 
 from ..expr.excel import RowTemplate
 
 ERROR_CODES = frozenset(("#DIV/0!", "#N/A", "#NAME?", "#NULL!", "#NUM!", "#REF!", "#VALUE!"))
 _CHUNK = 500  # rows per write (and per progress call)
+_PLAIN = (CellStringTuple, CellFormulaTuple, CellNumberTuple, CellBlankTuple)
 
 
 @dataclass(frozen=True)
@@ -69,16 +72,41 @@ def _number_xml(value) -> str:
     return f"{value:.16G}"
 
 
-#: The XML of rows written cell by cell, by what decides it (row_key): most of a
-#: workbook's header and text rows are the same for every variant of a scene.
-_ROW_XML: dict[tuple, str] = {}
-_ROW_XML_LIMIT = 4096  # entries; cleared past it (a batch's varied cells never repeat)
+#: A string cell's XML after its reference and style, by its text: XlsxWriter's inline
+#: string (control characters escaped, leading/trailing space preserved, XML-escaped).
+_STRING_XML: dict[str, str] = {}
+_STRING_XML_LIMIT = 4096  # entries; cleared past it (a batch's varied texts never repeat)
 
 
-def _value_key(value) -> object:
-    if isinstance(value, float):
-        return repr(value)  # -0.0 and NaN as they print
-    return (type(value), value)
+def _string_xml(text: str) -> str | None:
+    """``' t="inlineStr"><is><t>...</t></is></c>'`` as XlsxWriter writes ``text`` in
+    constant_memory mode; None for a rich string (written by XlsxWriter itself)."""
+    found = _STRING_XML.get(text)
+    if found is None:
+        text_x = XMLwriter._escape_control_characters(text)
+        if text_x.startswith("<r>") and text_x.endswith("</r>"):
+            return None
+        space = ' xml:space="preserve"' if _preserve_whitespace(text_x) else ""
+        found = f' t="inlineStr"><is><t{space}>{_escape(text_x)}</t></is></c>'
+        if len(_STRING_XML) >= _STRING_XML_LIMIT:
+            _STRING_XML.clear()
+        _STRING_XML[text] = found
+    return found
+
+
+def _formula_cell_xml(cell) -> str:
+    """A formula cell's XML after its reference and style, as ``_write_cell`` writes it."""
+    value = cell.value
+    kind = ""
+    if isinstance(value, bool):
+        kind, value = ' t="b"', 1 if value else 0
+    elif isinstance(value, str):
+        if value in ERROR_CODES:
+            kind = ' t="e"'
+        elif value != "":
+            kind = ' t="str"'
+        value = _escape(value)
+    return f"{kind}><f>{_escape(cell.formula)}</f><v>{value}</v></c>"
 
 
 @lru_cache(maxsize=4096)
@@ -97,19 +125,43 @@ def _formula_xml(formula: RowTemplate, offsets: tuple[int, ...]) -> str:
 class Sheet(Worksheet):
     """A worksheet that writes our formula text as it is, and blocks of rows whole."""
 
-    def _row_key(self, row: int, cells: dict) -> tuple:
-        """What XlsxWriter's XML of ``row`` depends on: the sheet's row-height settings,
-        the row's attributes and, per cell in column order, its type, values and style
-        index (the cell's format, else the row's, else the column's, as ``_write_cell``
-        picks it; asking each index here in that order assigns the indices in the order
-        ``_write_row`` and ``_write_cell`` would)."""
+    def _write_single_row(self, current_row_num=0) -> None:
+        """XlsxWriter's (constant_memory: the row held back, then the table cleared), the
+        XML of plain rows of numbers, texts and formulas written here at once: the same
+        bytes as ``_write_row`` and ``_write_cell``, each style index asked in the order
+        they ask it (so the xf numbering is unchanged)."""
+        row = self.previous_row
+        cells = self.table.get(row)
+        if (not cells or row in self.comments or self.excel_version != 2007
+                or not all(type(c) in _PLAIN for c in cells.values())):
+            return super()._write_single_row(current_row_num)
+        self.previous_row = current_row_num
         info = self.row_info.get(row)
         row_format = None
+        out = [f'<row r="{row + 1}"']
+        height = self.default_row_height
         if info is not None:
             row_format = info.row_format
-            info = (info.height, None if row_format is None else row_format._get_xf_index(),
-                    info.hidden, info.level, info.collapsed)
-        key = [row, info, self.default_row_height, self.original_row_height]
+            if info.height is not None:
+                height = info.height
+            if row_format:
+                index = row_format._get_xf_index()
+                if index:
+                    out.append(f' s="{index}"')
+                out.append(' customFormat="1"')
+        custom = height != self.original_row_height or height != self.default_row_height
+        if custom:
+            out.append(f' ht="{height * 0.75:.16g}"')
+        if info is not None and info.hidden:
+            out.append(' hidden="1"')
+        if custom:
+            out.append(' customHeight="1"')
+        if info is not None and info.level:
+            out.append(f' outlineLevel="{info.level}"')
+        if info is not None and info.collapsed:
+            out.append(' collapsed="1"')
+        out.append(">")
+        number = str(row + 1)
         col_info = self.col_info
         for col in sorted(cells):
             cell = cells[col]
@@ -118,37 +170,30 @@ class Sheet(Worksheet):
                 fmt = row_format if row_format else None
                 if fmt is None and col in col_info:
                     fmt = col_info[col].column_format
-            style = None if fmt is None else fmt._get_xf_index()
-            if type(cell) is CellStringTuple:   # most cells: (column, style, text)
-                key.append((col, style, cell.string))
-            else:
-                key.append((col, type(cell), style,
-                            tuple(_value_key(v) for f, v in zip(cell._fields, cell)
-                                  if f != "format")))
-        return tuple(key)
-
-    def _write_single_row(self, current_row_num=0) -> None:
-        """XlsxWriter's, with the XML of a row kept by ``_row_key`` (constant_memory)."""
-        row = self.previous_row
-        cells = self.table.get(row)
-        if not cells or row in self.comments or self.excel_version != 2007:
-            return super()._write_single_row(current_row_num)
-        key = self._row_key(row, cells)
-        xml = _ROW_XML.get(key)
-        if xml is None:
-            fh, self.fh = self.fh, io.StringIO()
-            try:
-                super()._write_single_row(current_row_num)
-                xml = self.fh.getvalue()
-            finally:
-                self.fh = fh
-            if len(_ROW_XML) >= _ROW_XML_LIMIT:
-                _ROW_XML.clear()
-            _ROW_XML[key] = xml
-        else:
-            self.previous_row = current_row_num
-            self.table.clear()
-        self.fh.write(xml)
+            ref = f'<c r="{xl_col_to_name(col)}{number}"'
+            if fmt is not None:
+                ref += f' s="{fmt._get_xf_index()}"'
+            kind = type(cell)
+            if kind is CellStringTuple:
+                text = _string_xml(cell.string)
+                if text is None:   # a rich string: XlsxWriter's own XML
+                    fh, self.fh = self.fh, io.StringIO()
+                    try:
+                        self._write_cell(row, col, cell)
+                        out.append(self.fh.getvalue())
+                    finally:
+                        self.fh = fh
+                    continue
+                out += (ref, text)
+            elif kind is CellFormulaTuple:
+                out += (ref, _formula_cell_xml(cell))
+            elif kind is CellNumberTuple:
+                out.append(f"{ref}><v>{cell.number:.16G}</v></c>")
+            else:   # blank
+                out.append(ref + "/>")
+        out.append("</row>")
+        self.fh.write("".join(out))
+        self.table.clear()
 
     def _prepare_formula(self, formula, expand_future_functions=False):
         return formula[1:] if formula.startswith("=") else formula
