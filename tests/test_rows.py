@@ -160,6 +160,12 @@ def _cells_xml(sheet_class, swap_formats: bool) -> bytes:
         sheet.write_blank(block + 5, 3, None, num)
         sheet.write_formula(block + 6, 1, "=1/0", bold, "#DIV/0!")
         sheet.write_string(block + 7, 1, "a<b & c")
+        sheet.write_string(block + 7, 2, "tab\there _x0041_ \x01")   # control characters
+        sheet.write_number(block + 8, 0, -0.0)
+        sheet.write_formula(block + 8, 1, "=A1&\"<\"", None, "x<y")   # text result, escaped
+        sheet.write_formula(block + 8, 2, '=""', None, "")
+        sheet.set_row(block + 9, None, None, {"hidden": True, "level": 1})
+        sheet.write_string(block + 9, 0, "hidden, outline level 1")
     book.close()
     with zipfile.ZipFile(stream) as z:
         return z.read("xl/worksheets/sheet1.xml")
