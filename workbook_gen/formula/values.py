@@ -8,6 +8,7 @@ errors are returned.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 from typing import NamedTuple
 
@@ -94,12 +95,21 @@ def to_number(v: Value) -> float | ExcelError:
     return text_to_number(v)
 
 
+# Excel reads currency and thousands separators as numbers: VALUE("$1,000") is 1000
+# (Microsoft's VALUE page), DOLLAR("$1.00") is "$1.00" (POI FormulaEvalTestData.xlsx L420)
+_CURRENCY = re.compile(r"^([+-]?)\$\s*")
+_GROUPED = re.compile(r"[+-]?\d{1,3}(,\d{3})+(\.\d*)?([eE][+-]?\d+)?")
+
+
 def text_to_number(text: str) -> float | ExcelError:
-    """``" 2 "`` -> 2.0, ``"50%"`` -> 0.5, ``"1e3"`` -> 1000.0, else #VALUE!."""
-    s = text.strip()
+    """``" 2 "`` -> 2.0, ``"50%"`` -> 0.5, ``"1e3"`` -> 1000.0, ``"$1,000"`` -> 1000.0,
+    else #VALUE!."""
+    s = _CURRENCY.sub(r"\1", text.strip())
     scale = 1.0
     if s.endswith("%"):
         s, scale = s[:-1].strip(), 0.01
+    if "," in s and _GROUPED.fullmatch(s):
+        s = s.replace(",", "")
     if not s or not all(c in "0123456789.eE+-" for c in s):  # rejects inf, nan, 0x..
         return _date_text(text)
     try:
@@ -132,18 +142,28 @@ def to_bool(v: Value) -> bool | ExcelError:
 
 
 def number_to_text(x: float) -> str:
-    """Excel's General format as used by ``&``: 15 significant digits, no ``.0``."""
-    if x == 0:
+    """Excel's number-to-text rule (``&``, text functions): 15 significant digits, no
+    ``.0``; a number below 1 in full ("0.00001") while that takes at most 20 characters,
+    else in E notation ("5.67890123456E-08"); from 1 in full up to 20 digits before the
+    point ("12345678901234600000"), else E notation ("1.23456789012346E+20"). Measured in
+    Excel by Apache POI (NumberToTextConverter's table); POI FormulaEvalTestData.xlsx:
+    SEARCH(1, 0.00001) is 7."""
+    if x == 0 or abs(x) < 2.2250738585072014e-308:  # denormals show as 0
         return "0"
-    if x == int(x) and abs(x) < 1e15:
-        return str(int(x))
-    text = f"{x:.15g}"
-    if "e" in text:
-        mantissa, exponent = text.split("e")
-        sign = exponent[0]
-        digits = exponent[1:].lstrip("0").rjust(2, "0")
-        text = f"{mantissa}E{sign}{digits}"
-    return text
+    sign = "-" if x < 0 else ""
+    mantissa, exponent = f"{abs(x):.14e}".split("e")
+    exp = int(exponent)
+    digits = mantissa.replace(".", "").rstrip("0")
+    if exp < 0:
+        text = "0." + "0" * (-exp - 1) + digits
+        if len(text) <= 20:
+            return sign + text
+    elif exp <= 19:
+        if len(digits) > exp + 1:
+            return sign + digits[:exp + 1] + "." + digits[exp + 1:]
+        return sign + digits + "0" * (exp + 1 - len(digits))
+    head = digits[0] + ("." + digits[1:] if len(digits) > 1 else "")
+    return f"{sign}{head}E{'-' if exp < 0 else '+'}{abs(exp):02d}"
 
 
 def to_text(v: Value) -> str | ExcelError:

@@ -34,7 +34,9 @@ def fv(r, n, p, pv=0.0, when=0.0):
     if r == 0:
         return -(pv + p * n)
     g = _growth(r, n)
-    return -(pv * g + p * (1 + r * when) * (g - 1) / r)
+    # the annuity factor ((1+r)^n-1)/r first: Excel's rounding (POI FormulaEvalTestData.xlsx
+    # FinanceLibTests H19:H20, where the two terms cancel to 1e-6 of their size)
+    return -(pv * g + p * (1 + r * when) * ((g - 1) / r))
 
 
 def pv(r, n, p, fv_=0.0, when=0.0):

@@ -62,6 +62,19 @@ for _names, _fn in ((("STDEV", "STDEV.S"), lambda xs: _sqrt(_variance(xs, True))
 
 @register("MODE", "stats", 1, -1, "range", aliases=("MODE.SNGL",))
 def _mode(ctx, *args):
+    if ctx is None or ctx.dialect != "libreoffice":
+        # Excel: a direct argument or a one-cell reference must be a number (text, a
+        # boolean, an empty cell: #VALUE!, in argument order); ranges keep their numbers.
+        # POI FormulaEvalTestData.xlsx row 936: MODE(B8,"1",2,3), MODE(B9,2,D7) with D7
+        # empty and MODE("1",1,#DIV/0!,2,3) are #VALUE!
+        for a in args:
+            v = a.rows[0][0] if isinstance(a, Range) and a.shape == (1, 1) else a
+            if isinstance(v, Range):
+                bad = next((x for x in v.flat() if isinstance(x, ExcelError)), None)
+            else:
+                bad = None if c.is_number(v) else v if isinstance(v, ExcelError) else ExcelError.VALUE
+            if bad is not None:
+                return bad
     xs = c.numbers(args, ctx)
     if isinstance(xs, ExcelError):
         return xs
@@ -116,14 +129,12 @@ def _countblank(ctx, a):
 # -- conditional aggregates ------------------------------------------------------------
 
 def _criterion_value(ctx, crit):
-    """A criteria range: the cell it shares with the formula's row or column, else its
-    first cell (POI's FormulaEvalTestData)."""
+    """A criteria range is implicitly intersected with the formula's row or column; no
+    shared cell is #VALUE!, a criterion that matches the cells holding #VALUE! (POI
+    FormulaEvalTestData.xlsx: SUMIF(AA7:AA13,C10:D10,C7) in row 1324 is C9, 1.1)."""
     if not isinstance(crit, Range):
         return crit
-    v = ctx.scalar(crit) if ctx is not None else ExcelError.VALUE
-    if v is ExcelError.VALUE and crit.shape != (1, 1):
-        return crit.rows[0][0] if crit.rows and crit.rows[0] else None
-    return v
+    return ctx.scalar(crit) if ctx is not None else ExcelError.VALUE
 
 
 def _matches(pairs, ctx=None) -> list[bool] | ExcelError:
@@ -235,6 +246,11 @@ def _sumproduct(ctx, *args):
         return ExcelError.VALUE
     columns = [list(a.flat()) for a in areas]
     lo = ctx.dialect == "libreoffice"  # a boolean is a number there
+    if shape == (1, 1) and not lo and any(isinstance(v, (str, bool)) for (v,) in columns):
+        # single values multiply as direct arguments: text is #VALUE!, not the zero of a
+        # non-numeric array entry (POI FormulaEvalTestData.xlsx J1328: SUMPRODUCT(G1330:G1330,
+        # I1330:I1330) over "4" and 2)
+        return c.first_error([v for (v,) in columns]) or ExcelError.VALUE
     total = []
     for row in zip(*columns):
         err = c.first_error(row)
