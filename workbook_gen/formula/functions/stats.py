@@ -60,13 +60,14 @@ for _names, _fn in ((("STDEV", "STDEV.S"), lambda xs: _sqrt(_variance(xs, True))
         _agg(_name, _fn, ExcelError.DIV0)
 
 
-@register("MODE", "stats", 1, -1, "range", aliases=("MODE.SNGL",))
+@register("MODE", "stats", 1, -1, "range")
 def _mode(ctx, *args):
     if ctx is None or ctx.dialect != "libreoffice":
-        # Excel: a direct argument or a one-cell reference must be a number (text, a
-        # boolean, an empty cell: #VALUE!, in argument order); ranges keep their numbers.
-        # POI FormulaEvalTestData.xlsx row 936: MODE(B8,"1",2,3), MODE(B9,2,D7) with D7
-        # empty and MODE("1",1,#DIV/0!,2,3) are #VALUE!
+        # Excel's legacy MODE: a direct argument or a one-cell reference must be a number
+        # (text, a boolean, an empty cell: #VALUE!, in argument order); ranges keep their
+        # numbers. POI FormulaEvalTestData.xlsx row 936: MODE(B8,"1",2,3), MODE(B9,2,D7)
+        # with D7 empty and MODE("1",1,#DIV/0!,2,3) are #VALUE!. MODE.SNGL ignores them
+        # (formulas test.xlsx STATISTICAL!X71: MODE.SNGL(I71,G71) over a text is #N/A)
         for a in args:
             v = a.rows[0][0] if isinstance(a, Range) and a.shape == (1, 1) else a
             if isinstance(v, Range):
@@ -75,6 +76,11 @@ def _mode(ctx, *args):
                 bad = None if c.is_number(v) else v if isinstance(v, ExcelError) else ExcelError.VALUE
             if bad is not None:
                 return bad
+    return _mode_sngl(ctx, *args)
+
+
+@register("MODE.SNGL", "stats", 1, -1, "range")
+def _mode_sngl(ctx, *args):
     xs = c.numbers(args, ctx)
     if isinstance(xs, ExcelError):
         return xs
