@@ -231,8 +231,8 @@ class Sheet(Worksheet):
             self._write_single_row(first_row)
 
         template, offsets, arguments = self._row_template(columns)
-        starts = range(first_row + 1, last_row + 2)   # 1-based row numbers
-        rows = [[str(r + o) for r in starts] for o in offsets]
+        # 1-based row numbers (ints: str.format prints them as str() would)
+        rows = [range(first_row + 1 + o, last_row + 2 + o) for o in offsets]
         lists = rows + arguments
         write = self.fh.write
         fmt = template.format
@@ -266,7 +266,7 @@ class Sheet(Worksheet):
                 continue
             if set(map(type, c.values)) == {float}:  # the common case, at C speed
                 out.append("")
-                texts = list(map(str, c.values))
+                texts = c.values   # str.format prints a float as str() does (its repr)
             else:
                 pairs = [cached_xml(v) for v in c.values]
                 types = {t for t, _ in pairs}
