@@ -208,3 +208,29 @@ def test_drawings_kept_per_process_give_the_fresh_bytes():
         fresh.append(workbook_bytes(scene, "x.xlsx"))
     kept = [workbook_bytes(scene, "x.xlsx") for scene in scenes]
     assert len(package._DRAWING_XML) == 2 and kept == fresh
+
+
+def test_charts_kept_per_thread_give_the_fresh_bytes():
+    """charts.py keeps the chart objects by position and key: workbooks of scenes with
+    different charts, written in turn in one thread and then in another, give what each
+    gives from scratch (nothing of one workbook leaks into the next)."""
+    import threading
+    from workbook_gen.scene import load_scene
+    from workbook_gen.workbook import charts, workbook_bytes
+
+    scenes = [load_scene(f"templates/{n}.toml", step=30.0, overrides=o)
+              for n, o in (("slider_crank", {}), ("four_bar", {}),
+                           ("slider_crank", {"l_BC": 45.0, "e": 10.0}))]
+    fresh = []
+    for scene in scenes:
+        charts._KEPT.charts = {}
+        charts._XML.clear()
+        fresh.append(workbook_bytes(scene, "x.xlsx"))
+    assert charts._KEPT.charts   # kept for the next workbook
+    kept = [workbook_bytes(scene, "x.xlsx") for scene in scenes + scenes]
+    other = []
+    thread = threading.Thread(target=lambda: other.extend(
+        workbook_bytes(scene, "x.xlsx") for scene in scenes))
+    thread.start()
+    thread.join()
+    assert kept == fresh + fresh and other == fresh

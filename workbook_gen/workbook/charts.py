@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+import threading
 from functools import partial
 
 from ..tabulate import Evaluated
@@ -47,6 +48,36 @@ def _assemble_cached(chart, key: str, configure=None) -> None:
     chart._xml_close()
 
 
+# The chart objects themselves, kept per thread by their position and key: building a
+# chart (XlsxWriter's defaults, axes, series) costs more than its kept XML.  Nothing of a
+# chart depends on the workbook it goes into but its id (set when packaged), the ranges'
+# cached data (none in constant_memory mode: reset to "not gathered") and the flag that
+# it is inserted.  Per thread: a chart is used by one workbook at a time.
+_KEPT = threading.local()
+_KEPT_LIMIT = 256
+
+
+def _kept_chart(workbook, n: int, key: str):
+    """The chart kept for (n, key), added to ``workbook`` as ``add_chart`` adds one, or
+    None."""
+    kept = getattr(_KEPT, "charts", None)
+    chart = None if kept is None else kept.get((n, key))
+    if chart is None or chart.date_1904 != workbook.date_1904 \
+            or chart.remove_timezone != workbook.remove_timezone:
+        return None
+    chart.already_inserted = False
+    chart.formula_data = [None] * len(chart.formula_data)
+    workbook.charts.append(chart)
+    return chart
+
+
+def _keep_chart(n: int, key: str, chart) -> None:
+    kept = getattr(_KEPT, "charts", None)
+    if kept is None or len(kept) >= _KEPT_LIMIT:
+        kept = _KEPT.charts = {}
+    kept[(n, key)] = chart
+
+
 def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
     sheet = add_sheet(workbook, CHARTS)
     sheet.set_landscape()
@@ -62,7 +93,6 @@ def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
     template = model.template
     for n, spec in enumerate(model.charts):
         kind = {"type": "scatter", "subtype": "straight"}
-        chart = workbook.add_chart(kind)
         x = index[spec.x]
         series = [{
             "name": template.quantity(y).header,
@@ -70,8 +100,6 @@ def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
             "values": [TABLE, first, index[y], last, index[y]],
             "line": {"width": 1.75},
         } for y in spec.ys]
-        for options in series:
-            chart.add_series(dict(options))
         x_title = (f"{spec.x} [{template.input.unit}]" if spec.x == template.input.name
                    else template.quantity(spec.x).header)
         x_axis = {"name": x_title, "label_position": "low", "major_gridlines": {"visible": True,
@@ -87,6 +115,14 @@ def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
         legend, size = {"none": True}, {"width": 560, "height": 380}
         # everything the chart is given, as text: its key in _XML (with its id)
         key = repr((kind, series, x_axis, y_axis, title, legend, size))
+        row, col = divmod(n, _COLUMNS)
+        chart = _kept_chart(workbook, n, key)
+        if chart is not None:
+            sheet.insert_chart(row * _ROWS_PER_CHART, col * _COLS_PER_CHART, chart)
+            continue
+        chart = workbook.add_chart(kind)
+        for options in series:
+            chart.add_series(dict(options))
         chart.set_size(size)
 
         def configure(chart=chart, x_axis=x_axis, y_axis=y_axis, title=title, legend=legend):
@@ -97,6 +133,7 @@ def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
         if any(str(o.get("name", "")).startswith("=") for o in (x_axis, y_axis, title)):
             configure()   # a formula name is chart data the workbook gathers before
             configure = None
+        else:
+            _keep_chart(n, key, chart)
         chart._assemble_xml_file = partial(_assemble_cached, chart, key, configure)
-        row, col = divmod(n, _COLUMNS)
         sheet.insert_chart(row * _ROWS_PER_CHART, col * _COLS_PER_CHART, chart)
