@@ -73,3 +73,20 @@ def test_poi_formula_eval_test_data_fully_agrees():
     report = audit(path)
     assert report.mismatches == [] and report.not_checked == {}
     assert report.libreoffice_semantics == 0   # Excel's rules, none explained away
+
+
+def test_text_e_is_the_year():
+    """Excel's "e" date code is the (era) year: sheetjs formula_stress_test.xlsx, saved by
+    Excel, caches TEXT(7-Jul-1977, "ee-mm-dd") as "1977-07-07"."""
+    got = evaluate(parse('=TEXT(28313,"ee-mm-dd")'), DictResolver({}), dialect="excel")
+    assert got == "1977-07-07"
+
+
+def test_cached_formula_text_is_unescaped():
+    """A formula's cached text is an ST_Xstring as shared strings are: CHAR(7) is stored as
+    _x0007_ (sheetjs formula_stress_test.xlsx Text!C38)."""
+    from workbook_gen.auditor.inputs import read_inputs
+    path = "/work/shared/corpus/xlsx/sheetjs__formula_stress_test.xlsx"
+    if not os.path.isfile(path):
+        pytest.fail(f"the corpus is missing: {path}")
+    assert read_inputs(path).cached[("Text", 38, 3)] == "\x077\x07"

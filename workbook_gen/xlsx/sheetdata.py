@@ -39,8 +39,15 @@ def _text_of(el: Element) -> str:
             parts.append(child.text or "")
         elif tag == "r":
             parts.extend(t.text or "" for t in child if _LOCAL.get(t.tag) == "t")
-    text = "".join(parts)
-    return _ESCAPE.sub(lambda m: chr(int(m.group(1), 16)), text) if "_x" in text else text
+    return unescape("".join(parts))
+
+
+def unescape(text: str | None) -> str | None:
+    """ECMA-376 ST_Xstring: ``_xHHHH_`` is the character U+HHHH (a control character such
+    as CHAR(7) is stored as ``_x0007_``)."""
+    if text is None or "_x" not in text:
+        return text
+    return _ESCAPE.sub(lambda m: chr(int(m.group(1), 16)), text)
 
 
 
@@ -217,8 +224,8 @@ def _value(kind: str, v: str | None, inline: Element | None, strings: list[str])
         if (index := int(v)) < 0:
             raise IndexError(index)
         return strings[index]
-    if kind == "str":
-        return v
+    if kind == "str":  # a formula's cached text, escaped as shared strings are
+        return unescape(v)
     if kind == "inlineStr":
         return _text_of(inline) if inline is not None else v
     if kind == "b":

@@ -80,7 +80,7 @@ def parse_date_text(text: str) -> float | ExcelError:
 
 # -- TEXT's date formats ------------------------------------------------------------------
 
-_DATE_TOKENS = re.compile(r"\[h+\]|\[m+\]|\[s+\]|(?<=s)\.0+|(?<=\])\.0+|yyyy|yy|mmmm|mmm|mm|m|dddd|"
+_DATE_TOKENS = re.compile(r"\[h+\]|\[m+\]|\[s+\]|(?<=s)\.0+|(?<=\])\.0+|yyyy|yy|e+|mmmm|mmm|mm|m|dddd|"
                           r"ddd|dd|d|hh|h|ss|s|am/pm|a/p|\"[^\"]*\"|.", re.IGNORECASE)
 FRACTION = re.compile(r"(?<=[sS\]])\.0+")  # fractional seconds: "ss.000", "[ss].00"
 
@@ -126,6 +126,8 @@ def format_date(x: float, fmt: str) -> str | ExcelError:
             out.append(f"{y:04d}")
         elif low == "yy":
             out.append(f"{y % 100:02d}")
+        elif low.startswith("e"):  # the era's year: the year in the Gregorian calendar
+            out.append(str(y))  # (sheetjs formula_stress_test.xlsx Text!B15, "ee-mm-dd")
         elif minute:
             mm = mi if elapsed != "h" else mi
             out.append(f"{mm:02d}" if low == "mm" else str(mm))
