@@ -90,3 +90,13 @@ def test_cached_formula_text_is_unescaped():
     if not os.path.isfile(path):
         pytest.fail(f"the corpus is missing: {path}")
     assert read_inputs(path).cached[("Text", 38, 3)] == "\x077\x07"
+
+
+@pytest.mark.parametrize("formula,expected", [
+    # ECMA-376 Part 1 18.17.7.33 CEILING (examples of the pre-2010 CEILING page, whose rule it is)
+    ("ECMA.CEILING(2.5,1)", 3.0), ("ECMA.CEILING(-2.5,-2)", -4.0), ("ECMA.CEILING(-2.5,2)", E.NUM),
+    ("ECMA.CEILING(1.5,0.1)", 1.5), ("ECMA.CEILING(0.234,0.01)", 0.24),
+])
+def test_ecma_ceiling(formula, expected):
+    got = evaluate(parse("=" + formula), DictResolver({}), dialect="excel")
+    assert got == expected or (isinstance(got, float) and abs(got - expected) < 1e-12), got

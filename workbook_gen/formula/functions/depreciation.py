@@ -1,5 +1,5 @@
 """Depreciation and more finance: VDB, DB, SYD, CUMIPMT, CUMPRINC, FVSCHEDULE, MIRR,
-ISPMT, DOLLARDE, DOLLARFR, TBILLPRICE, TBILLYIELD.
+ISPMT, DOLLARDE, DOLLARFR, TBILLPRICE, TBILLYIELD, AMORLINC, AMORDEGRC.
 
 VDB follows the spreadsheet algorithm (Excel's, also LibreOffice's): declining balance
 at ``factor / life`` per period, switching to straight line over the remaining life in
@@ -243,3 +243,74 @@ def tbillyield(settlement, maturity, price):
 
 register("TBILLPRICE", "finance", 3, 3)(_safe(tbillprice))
 register("TBILLYIELD", "finance", 3, 3)(_safe(tbillyield))
+
+
+# -- French accounting depreciation (AMORLINC, AMORDEGRC) ---------------------------------
+
+def _amor_args(cost, purchased, first, salvage, period, rate, basis):
+    from workbook_gen.formula.functions.date import serial_arg, yearfrac
+    xs = args_of(cost, salvage, period, rate, 0.0 if basis is None else basis)
+    dates = [serial_arg(d) for d in (purchased, first)]
+    for v in (xs, *dates):
+        if isinstance(v, ExcelError):
+            return v
+    cost, salvage, period, rate, b = xs
+    b = math.trunc(b)
+    if b not in (0, 1, 3, 4) or rate <= 0 or cost < 0 or salvage < 0 or salvage > cost or period < 0:
+        return ExcelError.NUM  # basis 2 is #NUM! on Microsoft's pages
+    d0, d1 = (math.floor(d) for d in dates)
+    if d0 > d1:
+        return ExcelError.NUM
+    return cost, salvage, math.trunc(period), rate, yearfrac(d0, d1, b)
+
+
+def _half_up(x: float) -> float:
+    return float(math.floor(x + 0.5))
+
+
+@register("AMORLINC", "finance", 6, 7)
+def _amorlinc(ctx, cost, purchased, first, salvage, period, rate, basis=None):
+    """Straight line at cost*rate a period, the first period prorated by YEARFRAC(purchase,
+    end of the first period, basis), the last what is left down to salvage (Microsoft's
+    AMORLINC example: 360)."""
+    got = _amor_args(cost, purchased, first, salvage, period, rate, basis)
+    if isinstance(got, ExcelError):
+        return got
+    cost, salvage, period, rate, first_fraction = got
+    full = cost * rate
+    first_amount = first_fraction * rate * cost
+    if period == 0:
+        return c.result(first_amount)
+    periods = int((cost - salvage - first_amount) / full) if full else 0
+    if period <= periods:
+        return c.result(full)
+    if period == periods + 1:
+        return c.result(cost - salvage - full * periods - first_amount)
+    return 0.0
+
+
+@register("AMORDEGRC", "finance", 6, 7)
+def _amordegrc(ctx, cost, purchased, first, salvage, period, rate, basis=None):
+    """Declining balance at rate times the life's coefficient (1 up to 3 years, 1.5 to 5,
+    2 to 6, 2.5 beyond), whole amounts; the first period prorated; half the rest in the
+    period before the balance would go under salvage and nothing after (Microsoft's
+    AMORDEGRC example: 776)."""
+    got = _amor_args(cost, purchased, first, salvage, period, rate, basis)
+    if isinstance(got, ExcelError):
+        return got
+    cost, salvage, period, rate, first_fraction = got
+    life = 1.0 / rate
+    if any(lo < life < hi for lo, hi in ((0, 1), (1, 2), (2, 3), (4, 5))):
+        return ExcelError.NUM  # Microsoft's AMORDEGRC page
+    coeff = 1.0 if life < 3 else 1.5 if life < 5 else 2.0 if life <= 6 else 2.5
+    rate *= coeff
+    amount = _half_up(first_fraction * rate * cost)
+    cost -= amount
+    rest = cost - salvage
+    for n in range(period):
+        amount = _half_up(rate * cost)
+        rest -= amount
+        if rest < 0:
+            return _half_up(cost * 0.5) if period - n in (0, 1) else 0.0
+        cost -= amount
+    return amount

@@ -214,6 +214,19 @@ def _ceiling(ctx, x, sig):
     return c.result(_multiple(x, s, mode if s > 0 else ROUND_UP))
 
 
+@register("ECMA.CEILING", "math", 2, 2)
+def _ecma_ceiling(ctx, x, sig):
+    """ECMA-376's CEILING (Part 1, 18.17.7.33, and Microsoft's MS-OI29500 note on it): away
+    from zero to a multiple of significance; x and significance of different signs: #NUM!."""
+    xs, s = c.to_number(x), c.to_number(sig)
+    bad = _numeric(xs, s)
+    if bad is not None:
+        return bad
+    if xs * s < 0:
+        return ExcelError.NUM
+    return _ceiling(ctx, xs, s)
+
+
 @register("FLOOR", "math", 2, 2)
 def _floor(ctx, x, sig):
     x, s = c.to_number(x), c.to_number(sig)
