@@ -20,9 +20,11 @@ import pytest
 # arrays, a sheet without its part reported (closedxml__tdf111974.xlsm no longer refused):
 # 61 fully audited, 56,484 of 57,335 recomputed, nothing refused (helper corpb); 20:10:
 # regular expressions, TEXTSPLIT, SORTBY: coverage.py 56,752 of 57,344 (99.0%)
-MIN_FULLY_AUDITED = 62
+# 22:30: SUBTOTAL/AGGREGATE leave out hidden rows and nested subtotals
+# (closedxml__functions-excel-2010.xlsx fully audited; helper corpa3): 63 with POI's
+MIN_FULLY_AUDITED = 63
 MIN_RECOMPUTED_CELLS = 56_600
-MAX_DISAGREEING_FILES = 11
+MAX_DISAGREEING_FILES = 10
 MAX_REFUSED = 0
 # files whose cached values are wrong or odd: the audit is right to report them, always
 KNOWN_DISAGREEMENTS = {

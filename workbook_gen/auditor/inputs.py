@@ -58,7 +58,9 @@ class AuditInputs:
         return BookInfo(self.book.sheet_names,
                         {s.name: dict(s.defined_names) for s in self.book.sheets
                          if s.defined_names}, tables,
-                        [name for name, kind in self.book.other_sheets if kind == MISSING_PART])
+                        [name for name, kind in self.book.other_sheets if kind == MISSING_PART],
+                        {s.name: frozenset(s.hidden_rows) for s in self.book.sheets
+                         if s.hidden_rows})
 
     @property
     def formula_count(self) -> int:

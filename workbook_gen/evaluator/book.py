@@ -36,6 +36,8 @@ class BookInfo:
     # sheets the workbook lists whose cells cannot be read (no part): what reads them is
     # not checked
     unreadable: list[str] = field(default_factory=list)
+    # rows hidden (by hand or by a filter) per sheet: SUBTOTAL 101-111 and AGGREGATE skip them
+    hidden_rows: dict[str, frozenset[int]] = field(default_factory=dict)
 
     def table(self, name: str, sheet: str, row: int, col: int) -> Table | None:
         """The table called ``name``, or ("" ) the one holding cell (sheet, row, col)."""

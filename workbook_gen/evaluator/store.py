@@ -10,6 +10,8 @@ defined names (a name's text is itself a formula, e.g. ``Parameters!$B$2``).
 from __future__ import annotations
 
 import math
+import re
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -21,6 +23,7 @@ from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
 
 _GROW = 1024
+_SUBTOTAL_CALL = re.compile(r"(?<![\w.])(?:_xlfn\.)?(?:SUBTOTAL|AGGREGATE)\s*\(", re.I)
 
 
 @dataclass(slots=True)
@@ -77,6 +80,24 @@ class Store:
         self.cols: dict[tuple[str, int], _Column] = {}
         self.rect_cache: dict[tuple, Range] = {}
         self.extent: dict[str, list[int]] = {}
+        self.hidden: dict[str, frozenset[int]] = {}  # sheet -> its hidden rows
+        self.formula_texts: Mapping[tuple[str, int, int], str] = {}  # for subtotal_cells
+        self.array_formulas: Mapping[tuple[str, int, int], tuple] = {}  # (text, (r2, c2))
+        self._subtotals: dict[str, list[tuple[int, int]]] | None = None
+
+    def subtotal_cells(self, sheet: str) -> list[tuple[int, int]]:
+        """(row, col) of the cells of ``sheet`` whose formula calls SUBTOTAL or AGGREGATE
+        (found on first use: most workbooks never ask)."""
+        if self._subtotals is None:
+            self._subtotals = {}
+            for (name, row, col), text in self.formula_texts.items():
+                if _SUBTOTAL_CALL.search(text):
+                    self._subtotals.setdefault(name, []).append((row, col))
+            for (name, row, col), (text, (r2, c2)) in self.array_formulas.items():
+                if _SUBTOTAL_CALL.search(text):  # every cell of the array holds it
+                    self._subtotals.setdefault(name, []).extend(
+                        (r, k) for r in range(row, r2 + 1) for k in range(col, c2 + 1))
+        return self._subtotals.get(sheet, [])
 
     def sheet(self, name: str) -> str:
         return self.canonical.get(name.lower(), name)
@@ -345,6 +366,14 @@ class SheetResolver:
 
     def range(self, sheet, row1, col1, row2, col2):
         return self.store.rect(self._sheet(sheet), row1, col1, row2, col2)
+
+    def hidden_rows(self, sheet) -> frozenset[int]:
+        """The hidden rows of a sheet (SUBTOTAL 101-111, AGGREGATE)."""
+        return self.store.hidden.get(self._sheet(sheet), frozenset())
+
+    def subtotal_cells(self, sheet) -> list[tuple[int, int]]:
+        """(row, col) of a sheet's cells holding SUBTOTAL or AGGREGATE (left out by them)."""
+        return self.store.subtotal_cells(self._sheet(sheet))
 
     def sheets_between(self, first: str, last: str) -> list[str] | None:
         return self.store.sheets_between(first, last)

@@ -26,6 +26,7 @@ from workbook_gen.evaluator.ops import (
 from workbook_gen.evaluator.store import Num, value_scale
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
+from workbook_gen.formula.functions.subtotal import READS_LAYOUT
 from workbook_gen.formula.values import to_bool
 
 
@@ -168,6 +169,8 @@ class _Compiler:
             return (lambda env: Const(fx.ExcelError.NAME)), False
         if name in ("IF", "IFERROR"):
             return self._lazy(node)
+        if name in READS_LAYOUT:  # hidden rows, nested subtotals: the cell-by-cell path
+            raise NotVectorizable(f"{name} reads the sheet's layout")
         if name in ("INDIRECT", "OFFSET"):  # a reference per row: the cell-by-cell path
             raise NotVectorizable(f"{name} gives a reference")  # (#REF! per row otherwise:
             # poi__StructuredRefs-lots-with-lookups.xlsx, INDIRECT("A"&ROW(...)-1))

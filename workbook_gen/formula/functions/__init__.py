@@ -17,7 +17,7 @@ from __future__ import annotations
 from workbook_gen.formula.functions import (  # noqa: F401  (each module registers its family)
     date, eng, finance, info, logical, lookup, math, reference, statfit, stats, text,
     distributions, discrete, stattests, workdays, complex, engineering, database, matrix,
-    regress, depreciation, bessel, textbytes,
+    regress, depreciation, bessel, textbytes, subtotal,
     lambdas, dynamic, arrayops, regex,  # (helper corpb: LAMBDA, dynamic arrays, regex)
     bonds,  # (helper corpb3: securities, day-count bases in daycount.py)
 )

@@ -1,6 +1,6 @@
 """More statistics: regression (SLOPE, INTERCEPT, FORECAST, RSQ, CORREL, COVARIANCE, STEYX),
 spread (DEVSQ, AVEDEV, VARA, STDEVA), quantiles (PERCENTILE, QUARTILE), the normal
-distribution, SUBTOTAL and AGGREGATE (functions 1-13, 14-19 as LARGE..QUARTILE.EXC)."""
+distribution (SUBTOTAL and AGGREGATE: :mod:`.subtotal`)."""
 
 from __future__ import annotations
 
@@ -9,8 +9,7 @@ from statistics import NormalDist
 
 from workbook_gen.formula.functions import coerce as c
 from workbook_gen.formula.functions.math import fsum
-from workbook_gen.formula.functions.registry import REGISTRY, register
-from workbook_gen.formula.values import Range
+from workbook_gen.formula.functions.registry import register
 from workbook_gen.xlerror import ExcelError
 
 
@@ -222,49 +221,3 @@ def _standardize(ctx, x, mean, sd):
     if isinstance(xs, ExcelError):
         return xs
     return ExcelError.NUM if xs[2] <= 0 else c.result((xs[0] - xs[1]) / xs[2])
-
-
-# -- SUBTOTAL and AGGREGATE ---------------------------------------------------------------
-
-_SUBTOTAL = {1: "AVERAGE", 2: "COUNT", 3: "COUNTA", 4: "MAX", 5: "MIN", 6: "PRODUCT",
-             7: "STDEV", 8: "STDEVP", 9: "SUM", 10: "VAR", 11: "VARP"}
-_AGGREGATE = {**_SUBTOTAL, 12: "MEDIAN", 13: "MODE.SNGL", 14: "LARGE", 15: "SMALL",
-              16: "PERCENTILE.INC", 17: "QUARTILE.INC", 18: "PERCENTILE.EXC",
-              19: "QUARTILE.EXC"}
-
-
-def _without_errors(area):
-    if not isinstance(area, Range):
-        return area
-    return Range.array_of([[None if isinstance(v, ExcelError) else v for v in row]
-                           for row in area.rows])
-
-
-@register("SUBTOTAL", "stats", 2, -1, ("scalar", "range"))
-def _subtotal(ctx, which, *refs):
-    k = c.to_number(which)
-    if isinstance(k, ExcelError):
-        return k
-    name = _SUBTOTAL.get(int(k) % 100)  # 101-111: also skip hidden rows (none known here)
-    if name is None:
-        return ExcelError.VALUE
-    return REGISTRY[name].fn(ctx, *refs)
-
-
-@register("AGGREGATE", "stats", 3, -1, ("scalar", "scalar", "range"))
-def _aggregate(ctx, which, options, *args):
-    k, opt = c.to_number(which), c.to_number(options)
-    for v in (k, opt):
-        if isinstance(v, ExcelError):
-            return v
-    name = _AGGREGATE.get(int(k))
-    if name is None or not 0 <= int(opt) <= 7:
-        return ExcelError.VALUE
-    if int(opt) in (2, 3, 6, 7):  # ignore error values
-        args = tuple(_without_errors(a) for a in (args if int(k) < 14 else args[:1])) + (
-            args[1:] if int(k) >= 14 else ())
-    if int(k) >= 14:
-        if len(args) != 2:
-            return ExcelError.VALUE
-        return REGISTRY[name].fn(ctx, args[0], c.scalar_of(args[1]))
-    return REGISTRY[name].fn(ctx, *args)
