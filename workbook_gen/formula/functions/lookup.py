@@ -3,7 +3,8 @@ of references themselves, ROW .. INDIRECT, are in :mod:`.reference`).
 
 Approximate lookups bisect, as Excel does: on sorted data the last position not past the
 lookup value; on unsorted data where the bisection lands (descending data for MATCH's -1
-is scanned, as Excel's results on pycel's lookup.xlsx show).
+is scanned down to the first value below the lookup value or past a run equal to it, as
+Excel's results on pycel's lookup.xlsx show).
 """
 
 from __future__ import annotations
@@ -39,14 +40,18 @@ def find(lookup, values: list, mode: int, wildcards: bool = True, reverse: bool 
         lookup = 0.0
     if mode > 0:
         return _bisect(lookup, values)
-    found = None  # descending data: Excel's results on pycel's lookup.xlsx are a linear scan
+    # descending data (MATCH's -1): a scan from the top that stops below the lookup value
+    # or after a run of values equal to it (the last of the run, as LibreOffice, and as
+    # Excel's bisection for ascending data), as Excel's results on pycel's lookup.xlsx show
+    # over ascending 0..4 (lookup -1: 5; 0.5, 2, 3, 4.5: #N/A; 0 or an empty cell: 1)
+    found, equal = None, False
     for i, v in enumerate(values):
         if not _comparable(v, lookup):
             continue
-        if c.compare(v, lookup) >= 0:
-            found = i
-        else:
+        cmp = c.compare(v, lookup)
+        if cmp < 0 or (equal and cmp > 0):
             break
+        found, equal = i, cmp == 0
     return found
 
 

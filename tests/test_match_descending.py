@@ -1,0 +1,71 @@
+"""MATCH with match_type -1 (smallest value >= the lookup value, data sorted descending).
+
+Excel's reference: its cached results in pycel's lookup.xlsx (saved by Excel), row 32:
+MATCH(x, {0;1;2;3;4}, -1), ascending data, which Excel scans from the top down to the
+first value below x or past a run of values equal to x. LibreOffice headless recalculates
+a table of cases on data sorted descending (the documented use), duplicates included
+(LibreOffice gives the last of equal values, as Excel's bisection does for ascending data;
+the Excel file has no duplicates): it must agree with us.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import openpyxl
+import pytest
+
+from workbook_gen import audit
+from workbook_gen.engines.libreoffice import recalculate
+from workbook_gen.formula import functions as fx
+from workbook_gen.formula.values import Range
+
+CORPUS = Path("/work/shared/corpus/xlsx")
+DESC = [40, 30, 20, 20, 10]  # A1:A5
+CASES = {  # formula -> its documented value on descending data (smallest value >= x)
+    "=MATCH(25,$A$1:$A$5,-1)": 2,
+    "=MATCH(30,$A$1:$A$5,-1)": 2,
+    "=MATCH(20,$A$1:$A$5,-1)": 4,  # the last of equal values
+    "=MATCH(40,$A$1:$A$5,-1)": 1,
+    "=MATCH(5,$A$1:$A$5,-1)": 5,
+    "=MATCH(10,$A$1:$A$5,-1)": 5,
+    "=MATCH(50,$A$1:$A$5,-1)": "#N/A",
+    '=MATCH("x",$A$1:$A$5,-1)': "#N/A",
+}
+
+
+@pytest.fixture(scope="module")
+def recalculated(libreoffice, tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("match")
+    wb = openpyxl.Workbook()
+    ws = wb.active
+    ws.title = "M"
+    for i, x in enumerate(DESC, 1):
+        ws[f"A{i}"] = x
+    for i, formula in enumerate(CASES, 1):
+        ws[f"C{i}"] = formula
+    wb.save(tmp / "match.xlsx")
+    return recalculate(tmp / "match.xlsx", tmp / "out")
+
+
+def test_descending_data_agrees_with_libreoffice_and_the_documentation(recalculated):
+    ws = openpyxl.load_workbook(recalculated, data_only=True)["M"]
+    assert [ws[f"C{i}"].value for i in range(1, len(CASES) + 1)] == list(CASES.values())
+    report = audit(recalculated)
+    assert report.mismatches == [] and report.cells_checked == len(CASES)
+
+
+def test_excel_scan_on_ascending_data():
+    """pycel lookup.xlsx, Lookup!B32:I32: Excel's own results over ascending 0..4."""
+    path = CORPUS / "pycel__lookup.xlsx"
+    if not path.is_file():
+        pytest.fail(f"corpus file missing: {path}", pytrace=False)
+    cached = openpyxl.load_workbook(path, data_only=True)["Lookup"]
+    data = Range.of([[float(x)] for x in range(5)])
+    for col in "BCDEFGHI":
+        x = cached[f"{col}3"].value
+        ours = fx.call("MATCH", [x, data, -1.0])
+        excel = cached[f"{col}32"].value
+        assert (str(ours) if isinstance(ours, fx.ExcelError) else ours) == excel, (col, x)
+    report = audit(path)
+    assert report.mismatches == [] and report.not_checked == {}
