@@ -24,6 +24,10 @@ SPANS = [("DATE(2008,2,15)", "DATE(2017,11,15)"), ("DATE(2011,1,25)", "DATE(2011
          ("DATE(2010,3,31)", "DATE(2015,8,31)"), ("DATE(2012,2,29)", "DATE(2020,2,29)"),
          ("DATE(2009,8,30)", "DATE(2019,2,28)"), ("DATE(2013,5,15)", "DATE(2023,11,15)"),
          ("DATE(2016,12,31)", "DATE(2018,6,30)")]
+# (settlement, maturity, last_interest): an odd last period shorter and longer than a period
+ODD_LAST = [("DATE(2008,2,7)", "DATE(2008,6,15)", "DATE(2007,10,15)"),
+            ("DATE(2008,4,20)", "DATE(2008,6,15)", "DATE(2007,12,24)"),
+            ("DATE(2008,11,11)", "DATE(2010,3,1)", "DATE(2008,10,15)")]
 COUPONS = ["COUPDAYBS", "COUPDAYS", "COUPDAYSNC", "COUPNCD", "COUPNUM", "COUPPCD"]
 
 
@@ -52,6 +56,9 @@ def _cases() -> list[str]:
             "COUPNUM(DATE(2008,1,1),DATE(2009,1,1),3,0)", "COUPNUM(DATE(2008,1,1),DATE(2009,1,1),2,5)",
             "PRICE(DATE(2009,1,1),DATE(2008,1,1),0.05,0.05,100,2)", "PRICE(DATE(2008,1,1),DATE(2009,1,1),-0.05,0.05,100,2)",
             "DISC(DATE(2008,1,1),DATE(2009,1,1),0,100)", 'COUPDAYS("x",DATE(2009,1,1),2)']
+    for (s, m, last), f, b in itertools.product(ODD_LAST, (1, 2, 4), range(5)):
+        out.append(f"ODDLPRICE({s},{m},{last},0.0375,0.0405,100,{f},{b})")
+        out.append(f"ODDLYIELD({s},{m},{last},0.0375,99.875,100,{f},{b})")
     for name, b, p, r in itertools.product(("AMORLINC", "AMORDEGRC"), (0, 1, 3, 4), range(0, 9, 2),
                                            (0.15, 0.3, 0.1)):
         out.append(f"{name}(2400,DATE(2008,8,19),DATE(2008,12,31),300,{p},{r},{b})")
@@ -84,6 +91,10 @@ EXCEL = [
     ("PRICEMAT(DATE(2008,2,15),DATE(2008,4,13),DATE(2007,11,11),0.061,0.061,0)", 99.98449888),
     ("YIELDMAT(DATE(2008,3,15),DATE(2008,11,3),DATE(2007,11,8),0.0625,100.0123,0)", 0.060954334),
     ("TBILLEQ(DATE(2008,3,31),DATE(2008,6,1),0.0914)", 0.094151494),
+    ("ODDLPRICE(DATE(2008,2,7),DATE(2008,6,15),DATE(2007,10,15),0.0375,0.0405,100,2,0)",
+     99.87828601),
+    ("ODDLYIELD(DATE(2008,4,20),DATE(2008,6,15),DATE(2007,12,24),0.0375,99.875,100,2,0)",
+     0.045192),
     ("AMORLINC(2400,DATE(2008,8,19),DATE(2008,12,31),300,1,0.15,1)", 360.0),
     ("AMORDEGRC(2400,DATE(2008,8,19),DATE(2008,12,31),300,1,0.15,1)", 776.0),
 ]
@@ -128,6 +139,9 @@ def lo_differs(formula: str, lo) -> str | None:
         return ("settlement after first_interest: LibreOffice refuses; basis 1: Microsoft's "
                 "ACCRINT formula divides by the quasi-coupon period's actual days, LibreOffice "
                 "uses YEARFRAC")
+    if name in ("ODDLPRICE", "ODDLYIELD") and parts[-1] == "1":
+        return ("basis 1: Microsoft's formula divides by each quasi-coupon period's actual days "
+                "(NL_i); LibreOffice's result does not even change with the frequency")
     if name in ("PRICE", "YIELD") and "DATE(2011,11,15),0.0575" in args and parts[-2] == "1":
         return ("one coupon left: Microsoft's PRICE/YIELD closed form (simple interest over "
                 "DSR/E); LibreOffice discounts by (1+yld/f)^(DSC/E)")
@@ -183,10 +197,10 @@ def test_excel_saved_file_cached_values():
                             dialect="excel")
     names = ("TBILLEQ", "PRICE", "YIELD", "DISC", "PRICEDISC", "YIELDDISC", "PRICEMAT",
              "YIELDMAT", "DURATION", "MDURATION", "ACCRINT", "ACCRINTM", "INTRATE", "RECEIVED",
-             "AMORLINC", "AMORDEGRC", *COUPONS)
+             "AMORLINC", "AMORDEGRC", "ODDLPRICE", "ODDLYIELD", *COUPONS)
     checked = 0
     for key, formula in inputs.formulas.items():
         if key[0] == "Finance" and formula.split("(")[0] in names:
             assert same(inputs.cached[key], result.values[key]), (key, formula)
             checked += 1
-    assert checked == 22
+    assert checked == 24

@@ -19,7 +19,7 @@ from workbook_gen.formula.functions import (  # noqa: F401  (each module registe
     distributions, discrete, stattests, workdays, complex, engineering, database, matrix,
     regress, depreciation, bessel, textbytes, subtotal,
     lambdas, dynamic, arrayops, regex,  # (helper corpb: LAMBDA, dynamic arrays, regex)
-    bonds,  # (helper corpb3: securities, day-count bases in daycount.py)
+    bonds, oddbonds,  # (helper corpb3: securities, day-count bases in daycount.py)
 )
 from workbook_gen.formula.functions.dialect import (
     LIBREOFFICE_DIFFERENCES, Difference, dialect_of, libreoffice_error, libreoffice_result,
