@@ -134,14 +134,19 @@ def test_package_is_deflated_at_our_level_and_other_workbooks_at_xlsxwriters():
 
 
 class _NoRowMemo(Sheet):
+    """Sheet with XlsxWriter's own cell methods and row XML."""
     _write_single_row = xlsx_worksheet.Worksheet._write_single_row
+    write_string = xlsx_worksheet.Worksheet.write_string
+    write_number = xlsx_worksheet.Worksheet.write_number
+    write_formula = xlsx_worksheet.Worksheet.write_formula
 
 
 def _cells_xml(sheet_class, swap_formats: bool) -> bytes:
     """Rows written cell by cell: the same cells twice in one sheet, formats first used
     in either order (their xf indices differ), row and column formats, typed values."""
     stream = io.BytesIO()
-    book = xlsxwriter.Workbook(stream, {"constant_memory": True})
+    book = xlsxwriter.Workbook(stream, {"constant_memory": True,
+                                        "nan_inf_to_errors": True})
     bold, num, italic = (book.add_format(s) for s in
                          ({"bold": True}, {"num_format": "0.000"}, {"italic": True}))
     sheet = book.add_worksheet("S", worksheet_class=sheet_class)
@@ -166,6 +171,12 @@ def _cells_xml(sheet_class, swap_formats: bool) -> bytes:
         sheet.write_formula(block + 8, 2, '=""', None, "")
         sheet.set_row(block + 9, None, None, {"hidden": True, "level": 1})
         sheet.write_string(block + 9, 0, "hidden, outline level 1")
+        sheet.write_number(block + 9, 1, 7)                          # an int
+        sheet.write_number(block + 9, 2, float("nan"))               # XlsxWriter's error
+        sheet.write_string(block + 10, 1, "long " * 4000)            # > half the limit
+        sheet.write_formula(f"B{block + 12}", "=SUM(A1:A2)", bold, 3)   # A1 notation
+        sheet.write_string(block + 11, 3, "above", bold)
+        sheet.write_formula(block + 11, 4, "=LEN(A1)")               # no value given
     book.close()
     with zipfile.ZipFile(stream) as z:
         return z.read("xl/worksheets/sheet1.xml")

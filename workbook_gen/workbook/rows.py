@@ -25,7 +25,8 @@ from typing import Callable, Sequence
 
 from xlsxwriter.utility import xl_col_to_name
 from xlsxwriter.worksheet import (CellBlankTuple, CellFormulaTuple, CellNumberTuple,
-                                  CellStringTuple, Worksheet, _preserve_whitespace)
+                                  CellStringTuple, Worksheet, _preserve_whitespace,
+                                  re_dynamic_function)
 from xlsxwriter.xmlwriter import XMLwriter
 
 from ..expr.excel import RowTemplate
@@ -43,6 +44,9 @@ class Column:
     values: Sequence                   # one per row: the cached values, or the numbers
     formula: RowTemplate | None = None  # None: number cells
     cell_format: object = None         # an XlsxWriter Format, else the column's format
+
+
+_column_name = lru_cache(maxsize=None)(xl_col_to_name)   # "A", "B", ... per column index
 
 
 def _escape(text: str) -> str:
@@ -170,7 +174,7 @@ class Sheet(Worksheet):
                 fmt = row_format if row_format else None
                 if fmt is None and col in col_info:
                     fmt = col_info[col].column_format
-            ref = f'<c r="{xl_col_to_name(col)}{number}"'
+            ref = f'<c r="{_column_name(col)}{number}"'
             if fmt is not None:
                 ref += f' s="{fmt._get_xf_index()}"'
             kind = type(cell)
@@ -194,6 +198,57 @@ class Sheet(Worksheet):
         out.append("</row>")
         self.fh.write("".join(out))
         self.table.clear()
+
+    # write_string, write_number and write_formula: XlsxWriter's (A1 notation, bounds and
+    # dimensions, the row held back in constant_memory mode, the cell stored), without
+    # its argument decoding and checks where the cell is a plain one at (row, col) ints,
+    # in the sheet, at or below the row held back (else XlsxWriter's own methods).
+
+    def _put(self, row: int, col: int, cell) -> None:
+        if self.dim_rowmin is None or row < self.dim_rowmin:
+            self.dim_rowmin = row
+        if self.dim_rowmax is None or row > self.dim_rowmax:
+            self.dim_rowmax = row
+        if self.dim_colmin is None or col < self.dim_colmin:
+            self.dim_colmin = col
+        if self.dim_colmax is None or col > self.dim_colmax:
+            self.dim_colmax = col
+        if row > self.previous_row:
+            self._write_single_row(row)
+        self.table[row][col] = cell
+
+    def _plain_cell(self, row, col) -> bool:
+        return (row.__class__ is int and col.__class__ is int and self.constant_memory
+                and self.previous_row <= row < self.xls_rowmax and 0 <= col < self.xls_colmax)
+
+    def write_string(self, *args, **kwargs):
+        if len(args) in (3, 4) and not kwargs and self._plain_cell(args[0], args[1]):
+            string = args[2]
+            if string.__class__ is str and len(string) <= self.xls_strmax // 2:
+                self._put(args[0], args[1], CellStringTuple(string, args[3] if len(args) == 4
+                                                            else None))
+                return 0
+        return Worksheet.write_string(self, *args, **kwargs)
+
+    def write_number(self, *args, **kwargs):
+        if len(args) in (3, 4) and not kwargs and self._plain_cell(args[0], args[1]):
+            number = args[2]
+            if number.__class__ is int or (number.__class__ is float and math.isfinite(number)):
+                self._put(args[0], args[1], CellNumberTuple(number, args[3] if len(args) == 4
+                                                            else None))
+                return 0
+        return Worksheet.write_number(self, *args, **kwargs)
+
+    def write_formula(self, *args, **kwargs):
+        if 3 <= len(args) <= 5 and not kwargs and self._plain_cell(args[0], args[1]):
+            formula = args[2]
+            if (formula.__class__ is str and formula and not re_dynamic_function.search(formula)
+                    and not (formula.startswith("{") and formula.endswith("}"))):
+                self._put(args[0], args[1], CellFormulaTuple(
+                    self._prepare_formula(formula), args[3] if len(args) > 3 else None,
+                    args[4] if len(args) > 4 else 0))
+                return 0
+        return Worksheet.write_formula(self, *args, **kwargs)
 
     def _prepare_formula(self, formula, expand_future_functions=False):
         return formula[1:] if formula.startswith("=") else formula
@@ -260,7 +315,7 @@ class Sheet(Worksheet):
 
         out = ['<row r="{0}">']
         for c in columns:
-            out.append(f'<c r="{xl_col_to_name(c.col)}{{0}}"{self._style(c)}')
+            out.append(f'<c r="{_column_name(c.col)}{{0}}"{self._style(c)}')
             if c.formula is None:
                 out.append("><v>" + add([_number_xml(v) for v in c.values]) + "</v></c>")
                 continue
