@@ -14,6 +14,7 @@ With ``engine="libreoffice"`` the file is also recalculated by LibreOffice.
 from __future__ import annotations
 
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 from xlsxwriter.utility import xl_col_to_name, xl_rowcol_to_cell
@@ -24,6 +25,7 @@ from ..evaluator.store import value_scale
 from ..evaluator.volatile import Clock
 from ..formula import ast, parse
 from ..formula.functions import dialect_of
+from ..forked import Forked
 from ..formula.scalar import evaluate as evaluate_scalar
 from ..xlerror import ExcelError
 import numpy as np
@@ -198,18 +200,24 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
     t = time.perf_counter()
     semantics = dialect_of(inputs.book.application)  # the engine that saved the file
     clock = Clock(inputs.cached, last_saved(path), _agree, inputs.book.date1904)
+    # the aggregates' local evaluation needs nothing of the full one: on the other core
+    aside = Forked(_local_values, inputs, semantics, clock)
     try:
         evaluation = evaluate_cells(inputs.formulas, inputs.constants, inputs.book.defined_names,
                                     vectorize=vectorize, uncheckable=inputs.uncheckable(),
                                     dialect=semantics, book=inputs.book_info(),
                                     arrays=inputs.arrays, saved=clock)
     except WorkbookReadError as exc:  # the evaluator's refusal (cost), named by file
+        aside.cancel()
         raise WorkbookReadError(f"{path}: {exc}") from None
+    except BaseException:
+        aside.cancel()
+        raise
     timings["evaluate_all"] = time.perf_counter() - t
     skipped = evaluation.not_checked
 
     values, constants = evaluation.values, inputs.constants
-    local = _local_evaluation(inputs, dialect=semantics, saved=clock)
+    local = aside.result()
     timings["evaluate_all"] = time.perf_counter() - t
     # "parse": cutting the columns into runs equal in R1C1 form (the formula text analysis);
     # "evaluate": ordering, vectorised and cell-by-cell evaluation (both passes)
@@ -224,6 +232,64 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
     value_of.clip = lambda sheet, *rect: evaluation.store.clip(evaluation.store.sheet(sheet),
                                                                *rect)
 
+    # the reference model's check on the other core while this one compares and finds
+    aside = Forked(_timed, check_mechanics, inputs.book, value_of, evaluation.store.column_values)
+    try:
+        mismatches, columns, checked, explained, max_abs, max_rel = _compare(
+            inputs, evaluation, local, semantics, value_of, timings)
+        step("compare")
+        findings = check_structure(inputs, evaluation, _cell_name)
+        t = time.perf_counter()
+        findings += find_findings(inputs, evaluation.runs, _cell_name)
+        timings["findings"] = time.perf_counter() - t
+        mechanics, timings["reference"] = aside.result()  # its own time, spent alongside
+    except BaseException:
+        aside.cancel()
+        raise
+    step("reference")
+    step("findings")
+    engine_result = (_engine(path, engine, inputs, value_of, evaluation.operands_scale, skipped)
+                     if engine else None)
+    if engine:
+        step("engine")
+    not_checked = {_cell_name(k): reason for k, reason in sorted(skipped.items())
+                   if inputs.is_formula(k)}
+    return AuditReport(
+        path=str(path), formula_cells=inputs.formula_count, cells_checked=checked + explained,
+        mismatches=mismatches, not_checked=not_checked, columns=[columns[k] for k in sorted(columns)],
+        max_abs_error=max_abs, max_rel_error=max_rel, findings=findings, mechanics=mechanics,
+        libreoffice_semantics=explained, vector_cells=evaluation.groups.vector_cells,
+        seconds=time.perf_counter() - started, engine=engine_result, timings=timings,
+        macros=inputs.book.vba_project, semantics=semantics,
+        by_contract={_cell_name(k): o.message for k, o in sorted(evaluation.contract.items())},
+        application=inputs.book.application)
+
+
+def _timed(fn, *args):
+    """``(fn(*args), seconds it took)``."""
+    t = time.perf_counter()
+    return fn(*args), time.perf_counter() - t
+
+
+@dataclass
+class _Local:
+    """What the audit uses of the aggregates' local evaluation (compact, to pickle)."""
+
+    values: dict
+    operands_scale: dict
+    seconds: dict
+
+
+def _local_values(inputs: AuditInputs, dialect: str, clock: Clock) -> _Local:
+    local = _local_evaluation(inputs, dialect=dialect, saved=clock)
+    return _Local(dict(local.values), dict(local.operands_scale), local.seconds)
+
+
+def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, timings):
+    """Cached against recomputed, every checked formula cell: (mismatches, column
+    statistics, cells checked, cells LibreOffice's semantics explain, max abs and rel
+    error of the agreeing cells)."""
+    values, skipped = evaluation.values, evaluation.not_checked
     t = time.perf_counter()
     columns: dict[tuple[str, int], ColumnStats] = {}
     mismatches, explained, checked = [], 0, 0
@@ -292,31 +358,7 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
               and not compare(inputs.cached[k], values[k], evaluation.operands_scale[k]).agree}
     _mark_roots(inputs, mismatches, differ)
     timings["compare"] = time.perf_counter() - t
-    step("compare")
-    t = time.perf_counter()
-    mechanics = check_mechanics(inputs.book, value_of, evaluation.store.column_values)
-    timings["reference"] = time.perf_counter() - t
-    step("reference")
-    findings = check_structure(inputs, evaluation, _cell_name)
-    t = time.perf_counter()
-    findings += find_findings(inputs, evaluation.runs, _cell_name)
-    timings["findings"] = time.perf_counter() - t
-    step("findings")
-    engine_result = (_engine(path, engine, inputs, value_of, evaluation.operands_scale, skipped)
-                     if engine else None)
-    if engine:
-        step("engine")
-    not_checked = {_cell_name(k): reason for k, reason in sorted(skipped.items())
-                   if inputs.is_formula(k)}
-    return AuditReport(
-        path=str(path), formula_cells=inputs.formula_count, cells_checked=checked + explained,
-        mismatches=mismatches, not_checked=not_checked, columns=[columns[k] for k in sorted(columns)],
-        max_abs_error=max_abs, max_rel_error=max_rel, findings=findings, mechanics=mechanics,
-        libreoffice_semantics=explained, vector_cells=evaluation.groups.vector_cells,
-        seconds=time.perf_counter() - started, engine=engine_result, timings=timings,
-        macros=inputs.book.vba_project, semantics=semantics,
-        by_contract={_cell_name(k): o.message for k, o in sorted(evaluation.contract.items())},
-        application=inputs.book.application)
+    return mismatches, columns, checked, explained, max_abs, max_rel
 
 
 def _agree(cached, value) -> bool:

@@ -83,6 +83,13 @@ class Package:
             return name
         return self._folded.get(name.lower())
 
+    def declared_size(self, part: str) -> int:
+        """Uncompressed size of ``part`` as the zip declares it (never more is inflated)."""
+        return self._names[part].file_size
+
+    def declared_total(self) -> int:
+        return sum(info.file_size for info in self._names.values())
+
     def error(self, part: str, what: str) -> WorkbookReadError:
         """A one-line error naming the file and the part."""
         return WorkbookReadError(f"{self.path}: {part}: {_one_line(what)}")

@@ -19,6 +19,7 @@ from pathlib import Path
 from xml.etree.ElementTree import Element
 
 from workbook_gen.errors import WorkbookReadError
+from workbook_gen.xlsx.apart import read_apart
 from workbook_gen.xlsx.limits import MAX_CELLS, MAX_RATIO, MAX_UNCOMPRESSED, Package
 from workbook_gen.xlsx.model import ExternalLink, Sheet, TableDef, Workbook
 from workbook_gen.xlsx.sheetdata import _LOCAL, _text_of, read_sheet
@@ -88,6 +89,10 @@ def _read(pkg: Package, path: str, max_cells: int) -> Workbook:
                         and not p.startswith("external:")), None)
         book.application = _application(pkg)
         strings = _shared_strings(pkg, sst_part, max_cells) if sst_part else []
+        if read_apart(pkg, sheet_parts, strings, max_cells):  # the big sheets on two cores
+            for sheet, part in sheet_parts:
+                _read_tables(pkg, part, sheet)
+            return book
         budget = max_cells
         for sheet, part in sheet_parts:
             budget -= read_sheet(pkg, part, sheet, strings, budget, max_cells)
