@@ -219,6 +219,21 @@ def _summaries_only(spec: JobSpec, plan: Design, table: Table, runner, progress,
             bar.close()
 
 
+def workbook_chunks(todo: Sequence[Variant], jobs: int) -> list[Sequence[Variant]]:
+    """The variants cut into the chunks a runner is given: the first alone (a local pool
+    runs it in this process to warm the caches its forked workers inherit: one variant
+    is enough, and the other cores wait meanwhile), then chunks of up to 8 variants (a
+    quarter of each worker's share at most), the last two such chunks per worker cut
+    into chunks of at most 2 variants so that the workers finish together."""
+    if not todo:
+        return []
+    first, rest = todo[:1], todo[1:]
+    size = max(1, min(8, math.ceil(len(rest) / (4 * jobs))))
+    tail = min(len(rest), 2 * jobs * size)
+    bulk, last = rest[:len(rest) - tail], rest[len(rest) - tail:]
+    return [first] + runners.chunks(bulk, size) + runners.chunks(last, min(size, 2))
+
+
 def _workbooks(spec: JobSpec, plan: Design, table: Table, runner, folder: Folder,
                resume: bool, progress) -> None:
     done = folder.finished() if resume else {}
@@ -230,10 +245,9 @@ def _workbooks(spec: JobSpec, plan: Design, table: Table, runner, folder: Folder
     bar = _progress(len(plan), len(done), progress)
     journal = folder.journal()
     jobs = getattr(runner, "jobs", 1)
-    size = max(1, min(8, math.ceil(len(todo) / (4 * jobs)))) if todo else 1
     by_index = {v.index: v for v in todo}
     try:
-        for _, outcomes in runner.run(run_chunk, spec, runners.chunks(todo, size)):
+        for _, outcomes in runner.run(run_chunk, spec, workbook_chunks(todo, jobs)):
             for outcome in outcomes:
                 if outcome.data is not None:
                     write_bytes_atomically(folder.path / outcome.row["file"], outcome.data,
