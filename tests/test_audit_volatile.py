@@ -111,7 +111,7 @@ CYCLES = {
     # IF never reads the branch that closes the loop while A3 is FALSE
     "A3": False, "B3": "=C3", "C3": "=IF(A3,B3,5)", "D3": "=B3*2",
     "A4": 0, "B4": "=VLOOKUP(1,A4:C5,2,FALSE)", "A5": 1, "B5": 7, "C4": "=B4+1",
-    # a real cycle: not checked, and neither is what reads it
+    # a real cycle: LibreOffice's Err:522 (#VALUE!) there and in what reads it
     "B6": "=C6+1", "C6": "=B6", "D6": "=B6",
 }
 
@@ -131,10 +131,10 @@ def cycles_recalculated(libreoffice, tmp_path_factory):
 def test_false_cycles_are_evaluated_and_real_ones_reported(cycles_recalculated):
     report = audit(cycles_recalculated)
     assert report.mismatches == []
-    assert set(report.not_checked) == {"Cyc!B6", "Cyc!C6", "Cyc!D6"}
+    assert report.not_checked == {}
     formulas = {ref for ref, v in CYCLES.items() if isinstance(v, str) and v.startswith("=")}
     # (LibreOffice saves the boolean A3 as the formula FALSE())
-    assert report.cells_checked == report.formula_cells - 3 >= len(formulas) - 3
+    assert report.cells_checked == report.formula_cells >= len(formulas)
     cycles = [f for f in report.findings if f.kind == "circular_reference"]
     assert len(cycles) == 1 and "Cyc!B6" in cycles[0].message
 
@@ -158,5 +158,5 @@ def test_a_sheet_listed_without_its_part_is_reported_and_the_rest_audited(
     report = audit(target)
     assert report.mismatches == []
     assert "Gone" in report.not_checked["Cyc!D3"]
-    assert set(report.not_checked) == {"Cyc!D3", "Cyc!B6", "Cyc!C6", "Cyc!D6"}
+    assert set(report.not_checked) == {"Cyc!D3"}
     assert [f.cell for f in report.findings if f.kind == "unreadable_sheet"] == ["Gone"]

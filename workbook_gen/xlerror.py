@@ -25,6 +25,10 @@ class ExcelError(enum.Enum):
     CONNECT = "#CONNECT!"
     BUSY = "#BUSY!"
     UNKNOWN = "#UNKNOWN!"
+    # Not an Excel error: the evaluator's mark for a cell on (or fed by) a circular
+    # reference (evaluator.cycles), shown as 0 (Excel) or #VALUE! (LibreOffice) once the
+    # workbook is evaluated; never read from or written to a file.
+    CIRC = "#CIRCULAR"
 
     @property
     def code(self) -> int:
@@ -46,4 +50,4 @@ class ExcelError(enum.Enum):
 
 _CODES = {err: i + 1 for i, err in enumerate(ExcelError)}
 _BY_CODE = {code: err for err, code in _CODES.items()}
-_BY_TEXT = {err.value: err for err in ExcelError}
+_BY_TEXT = {err.value: err for err in ExcelError if err.name != "CIRC"}

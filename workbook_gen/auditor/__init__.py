@@ -182,7 +182,8 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: st
     if saved is not None:  # volatile cells settle on the values ``given``
         saved = Clock(given, saved.saved, saved.agree, saved.date1904)
     return evaluate_cells({k: inputs.formulas[k] for k in keys}, cached, names,
-                          dialect=dialect, book=inputs.book_info(), saved=saved)
+                          dialect=dialect, book=inputs.book_info(), saved=saved,
+                          iterate=inputs.book.iterate)
 
 
 def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True,
@@ -206,7 +207,8 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
         evaluation = evaluate_cells(inputs.formulas, inputs.constants, inputs.book.defined_names,
                                     vectorize=vectorize, uncheckable=inputs.uncheckable(),
                                     dialect=semantics, book=inputs.book_info(),
-                                    arrays=inputs.arrays, saved=clock)
+                                    arrays=inputs.arrays, saved=clock,
+                                    iterate=inputs.book.iterate)
     except WorkbookReadError as exc:  # the evaluator's refusal (cost), named by file
         aside.cancel()
         raise WorkbookReadError(f"{path}: {exc}") from None

@@ -80,12 +80,16 @@ def check_structure(inputs, evaluation, cell_name) -> list[Finding]:
     for link in book.external_links:
         findings.append(Finding(str(getattr(link, "part", link)), "external_link",
                                 f"the workbook links to {getattr(link, 'target', link)}"))
+    iterate = getattr(book, "iterate", False)
     for cycle in evaluation.cycles:
         path = " -> ".join(cell_name(k) for k in cycle[:8])
         more = f" (and {len(cycle) - 8} more)" if len(cycle) > 8 else ""
         findings.append(Finding(cell_name(cycle[0]), "circular_reference",
                                 f"{len(cycle)} cells refer to each other: {path}{more}; "
-                                "they and their dependents are not checked"))
+                                + ("they and what reads them are not checked (iterative "
+                                   "calculation is on)" if iterate else
+                                   "with iterative calculation off they show 0 (LibreOffice: "
+                                   "Err:522), as does what takes its value from them")))
     findings += _by_function(evaluation.unsupported, "unsupported_function",
                              "{n} cells call {f}, which the evaluator lacks; they and their "
                              "dependents are not checked", cell_name)

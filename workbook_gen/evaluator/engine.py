@@ -7,9 +7,12 @@ ordered by their dependencies (:mod:`graph`); a run that reads its own rows, or 
 part in a cycle of runs, is split into single cells.
 
 Documented choices:
-- a cell in a circular reference gets ``#REF!`` (Excel shows 0 with a warning; an
-  error can never pass for a number) and each cycle is reported once; the rest of the
-  workbook is still evaluated;
+- circular references are followed as Excel follows them with iterative calculation off
+  (:mod:`cycles`): a cell on a run-time cycle, and what takes its value, shows 0 (Excel)
+  or ``#VALUE!`` (LibreOffice's Err:522 once exported) and is checked against that; each
+  cycle is reported with its cells; a cycle of the static references that the values do
+  not take is evaluated normally. With iterative calculation on (``iterate``), a run-time
+  cycle's component is not checked (Excel's iteration is not modelled);
 - every cell that cannot be recomputed, and every cell that reads one (directly or
   through others), is in ``not_checked`` with the reason (:mod:`taint`);
 - a formula that does not parse gets ``#NAME?`` and its message in ``syntax_errors``;
@@ -33,6 +36,8 @@ import re
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+
+import numpy as np
 
 from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.evaluator import cycles, graph, volatile as vol
@@ -120,14 +125,16 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
                    uncheckable: Mapping[Cell, str] | None = None,
                    dialect: str = "excel", book: BookInfo | None = None,
                    arrays: Mapping[Cell, tuple[str, tuple[int, int]]] | None = None,
-                   saved: vol.Clock | None = None) -> Evaluation:
+                   saved: vol.Clock | None = None, iterate: bool = False) -> Evaluation:
     """Recompute every formula (texts without '=') of a workbook; see the module doc.
 
     ``uncheckable``: cells among ``constants`` that are formulas the caller could not
     hand over (with the reason): their readers are not checked either. ``book``: sheet
     order, sheet-scoped names and tables (structured references). ``arrays``: array
     formulas, ``{master cell: (text, (last row, last col))}``; the values of every cell
-    they fill are in ``values``. ``saved``: check volatile cells by contract (see above)."""
+    they fill are in ``values``. ``saved``: check volatile cells by contract (see above).
+    ``iterate``: the workbook enables iterative calculation (cells on a circular reference
+    are then not checked)."""
     if dialect not in fx.registry.DIALECTS:
         raise ValueError(f"unknown dialect {dialect!r}")
     book = book or BookInfo()
@@ -201,15 +208,9 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     result.seconds["graph"] = time.perf_counter() - clock
     spent = {"vector": 0.0, "scalar": 0.0}
     for component in components:
-        if graph.is_cycle(component, deps) and not _settle_cycle(
-                [units[u] for u in component], [shapes[u] for u in component], taint, result,
-                store, name_table, dialect):
-            cells = sorted(c for u in component for c in units[u].cells())
-            result.cycles.append(cells)
-            where = _where(cells[0]) + (f" and {len(cells) - 1} more" if len(cells) > 1 else "")
-            for cell in cells:
-                store.put(*cell, CYCLE_VALUE)
-                _source(result, taint, cell, cell, f"circular reference ({where})")
+        if graph.is_cycle(component, deps):
+            _cycle([units[u] for u in component], [shapes[u] for u in component], taint,
+                   result, store, name_table, dialect, iterate)
             continue
         for u in component:
             head = (units[u].sheet, units[u].first, units[u].col)
@@ -234,6 +235,8 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
             spent["vector" if units[u].block is not None else "scalar"] += (
                 time.perf_counter() - clock)
     result.seconds.update(spent)
+    if result.cycles:
+        _show_circular(store, cycles.shown(dialect))
     for u in units:
         if u.block is not None:
             result.groups.vector_groups += 1
@@ -375,29 +378,44 @@ def _spread(unit: Unit, shaped: tuple, taint: Taint, result: Evaluation,
                     taint.add(unit.sheet, unit.col, cell[1], cell[1], origin)
 
 
-def _settle_cycle(members: list[Unit], shaped: list, taint: Taint, result: Evaluation,
-                  store: Store, names: Names, dialect: str) -> bool:
-    """A cycle of the reference graph that the values do not take (:mod:`cycles`): its
-    cells evaluated, True; a real cycle: False (nothing marked)."""
-    if any(m.area is not None or vol.calls(m.node) for m in members):
-        return False  # Excel reads every cell an array formula mentions: a cycle there is real
-    try:
-        settled = cycles.settle(members, Unit.cells, lambda c: store.get(*c),
-                                lambda c, v: store.put(*c, v),
-                                lambda unit: _fresh(store) or evaluate_unit(unit, store, names,
-                                                                        dialect))
-    except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
-            AttributeError, RecursionError) as exc:
-        log.warning("evaluator failure in a cycle at %s: %r", _where(members[0].cells()[0]), exc)
-        settled = False
-    _fresh(store)  # rectangles read while the values moved
-    if not settled:
-        return False
+def _cycle(members: list[Unit], shaped: list, taint: Taint, result: Evaluation,
+           store: Store, names: Names, dialect: str, iterate: bool) -> None:
+    """A cyclic component of the reference graph, evaluated as Excel does with iteration
+    off (:mod:`cycles`): the cells on a run-time cycle are reported and hold
+    ``cycles.CIRCULAR`` (0 once shown), like what reads them; the other cells are
+    computed. With iterative calculation on (not modelled), a run-time cycle makes the
+    whole component not checked; so does a component too large or a failure."""
+    cells = sorted(c for m in members for c in m.cells())
+    found = None
+    if len(cells) <= cycles.MAX_CELLS:
+        try:
+            simple = not any(m.area is not None or vol.calls(m.node) for m in members)
+            if simple and cycles.settle(members, Unit.cells, lambda c: store.get(*c),
+                                        lambda c, v: store.put(*c, v),
+                                        lambda unit: _fresh(store) or evaluate_unit(
+                                            unit, store, names, dialect)):
+                found = []
+            else:
+                found = cycles.run(members, Unit.cells, store, lambda unit, view: evaluate_unit(
+                    unit, store, names, dialect, view=view))
+        except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
+                AttributeError, RecursionError) as exc:
+            log.warning("evaluator failure in a cycle at %s: %r", _where(cells[0]), exc)
+        _fresh(store)  # rectangles read while the values moved
+    if found is None or (iterate and found):
+        result.cycles.extend(found or [cells])
+        where = _where(cells[0]) + (f" and {len(cells) - 1} more" if len(cells) > 1 else "")
+        why = ("with iterative calculation on (not modelled)" if found else
+               "too large or not evaluated" if len(cells) > cycles.MAX_CELLS else "")
+        for cell in cells:
+            store.put(*cell, CYCLE_VALUE)
+            _source(result, taint, cell, cell, f"circular reference ({where}) {why}".strip())
+        return
+    result.cycles.extend(found)
     for unit, shape in zip(members, shaped):
         head = (unit.sheet, unit.first, unit.col)
         if taint or shape[1] or head in result.unsupported or head in result.volatile:
             _spread(unit, shape, taint, result)
-    cells = [c for m in members for c in m.cells()]
     spoiled = next((c for c in cells if c in result.not_checked), None)
     if spoiled is not None:  # what reads what inside the component is not known: all of it
         why = result.not_checked[spoiled]
@@ -405,10 +423,18 @@ def _settle_cycle(members: list[Unit], shaped: list, taint: Taint, result: Evalu
             if cell not in result.not_checked:
                 result.not_checked[cell] = f"depends on {_where(spoiled)}: {why}"
                 taint.add(cell[0], cell[2], cell[1], cell[1], spoiled)
-    return True
 
 
 def _fresh(store: Store) -> None:
+    store.rect_cache.clear()
+
+
+def _show_circular(store: Store, shown) -> None:
+    """Cells on or fed by a circular reference, as the saving engine shows them."""
+    code = ExcelError.CIRC.code
+    for (sheet, col), column in list(store.cols.items()):
+        for row in np.nonzero(column.err == code)[0].tolist():
+            store.put(sheet, row, col, shown, float(column.scale[row]))
     store.rect_cache.clear()
 
 

@@ -107,21 +107,26 @@ def rects(unit: Unit, shaped: tuple) -> list[graph.Rect]:
             for s in shaped[0]]
 
 
-def evaluate_unit(unit: Unit, store: Store, names: Names, dialect: str = "excel") -> None:
-    resolver = SheetResolver(store, names, unit.sheet)
+def evaluate_unit(unit: Unit, store: Store, names: Names, dialect: str = "excel",
+                  view=None) -> None:
+    """Evaluate a unit into ``store``; ``view``: what its formula reads instead of the store
+    (the on-demand view of a cycle, :mod:`cycles`; the operand scale still reads the store
+    directly, so that it asks for no cell the formula does not read)."""
+    scaler = SheetResolver(store, names, unit.sheet)
+    resolver = scaler if view is None else SheetResolver(view, names, unit.sheet)
     cell = (unit.sheet, unit.first, unit.col)
     if unit.area is not None:
         from workbook_gen.formula.arrays import evaluate_array, spread
         rows, cols = unit.area[0] - unit.first + 1, unit.area[1] - unit.col + 1
         values = spread(evaluate_array(unit.node, resolver, dialect, cell), rows, cols)
-        scale = cell_scale(unit.node, resolver)
+        scale = cell_scale(unit.node, scaler)
         for i, row in enumerate(values):
             for j, value in enumerate(row):
                 store.put(unit.sheet, unit.first + i, unit.col + j, value, scale)
         return
     if unit.block is None:
         value = evaluate(unit.node, resolver, dialect=dialect, cell=cell)
-        store.put(unit.sheet, unit.first, unit.col, value, cell_scale(unit.node, resolver))
+        store.put(unit.sheet, unit.first, unit.col, value, cell_scale(unit.node, scaler))
         return
     reference = Evaluator(resolver, dialect, None, cell)
     reference.ctx.intersect = False  # a part computed once must not depend on the row

@@ -132,6 +132,7 @@ class Workbook:
     external_links: list[ExternalLink]
     other_sheets: list[tuple[str, str]]  # (name, kind) of chartsheets, dialog sheets, ...
     date1904: bool = False
+    iterate: bool = False  # calcPr iterate="1": iterative calculation of circular references
     vba_project: str | None = None  # the part holding macros (xl/vbaProject.bin), never run
     application: str | None = None  # docProps/app.xml's Application: the program that saved it
 

@@ -62,6 +62,8 @@ def _read(pkg: Package, path: str, max_cells: int) -> Workbook:
         book = Workbook(path, [], {}, [], [])
         pr = _child(root, "workbookPr")
         book.date1904 = pr is not None and pr.get("date1904", "0") in ("1", "true")
+        calc = _child(root, "calcPr")
+        book.iterate = calc is not None and calc.get("iterate", "0") in ("1", "true")
         sheet_parts: list[tuple[Sheet, str]] = []
         by_index: dict[int, Sheet] = {}
         for index, el in enumerate(_children(_child(root, "sheets"), "sheet")):

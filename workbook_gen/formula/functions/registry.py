@@ -138,6 +138,11 @@ def call(name: str, args: list, ctx: Context | None = None) -> Value | Range:
     entry = REGISTRY[name]
     ctx = ctx or Context()
     if not arity_ok(entry, len(args)):
+        if ctx.dialect == "libreoffice":  # an argument's error first (LibreOffice 7.4:
+            # FLOOR(undefined_name,1,2) is #NAME?, FLOOR(1.2,1,2) #VALUE!)
+            first = next((a for a in args if isinstance(a, ExcelError)), None)
+            if first is not None:
+                return first
         return ExcelError.VALUE
     if not entry.lazy:
         args = [ctx.scalar(a) if entry.kind(i) == "scalar" else a for i, a in enumerate(args)]
