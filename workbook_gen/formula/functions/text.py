@@ -8,6 +8,7 @@ import math
 import re
 
 from workbook_gen.formula.functions import coerce as c
+from workbook_gen.formula.functions.numformat import format_value
 from workbook_gen.formula.functions.registry import register
 from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
@@ -263,48 +264,6 @@ def format_number(x: float, decimals: int, grouping: bool) -> str:
     return ("-" if r < 0 else "") + body
 
 
-_NUMERIC_CORE = re.compile(r"[#0,]*(?:\.[#0]*)?%?")
-
-
-def _literal(text: str) -> str:
-    """Literal characters of a format: quotes and backslash escapes removed."""
-    return re.sub(r'"([^"]*)"|\\(.)', lambda m: m.group(1) if m.group(1) is not None
-                  else m.group(2), text)
-
-
-def _format_section(x: float, fmt: str, ctx) -> str | ExcelError:
-    from workbook_gen.formula.functions.date import format_date
-    f = fmt.strip()
-    if f.upper() in ("", "GENERAL"):
-        return c.number_to_text(x)
-    from workbook_gen.formula.functions.datetext import FRACTION
-    bare = FRACTION.sub("", re.sub(r'"[^"]*"', "", f))  # "ss.000": seconds, not digits
-    if re.search(r"[dmyhs]", bare, re.IGNORECASE) and not re.search(r"[0#]", bare):
-        return format_date(x, f)
-    start = next((i for i, ch in enumerate(f) if ch in "#0"), None)
-    if start is None:
-        return _literal(f)
-    while start > 0 and f[start - 1] in ",.":
-        start -= 1
-    core = _NUMERIC_CORE.match(f, start).group(0)
-    prefix, suffix = _literal(f[:start]), _literal(f[start + len(core):])
-    whole_part, _, frac_part = core.rstrip("%").partition(".")
-    decimals = len(frac_part)
-    if core.endswith("%") or "%" in suffix:
-        x *= 100
-    text = format_number(x, decimals, "," in whole_part)
-    if frac_part.startswith("#"):  # optional digits: "1." for 1 with "#.###", as Excel
-        text = text.rstrip("0")
-    whole_zeros = whole_part.replace(",", "").count("0")
-    sign = "-" if text.startswith("-") else ""
-    whole, dot, frac = text.lstrip("-").partition(".")
-    if whole_zeros == 0 and whole == "0":
-        whole = ""
-    elif len(whole.replace(",", "")) < whole_zeros:
-        whole = whole.replace(",", "").zfill(whole_zeros)
-    return sign + prefix + whole + dot + frac + ("%" if core.endswith("%") else "") + suffix
-
-
 @register("TEXT", "text", 2, 2)
 def _text(ctx, v, fmt):
     f = c.to_text(fmt)
@@ -314,17 +273,10 @@ def _text(ctx, v, fmt):
         return c.to_text(v)
     if isinstance(v, str):
         x = c.text_to_number(v)
-        if isinstance(x, ExcelError):
-            return v
+        if isinstance(x, ExcelError):  # text: the format's text section, if any
+            return format_value(v, f)
         v = x
-    x = c.to_number(v)
-    sections = f.split(";")
-    if len(sections) > 1:
-        if x < 0:
-            return _format_section(-x, sections[1], ctx)
-        if x == 0 and len(sections) > 2:
-            return _format_section(x, sections[2], ctx)
-    return _format_section(x, sections[0], ctx)
+    return format_value(c.to_number(v), f)
 
 
 @register("FIXED", "text", 1, 3)
