@@ -22,13 +22,35 @@ _MONTHS = {m.lower(): i for i, m in enumerate(calendar.month_abbr) if m}
 _MONTHS.update({m.lower(): i for i, m in enumerate(calendar.month_name) if m})
 
 
+_TIME = re.compile(r"(\d+):(\d+)(?::(\d+))?(\.\d*)?\s*([AaPp][Mm])?")
+_LIMIT = 10_000  # a time field read from text is below this; the others within 23:59
+
+
 def _time_part(text: str) -> float | None:
-    m = re.fullmatch(r"(\d{1,2}):(\d{2})(?::(\d{2}(?:\.\d*)?))?\s*([AaPp][Mm])?", text.strip())
+    """A time as text: h:m, h:m:s(.f) or m:s.f (two fields with decimals are minutes and
+    seconds). The first or the last field may run over (up to 9999) when the others are
+    within a clock's range: "23:9999", "0:0:9999", "59:9999.0" read, "24:99", "23:60:9999",
+    "23:10000" do not (pycel's text.xlsx, saved by Excel); a lone trailing dot is ignored."""
+    m = _TIME.fullmatch(text.strip())
     if m is None:
         return None
-    h, mi, s = int(m.group(1)), int(m.group(2)), float(m.group(3) or 0)
-    if m.group(4):
-        h = h % 12 + (12 if m.group(4).lower() == "pm" else 0)
+    a, b = int(m.group(1)), int(m.group(2))
+    frac = m.group(4) or ""
+    if m.group(3) is not None:
+        h, mi, s = a, b, float(m.group(3) + frac.rstrip(".") if frac != "." else m.group(3))
+        ok = mi <= 59 and ((s < 60 and h < _LIMIT) or (h <= 23 and s < _LIMIT))
+    elif len(frac) > 1:  # m:s.f
+        h, mi, s = 0, a, float(m.group(2) + frac)
+        ok = (s < 60 and mi < _LIMIT) or (mi <= 59 and s < _LIMIT)
+    else:
+        h, mi, s = a, b, 0.0
+        ok = (mi <= 59 and h < _LIMIT) or (h <= 23 and mi < _LIMIT)
+    if not ok:
+        return None
+    if m.group(5):
+        if h > 12:
+            return None
+        h = h % 12 + (12 if m.group(5).lower() == "pm" else 0)
     return (h * 3600 + mi * 60 + s) / 86400.0
 
 
@@ -101,8 +123,12 @@ def format_date(x: float, fmt: str) -> str | ExcelError:
     day, rest = divmod(units, 86400 * scale)
     secs, part = divmod(rest, scale)
     ymd = from_serial(day)
-    if isinstance(ymd, ExcelError):
-        return ymd
+    if isinstance(ymd, ExcelError):  # past 9999-12-31: elapsed counts only ([h] of 2958466)
+        if any(t[:1].lower() in "ymdhe" or t.lower() in ("am/pm", "a/p") for t in tokens
+               if not t.startswith(("[", '"', ".")) and len(t) > 0 and t[0].isalpha()
+               and t.lower() not in ("m", "mm", "s", "ss")):
+            return ExcelError.VALUE
+        ymd = (9999, 12, 31)  # not shown
     y, m, d = ymd
     wd = (day + 5) % 7  # Monday 0 ... Sunday 6
     hh, mi, ss = secs // 3600, secs // 60 % 60, secs % 60

@@ -120,7 +120,8 @@ def format_value(v, fmt: str):
     body = _number(x, tokens)
     if isinstance(body, ExcelError):
         return body
-    shown = not digits or float(_digits_of(x, tokens)) != 0
+    shown = not digits or float(_digits_of(x, tokens)) != 0 or (
+        x != 0 and any(t[:1] in "Ee" and t[1:] in ("+", "-") for t in tokens))
     return ("-" if sign and shown else "") + body
 
 
@@ -134,7 +135,9 @@ def _digits_of(x: float, tokens: list[str]) -> str:
     dot = next((i for i, t in enumerate(tokens) if t == "."), len(tokens))
     decimals = sum(1 for t in tokens[dot:] if t in _PLACEHOLDER)
     pct = sum(1 for t in tokens if t == "%")
-    return f"{_round(x * 100 ** pct, decimals):.{decimals}f}"
+    places = [i for i, t in enumerate(tokens) if t in _PLACEHOLDER]
+    scale = _commas(tokens, len(tokens), dot, places)[1]
+    return f"{_round(x * 100 ** pct / 1000 ** scale, decimals):.{decimals}f}"
 
 
 def _round(x: float, d: int) -> float:
@@ -154,7 +157,7 @@ def _number(x: float, tokens: list[str]):
     frac_places = [] if dot is None else [i for i in range(dot + 1, end)
                                            if tokens[i] in _PLACEHOLDER]
     x *= 100 ** sum(1 for t in tokens if t == "%")
-    grouping, scale, dropped = _commas(tokens, int_end, int_places)
+    grouping, scale, dropped = _commas(tokens, end, int_end, int_places + frac_places)
     x /= 1000 ** scale
     exponent = 0
     if exp is not None:
@@ -165,9 +168,6 @@ def _number(x: float, tokens: list[str]):
     out: dict[int, str] = {}
     _lay_integer(whole, int_places, tokens, grouping, out)
     _lay_fraction(frac, frac_places, tokens, out)
-    if dot is not None:  # a comma right after a fraction placeholder is dropped too
-        dropped.update(i for i in range(dot + 1, end)
-                       if tokens[i] == "," and _after_placeholder(tokens, i))
     parts = []
     for i, tok in enumerate(tokens[:end]):
         if i in out:
@@ -188,11 +188,13 @@ def _after_placeholder(tokens: list[str], i: int) -> bool:
     return j >= 0 and tokens[j] in _PLACEHOLDER
 
 
-def _commas(tokens: list[str], int_end: int, int_places: list[int]):
-    """(thousands separators on, scaling commas, commas dropped) of the integer part."""
+def _commas(tokens: list[str], end: int, int_end: int, places: list[int]):
+    """(thousands separators on, scaling commas, commas dropped) of a number part: a comma
+    right after a placeholder separates thousands when an integer placeholder follows it,
+    scales when no placeholder follows at all (``0.0,,``), else is dropped."""
     grouping, scale, dropped = False, 0, set()
-    last = int_places[-1] if int_places else -1
-    for i in range(int_end):
+    last = places[-1] if places else -1
+    for i in range(end):
         if tokens[i] != "," or not _after_placeholder(tokens, i):
             continue
         j = i + 1
