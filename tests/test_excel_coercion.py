@@ -100,3 +100,26 @@ def test_cached_formula_text_is_unescaped():
 def test_ecma_ceiling(formula, expected):
     got = evaluate(parse("=" + formula), DictResolver({}), dialect="excel")
     assert got == expected or (isinstance(got, float) and abs(got - expected) < 1e-12), got
+
+
+def test_char_and_code_use_the_macintosh_set_in_excel_for_mac():
+    """Microsoft's CHAR page: Windows uses the ANSI set, the Macintosh the Macintosh set. The
+    Excel-for-Mac-saved sheetjs stress test caches CHAR(240) as the Apple logo (U+F8FF) and
+    CODE of it as 240; the same cells of a Windows workbook are cp1252's."""
+    from workbook_gen.auditor.inputs import read_inputs
+    from workbook_gen.evaluator import evaluate_cells
+    from workbook_gen.evaluator.book import BookInfo
+    path = "/work/shared/corpus/xlsx/sheetjs__formula_stress_test.xlsx"
+    if not os.path.isfile(path):
+        pytest.fail(f"the corpus is missing: {path}")
+    inputs = read_inputs(path)
+    assert inputs.book.application == "Microsoft Macintosh Excel"
+    got = evaluate_cells(inputs.formulas, inputs.constants, inputs.book.defined_names,
+                         book=inputs.book_info()).values
+    for key in (("Text", 20, 2), ("Text", 21, 2)):
+        assert got[key] == inputs.cached[key], key
+    formulas = {("S", 1, 1): "CHAR(240)", ("S", 2, 1): 'CODE("\u00f0")', ("S", 3, 1): "CHAR(65)"}
+    windows = evaluate_cells(formulas, {}, {}, book=BookInfo(["S"])).values
+    mac = evaluate_cells(formulas, {}, {}, book=BookInfo(["S"], charset="mac_roman")).values
+    assert [windows[k] for k in formulas] == ["\u00f0", 240.0, "A"]
+    assert [mac[k] for k in formulas] == ["\uf8ff", 63.0, "A"]  # no eth in Mac Roman

@@ -60,7 +60,9 @@ class AuditInputs:
                          if s.defined_names}, tables,
                         [name for name, kind in self.book.other_sheets if kind == MISSING_PART],
                         {s.name: frozenset(s.hidden_rows) for s in self.book.sheets
-                         if s.hidden_rows})
+                         if s.hidden_rows},
+                        charset="mac_roman" if "macintosh" in (self.book.application or
+                                                               "").lower() else "cp1252")
 
     @property
     def formula_count(self) -> int:

@@ -38,6 +38,9 @@ class BookInfo:
     unreadable: list[str] = field(default_factory=list)
     # rows hidden (by hand or by a filter) per sheet: SUBTOTAL 101-111 and AGGREGATE skip them
     hidden_rows: dict[str, frozenset[int]] = field(default_factory=dict)
+    # the character set of CHAR and CODE (Microsoft's CHAR page: Windows' ANSI set, cp1252;
+    # the Macintosh character set in Excel for Mac)
+    charset: str = "cp1252"
 
     def table(self, name: str, sheet: str, row: int, col: int) -> Table | None:
         """The table called ``name``, or ("" ) the one holding cell (sheet, row, col)."""

@@ -143,6 +143,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     store = Store(sheets, book.sheets)
     store.unreadable = {s.lower() for s in book.unreadable}
     store.hidden = {store.sheet(s): rows for s, rows in book.hidden_rows.items()}
+    store.charset = book.charset
     store.formula_texts, store.array_formulas = formulas, arrays or {}
     store.put_constants(constants)
     for sheet, row, col in formulas:  # store.note, inline: one call less per formula

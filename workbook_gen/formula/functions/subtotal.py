@@ -40,7 +40,8 @@ _AGGREGATE = {**_SUBTOTAL, 12: "MEDIAN", 13: "MODE.SNGL", 14: "LARGE", 15: "SMAL
               16: "PERCENTILE.INC", 17: "QUARTILE.INC", 18: "PERCENTILE.EXC",
               19: "QUARTILE.EXC"}
 # read the sheet's layout (hidden rows, which cells hold subtotals): evaluated cell by cell
-READS_LAYOUT = frozenset({"SUBTOTAL", "AGGREGATE"})
+READS_LAYOUT = frozenset({"SUBTOTAL", "AGGREGATE",
+                          "CHAR", "CODE"})  # (the workbook's character set: text.py)
 
 
 def _left_out(ctx, arg, hidden: bool, nested: bool, errors: bool):

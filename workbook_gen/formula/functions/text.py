@@ -196,12 +196,22 @@ def _replace(ctx, v, start, n, new):
     return t[:s - 1] + r + t[s - 1 + k:]
 
 
+def _charset(ctx) -> str:
+    """Microsoft's CHAR page: the character set of the operating environment, Windows' ANSI
+    (cp1252) or the Macintosh character set (Excel for Mac: the Excel-saved sheetjs
+    formula_stress_test.xlsx caches CHAR(240) as U+F8FF and CODE of it as 240)."""
+    charset = getattr(ctx.resolver, "charset", None) if ctx is not None else None
+    return charset() if callable(charset) else "cp1252"
+
+
 @register("CHAR", "text", 1, 1)
 def _char(ctx, v):
     k = _count(v)
     if isinstance(k, ExcelError):
         return k
-    return bytes([k]).decode("cp1252", errors="replace") if 1 <= k <= 255 else ExcelError.VALUE
+    if not 1 <= k <= 255:
+        return ExcelError.VALUE
+    return bytes([k]).decode(_charset(ctx), errors="replace")
 
 
 @register("CODE", "text", 1, 1)
@@ -212,7 +222,7 @@ def _code(ctx, v):
     if not t:
         return ExcelError.VALUE
     try:
-        return float(t[0].encode("cp1252")[0])
+        return float(t[0].encode(_charset(ctx))[0])
     except UnicodeEncodeError:
         return 63.0
 
