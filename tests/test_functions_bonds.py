@@ -28,6 +28,9 @@ SPANS = [("DATE(2008,2,15)", "DATE(2017,11,15)"), ("DATE(2011,1,25)", "DATE(2011
 ODD_LAST = [("DATE(2008,2,7)", "DATE(2008,6,15)", "DATE(2007,10,15)"),
             ("DATE(2008,4,20)", "DATE(2008,6,15)", "DATE(2007,12,24)"),
             ("DATE(2008,11,11)", "DATE(2010,3,1)", "DATE(2008,10,15)")]
+# (settlement, maturity, issue, first_coupon): a short and a long odd first period
+ODD_FIRST = [("DATE(2008,11,11)", "DATE(2021,3,1)", "DATE(2008,10,15)", "DATE(2009,3,1)"),
+             ("DATE(2009,1,20)", "DATE(2015,3,1)", "DATE(2008,1,15)", "DATE(2009,3,1)")]
 COUPONS = ["COUPDAYBS", "COUPDAYS", "COUPDAYSNC", "COUPNCD", "COUPNUM", "COUPPCD"]
 
 
@@ -59,6 +62,9 @@ def _cases() -> list[str]:
     for (s, m, last), f, b in itertools.product(ODD_LAST, (1, 2, 4), range(5)):
         out.append(f"ODDLPRICE({s},{m},{last},0.0375,0.0405,100,{f},{b})")
         out.append(f"ODDLYIELD({s},{m},{last},0.0375,99.875,100,{f},{b})")
+    for (s, m, iss, fc), f, b in itertools.product(ODD_FIRST, (1, 2, 4), range(5)):
+        out.append(f"ODDFPRICE({s},{m},{iss},{fc},0.0785,0.0625,100,{f},{b})")
+        out.append(f"ODDFYIELD({s},{m},{iss},{fc},0.0575,84.5,100,{f},{b})")
     for name, b, p, r in itertools.product(("AMORLINC", "AMORDEGRC"), (0, 1, 3, 4), range(0, 9, 2),
                                            (0.15, 0.3, 0.1)):
         out.append(f"{name}(2400,DATE(2008,8,19),DATE(2008,12,31),300,{p},{r},{b})")
@@ -95,6 +101,10 @@ EXCEL = [
      99.87828601),
     ("ODDLYIELD(DATE(2008,4,20),DATE(2008,6,15),DATE(2007,12,24),0.0375,99.875,100,2,0)",
      0.045192),
+    ("ODDFPRICE(DATE(2008,11,11),DATE(2021,3,1),DATE(2008,10,15),DATE(2009,3,1),0.0785,0.0625,"
+     "100,2,1)", 113.597717),
+    ("ODDFYIELD(DATE(2008,11,11),DATE(2021,3,1),DATE(2008,10,15),DATE(2009,3,1),0.0575,84.5,100,"
+     "2,0)", 0.0772455),
     ("AMORLINC(2400,DATE(2008,8,19),DATE(2008,12,31),300,1,0.15,1)", 360.0),
     ("AMORDEGRC(2400,DATE(2008,8,19),DATE(2008,12,31),300,1,0.15,1)", 776.0),
 ]
@@ -197,10 +207,11 @@ def test_excel_saved_file_cached_values():
                             dialect="excel")
     names = ("TBILLEQ", "PRICE", "YIELD", "DISC", "PRICEDISC", "YIELDDISC", "PRICEMAT",
              "YIELDMAT", "DURATION", "MDURATION", "ACCRINT", "ACCRINTM", "INTRATE", "RECEIVED",
-             "AMORLINC", "AMORDEGRC", "ODDLPRICE", "ODDLYIELD", *COUPONS)
+             "AMORLINC", "AMORDEGRC", "ODDLPRICE", "ODDLYIELD", "ODDFPRICE", "ODDFYIELD",
+             *COUPONS)
     checked = 0
     for key, formula in inputs.formulas.items():
         if key[0] == "Finance" and formula.split("(")[0] in names:
             assert same(inputs.cached[key], result.values[key]), (key, formula)
             checked += 1
-    assert checked == 24
+    assert checked == 26

@@ -1,8 +1,9 @@
-"""Securities with an odd last period: ODDLPRICE, ODDLYIELD, by the formulas of Microsoft's
-pages. The odd period from the last interest date to maturity is cut into quasi-coupon
-periods of 12/frequency months counted forward from the last interest date; for the i-th:
-NL_i its normal length (actual days in basis 1, else 360/f or 365/f), DC_i its days up to
-maturity, A_i its days up to settlement, DSC_i its days from settlement to maturity."""
+"""Securities with an odd first or last period: ODDFPRICE, ODDFYIELD, ODDLPRICE, ODDLYIELD,
+by the formulas of Microsoft's pages. An odd period is cut into quasi-coupon periods of
+12/frequency months (counted forward from the last interest date, or back from the first
+coupon); for the i-th: NL_i its normal length (actual days in basis 1, else 360/f or
+365/f), DC_i its days within the odd period, A_i its days up to settlement, DSC_i its days
+from settlement to maturity."""
 
 from __future__ import annotations
 
@@ -77,3 +78,87 @@ def _oddlyield(ctx, settle, maturity, last, rate, pr, redemption, freq, basis=No
         return c.result((red + dcs * cpn - paid) / paid * f / dscs)
     except ZeroDivisionError:
         return ExcelError.NUM
+
+
+# -- odd first period ---------------------------------------------------------------------
+
+def _normal(q0, q1, f, b) -> float:
+    return float((q1 - q0).days) if b == 1 else (365.0 if b == 3 else 360.0) / f
+
+
+def oddf_price(s, m, issue, first, f, b, r, y, red) -> float:
+    """Microsoft's ODDFPRICE (the long-first-period form, which is the short one when the odd
+    period is one quasi-coupon period): quasi-coupon dates run back from first_coupon."""
+    step, eom = 12 // f, dc._month_end(first)
+
+    def q(k):  # k periods before the first coupon
+        return dc.add_months(first, -k * step, eom)
+    nc = 1
+    while q(nc) > issue:
+        nc += 1
+    dc_sum = a_sum = 0.0
+    for k in range(nc, 0, -1):
+        q0, q1 = q(k), q(k - 1)
+        nl = _normal(q0, q1, f, b)
+        start = max(issue, q0)
+        dc_sum += dc.days(start, q1, b) / nl
+        if s > start:
+            a_sum += dc.days(start, min(s, q1), b) / nl
+    k = 0
+    while q(k + 1) > s:  # the quasi-coupon period holding settlement: (q(k+1), q(k)]
+        k += 1
+    nq = k  # whole quasi-coupon periods from its end to the first coupon
+    e = _normal(q(k + 1), q(k), f, b)
+    dsc = dc.days(s, q(k), b) / e
+    n = dc.Schedule(first, m, f).n if first < m else 0  # coupons after the first one
+    v = 1.0 + y / f
+    cpn = 100.0 * r / f
+    price = red / v ** (n + nq + dsc) + cpn * dc_sum / v ** (nq + dsc)
+    price += sum(cpn / v ** (j + nq + dsc) for j in range(1, n + 1))
+    return price - cpn * a_sum
+
+
+def _oddf_args(settle, maturity, issue, first, freq, basis, nums):
+    got = dc.bond_args(settle, maturity, freq, basis, nums)
+    dates = [dc.serial_arg(d) for d in (issue, first)]
+    for v in (got, *dates):
+        if isinstance(v, ExcelError):
+            return v
+    s, m, f, b, xs = got
+    if any(isinstance(dc.from_serial(math.floor(d)), ExcelError) for d in dates):
+        return ExcelError.NUM
+    i, fc = (dc.date_of(math.floor(d)) for d in dates)
+    if not i < s < fc <= m:  # maturity >= first_coupon > settlement > issue
+        return ExcelError.NUM
+    return s, m, i, fc, f, b, xs
+
+
+@register("ODDFPRICE", "finance", 8, 9)
+def _oddfprice(ctx, settle, maturity, issue, first, rate, yld, redemption, freq, basis=None):
+    got = _oddf_args(settle, maturity, issue, first, freq, basis, (rate, yld, redemption))
+    if isinstance(got, ExcelError):
+        return got
+    s, m, i, fc, f, b, (r, y, red) = got
+    if r < 0 or y < 0 or red <= 0:
+        return ExcelError.NUM
+    try:
+        return c.result(oddf_price(s, m, i, fc, f, b, r, y, red))
+    except (ZeroDivisionError, OverflowError):
+        return ExcelError.NUM
+
+
+@register("ODDFYIELD", "finance", 8, 9)
+def _oddfyield(ctx, settle, maturity, issue, first, rate, pr, redemption, freq, basis=None):
+    """The yield at which ODDFPRICE is the price (Newton's method, bisection as a guard)."""
+    from workbook_gen.formula.functions.bonds import _solve
+    got = _oddf_args(settle, maturity, issue, first, freq, basis, (rate, pr, redemption))
+    if isinstance(got, ExcelError):
+        return got
+    s, m, i, fc, f, b, (r, p, red) = got
+    if r < 0 or p <= 0 or red <= 0:
+        return ExcelError.NUM
+    try:
+        y = _solve(lambda y: oddf_price(s, m, i, fc, f, b, r, y, red) - p)
+    except (ZeroDivisionError, OverflowError):
+        return ExcelError.NUM
+    return y if isinstance(y, ExcelError) else c.result(y)
