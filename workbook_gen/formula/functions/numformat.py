@@ -9,7 +9,8 @@ A numeric section is cut into tokens: digit placeholders (``0`` a digit or 0, ``
 digit or nothing, ``?`` a digit or a space), the decimal point (the first ``.``; later
 ones are literal dots), commas, ``%`` (the number times 100 for each, the sign shown in
 place), an exponent (``E+``, ``E-``), and literals (quoted text, ``\\x``, other
-characters; ``*x`` fill and ``_x`` padding as in a cell: nothing and a space). Then:
+characters; ``*x`` fill and ``_x`` padding as in a cell: nothing and a space; ``[...]``
+colours and conditions are not printed, conditions not applied). Then:
 
 * a comma between two integer placeholders turns thousands separators on; commas after
   the last integer placeholder (none after them) divide by 1000 each; another comma
@@ -96,7 +97,7 @@ def format_value(v, fmt: str):
         section, sign = numeric[1], False
     else:
         section, sign = numeric[2], False
-    x = abs(x) if len(numeric) > 1 or x < 0 else x
+    x = abs(x)
     tokens = _tokens(section)
     low = [t.lower() for t in tokens]
     if "general" in low:
@@ -115,19 +116,12 @@ def format_value(v, fmt: str):
                 return out if isinstance(out, ExcelError) else "-" + out
             return ExcelError.VALUE
         return format_date(x, section)
-    if (dates and not _exponent_only(bare)) or "@" in bare:
+    if dates or "@" in bare:  # (an exponent E+ is one token, never a date code)
         return ExcelError.VALUE
     body = _number(x, tokens)
-    if isinstance(body, ExcelError):
-        return body
     shown = not digits or float(_digits_of(x, tokens)) != 0 or (
         x != 0 and any(t[:1] in "Ee" and t[1:] in ("+", "-") for t in tokens))
     return ("-" if sign and shown else "") + body
-
-
-def _exponent_only(bare: list[str]) -> bool:
-    """Are the only letters of a numeric section an exponent (E+, e-)?"""
-    return all(not _DATE_CODE.fullmatch(t) for t in bare)
 
 
 def _digits_of(x: float, tokens: list[str]) -> str:
