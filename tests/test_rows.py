@@ -245,3 +245,24 @@ def test_charts_kept_per_thread_give_the_fresh_bytes():
     thread.start()
     thread.join()
     assert kept == fresh + fresh and other == fresh
+
+
+def test_entries_written_by_package_are_zipfiles_bytes():
+    """package._ZipFile writes the in-memory parts itself: the archive is byte for byte
+    what zipfile writes for the same parts, names, dates and level (twice: the second
+    time from the kept deflated parts)."""
+    from workbook_gen.scene import load_scene
+    from workbook_gen.workbook import package, workbook_bytes
+
+    for _ in range(2):
+        ours = workbook_bytes(load_scene("templates/five_bar.toml", step=15.0), "x.xlsx")
+        theirs = io.BytesIO()
+        with zipfile.ZipFile(io.BytesIO(ours)) as source, \
+                zipfile.ZipFile(theirs, "w", zipfile.ZIP_DEFLATED) as target:
+            assert len(source.infolist()) > 10
+            for info in source.infolist():
+                entry = zipfile.ZipInfo(info.filename, (1980, 1, 1, 0, 0, 0))
+                entry.compress_type = zipfile.ZIP_DEFLATED
+                target.writestr(entry, source.read(info),
+                                compresslevel=package.COMPRESSLEVEL)
+        assert ours == theirs.getvalue()

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import io
 import zipfile
+import zlib
 from enum import Enum
 from functools import partial
 
@@ -46,7 +47,14 @@ class _ZipFile(zipfile.ZipFile):
 
     XlsxWriter offers no compression option: it makes the archive in
     ``Workbook._store_workbook`` with the module name ``ZipFile``, which is this class
-    from the import of this module on (unchanged behaviour for every other file)."""
+    from the import of this module on (unchanged behaviour for every other file).
+
+    ``writestr`` of a part to a ``Stream`` (the in-memory path: a ZipInfo, deflated, a
+    seekable file) writes the entry itself: what zipfile writes (the local header with
+    the final CRC and sizes, which zipfile writes first with zeros and then again over
+    them, then the deflated bytes), without its write handle, and the deflated bytes of
+    a small part kept per process (``_deflated``).  The central directory is zipfile's
+    (``close``)."""
 
     def __init__(self, file, *args, **kwargs):
         self._level = getattr(file, "compresslevel", None)
@@ -59,54 +67,56 @@ class _ZipFile(zipfile.ZipFile):
             compresslevel = self._level  # the in-memory path passes ZipInfo objects
         if isinstance(data, str):
             data = data.encode("utf-8")   # as zipfile does
-        self._part = data if self._level is not None and len(data) <= _KEPT_SIZE else None
-        try:
+        zinfo = zinfo_or_arcname
+        if (self._level is None or compress_type is not None or type(zinfo) is not zipfile.ZipInfo
+                or zinfo.compress_type != zipfile.ZIP_DEFLATED or not self._seekable
+                or not self.fp or self._writing or self.mode != "w"
+                or len(data) * 1.05 > zipfile.ZIP64_LIMIT):
             return super().writestr(zinfo_or_arcname, data, compress_type, compresslevel)
-        finally:
-            self._part = None
+        # zipfile's writestr, _open_to_write and _ZipWriteFile.write/close, in one
+        zinfo._compresslevel = compresslevel
+        zinfo.file_size = len(data)
+        zinfo.flag_bits = 0x00
+        if not zinfo.external_attr:
+            zinfo.external_attr = 0o600 << 16
+        with self._lock:
+            self.fp.seek(self.start_dir)
+            zinfo.header_offset = self.fp.tell()
+            zinfo.compress_size = zinfo.CRC = 0
+            self._writecheck(zinfo)
+            self._didModify = True
+            head, tail = _deflated(data, compresslevel)
+            zinfo.compress_size = len(head) + len(tail)
+            zinfo.CRC = zlib.crc32(data)
+            self.fp.write(zinfo.FileHeader(False))
+            self.fp.write(head)
+            self.fp.write(tail)
+            self.start_dir = self.fp.tell()
+            self.filelist.append(zinfo)
+            self.NameToInfo[zinfo.filename] = zinfo
 
-    def _open_to_write(self, zinfo, force_zip64=False):
-        dest = super()._open_to_write(zinfo, force_zip64)
-        part = getattr(self, "_part", None)
-        if part is not None and dest._compressor is not None:
-            dest._compressor = _Kept(dest._compressor,
-                                     (zinfo.compress_type, zinfo._compresslevel, part))
-        return dest
 
-
-#: Deflated parts kept per process by (method, level, bytes): most parts of a workbook
-#: (styles, theme, charts, drawings, rels, content types) are the same for every design
-#: variant of a scene, and deflate gives the same bytes for the same input.
+#: Deflated parts kept per process by (level, bytes): most parts of a workbook (styles,
+#: theme, charts, drawings, rels, content types) are the same for every design variant
+#: of a scene, and deflate gives the same bytes for the same input.
 _DEFLATED: dict[tuple, tuple[bytes, bytes]] = {}
 _DEFLATED_LIMIT = 512
 _KEPT_SIZE = 1 << 16   # larger parts (the Table, the Checks) differ between variants
 
 
-class _Kept:
-    """The compressor of one ``writestr`` (one ``compress`` of the whole part, then
-    ``flush``): the bytes kept for ``key``, else the real compressor's, then kept."""
-
-    def __init__(self, real, key: tuple):
-        self.real, self.key, self.kept, self.calls = real, key, _DEFLATED.get(key), 0
-        self.out = b""
-
-    def compress(self, data) -> bytes:
-        self.calls += 1
-        if self.calls > 1 or bytes(data) != self.key[2]:
-            raise RuntimeError("a kept part must be compressed in one call")
-        if self.kept is not None:
-            return self.kept[0]
-        self.out = self.real.compress(data)
-        return self.out
-
-    def flush(self) -> bytes:
-        if self.kept is not None:
-            return self.kept[1]
-        tail = self.real.flush()
-        if len(_DEFLATED) >= _DEFLATED_LIMIT:
-            _DEFLATED.clear()
-        _DEFLATED[self.key] = (self.out, tail)
-        return tail
+def _deflated(data: bytes, level: int) -> tuple[bytes, bytes]:
+    """zipfile's deflate of a part (raw deflate at ``level``, one ``compress`` of the
+    whole part, then ``flush``): the two outputs, kept for small parts."""
+    key = (level, data) if len(data) <= _KEPT_SIZE else None
+    found = None if key is None else _DEFLATED.get(key)
+    if found is None:
+        packer = zlib.compressobj(level, zlib.DEFLATED, -15)
+        found = packer.compress(data), packer.flush()
+        if key is not None:
+            if len(_DEFLATED) >= _DEFLATED_LIMIT:
+                _DEFLATED.clear()
+            _DEFLATED[key] = found
+    return found
 
 
 if xlsxwriter.workbook.ZipFile is zipfile.ZipFile:
