@@ -18,7 +18,7 @@ def _add(quantity: str, prefixed: bool, table: dict[str, float]) -> None:
 
 
 _IN = 0.0254
-_add("mass", True, {"g": 1.0, "u": 1.66053886e-24})
+_add("mass", True, {"g": 1.0, "u": 1.660538782e-24})  # (Excel's u: formulas__test EXTRA!U5)
 _add("mass", False, {"sg": 14593.9029372064, "lbm": 453.59237, "ozm": 28.349523125,
                      "grain": 0.06479891, "cwt shweight": 45359.237,
                      "uk_cwt lcwt hweight": 50802.34544, "stone": 6350.29318,
@@ -41,21 +41,28 @@ _add("energy", False, {"HPh hh": 2684519.53769617, "flb": 1.3558179483314,
 _add("power", True, {"W w": 1.0})
 _add("power", False, {"HP h": 745.69987158227, "PS": 735.49875})
 _add("magnetism", True, {"T": 1.0, "ga": 1e-4})
-_add("volume", True, {"l L lt": 1e-3, "m3": 1.0, "ang3": 1e-30})
+_add("volume", True, {"l L lt": 1e-3, "m3 m^3": 1.0, "ang3 ang^3": 1e-30,
+                      "uk_pt": 5.6826125e-4})  # (Excel takes prefixes on uk_pt, and on mph)
 _add("volume", False, {"tsp": 4.92892159375e-6, "tspm": 5e-6, "tbs": 1.478676478125e-5,
                        "oz": 2.95735295625e-5, "cup": 2.365882365e-4, "pt us_pt": 4.73176473e-4,
-                       "uk_pt": 5.6826125e-4, "qt": 9.46352946e-4, "uk_qt": 1.1365225e-3,
+                       "qt": 9.46352946e-4, "uk_qt": 1.1365225e-3,
                        "gal": 3.785411784e-3, "uk_gal": 4.54609e-3, "barrel": 0.158987294928,
-                       "bushel": 0.03523907016688, "ft3": 0.028316846592, "in3": 1.6387064e-5,
-                       "yd3": 0.764554857984, "mi3": 4168181825.44058, "Nmi3": 6352182208.0,
+                       "bushel": 0.03523907016688, "ft3 ft^3": 0.028316846592,
+                       "in3 in^3": 1.6387064e-5, "yd3 yd^3": 0.764554857984,
+                       "mi3 mi^3": 4168181825.44058, "Nmi3 Nmi^3": 6352182208.0,
+                       "ly3 ly^3": 9460730472580800.0 ** 3,
+                       "Picapt3 Picapt^3 Pica3 Pica^3": (_IN / 72) ** 3,
                        "GRT regton": 2.8316846592, "MTON": 1.13267386368})
-_add("area", True, {"m2": 1.0, "ar": 100.0, "ang2": 1e-20})
-_add("area", False, {"uk_acre": 4046.8564224, "us_acre": 4046.87260987425, "ft2": 0.09290304,
-                     "ha": 10000.0, "in2": 0.00064516, "mi2": 2589988.110336,
-                     "Nmi2": 3429904.0, "yd2": 0.83612736, "Morgen": 2500.0})
+_add("area", True, {"m2 m^2": 1.0, "ar": 100.0, "ang2 ang^2": 1e-20})
+_add("area", False, {"uk_acre": 4046.8564224, "us_acre": 4046.87260987425,
+                     "ft2 ft^2": 0.09290304, "ha": 10000.0, "in2 in^2": 0.00064516,
+                     "mi2 mi^2": 2589988.110336, "Nmi2 Nmi^2": 3429904.0,
+                     "yd2 yd^2": 0.83612736, "Morgen": 2500.0,
+                     "ly2 ly^2": 9460730472580800.0 ** 2,
+                     "Picapt2 Picapt^2 Pica2 Pica^2": (_IN / 72) ** 2})
 _add("information", True, {"bit": 1.0, "byte": 8.0})
-_add("speed", True, {"m/s m/sec": 1.0, "m/h m/hr": 1 / 3600})
-_add("speed", False, {"mph": 0.44704, "kn": 1852 / 3600, "admkn": 6080 * 0.3048 / 3600})
+_add("speed", True, {"m/s m/sec": 1.0, "m/h m/hr": 1 / 3600, "mph": 0.44704})
+_add("speed", False, {"kn": 1852 / 3600, "admkn": 6080 * 0.3048 / 3600})
 _TEMPERATURE = {"C": "C", "cel": "C", "F": "F", "fah": "F", "K": "K", "kel": "K",
                 "Rank": "R", "Reau": "Re"}
 
@@ -66,13 +73,15 @@ _BINARY = {"Yi": 2.0 ** 80, "Zi": 2.0 ** 70, "Ei": 2.0 ** 60, "Pi": 2.0 ** 50, "
            "Gi": 2.0 ** 30, "Mi": 2.0 ** 20, "ki": 2.0 ** 10}
 
 
-def _unit(name: str):
-    """(quantity, factor) of a unit, with an optional prefix; None if unknown."""
+def _units(name: str) -> list:
+    """Every reading of a unit name as (quantity, factor): the unit itself first, then a
+    prefix and a unit (Excel reads "pc" as a parsec, or as a picocalorie next to "J")."""
+    out = []
     if name in _UNITS:
         q, f, _ = _UNITS[name]
-        return q, f
+        out.append((q, f))
     if name in _TEMPERATURE:
-        return "temperature", _TEMPERATURE[name]
+        out.append(("temperature", _TEMPERATURE[name]))
     for table in (_BINARY, _PREFIXES):
         for p, scale in table.items():
             rest = name[len(p):]
@@ -80,13 +89,22 @@ def _unit(name: str):
                 if table is _BINARY and _UNITS[rest][0] != "information":
                     continue
                 q, f, _ = _UNITS[rest]
-                if rest in ("m2", "ang2"):
+                if rest.endswith("2") and q == "area":   # a prefix of a length, squared
                     scale **= 2
-                elif rest in ("m3", "ang3"):
+                elif rest.endswith("3") and q == "volume":
                     scale **= 3
-                return q, f * scale
+                out.append((q, f * scale))
             if name.startswith(p) and rest in ("K", "kel"):
-                return "temperature", ("K", scale)
+                out.append(("temperature", ("K", scale)))
+    return out
+
+
+def _pair(a: str, b: str):
+    """The readings of two unit names that measure the same quantity, or None."""
+    for ua in _units(a):
+        for ub in _units(b):
+            if ua[0] == ub[0]:
+                return ua, ub
     return None
 
 
@@ -115,9 +133,10 @@ def _convert(ctx, value, src, dst):
     for t in (a, b):
         if isinstance(t, ExcelError):
             return t
-    ua, ub = _unit(a), _unit(b)
-    if ua is None or ub is None or ua[0] != ub[0]:
+    pair = _pair(a, b)
+    if pair is None:
         return ExcelError.NA
+    ua, ub = pair
     if ua[0] == "temperature":
         return c.result(_from_kelvin(_to_kelvin(x, ua[1]), ub[1]))
     return c.result(x * ua[1] / ub[1])

@@ -1,0 +1,63 @@
+"""Function semantics fixed against Excel's own cached values in formulas__test.xlsx
+(saved by Microsoft Macintosh Excel, 13,487 formula cells; issue 10): each case reads the
+file's formula inputs and Excel's cached result, and evaluates the formula with our
+functions."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import openpyxl
+import pytest
+
+from workbook_gen.formula import functions as fx
+
+PATH = Path("/work/shared/corpus/xlsx/formulas__test.xlsx")
+
+
+@pytest.fixture(scope="module")
+def book():
+    if not PATH.is_file():
+        pytest.fail(f"corpus file missing: {PATH}")
+    values = openpyxl.load_workbook(PATH, data_only=True, read_only=True)
+    formulas = openpyxl.load_workbook(PATH, read_only=True)
+    return values, formulas
+
+
+def _rows(book, sheet, first, last, cols):
+    values, formulas = book
+    v = list(values[sheet].iter_rows(min_row=first, max_row=last, max_col=cols,
+                                     values_only=True))
+    f = list(formulas[sheet].iter_rows(min_row=first, max_row=last, max_col=cols,
+                                       values_only=True))
+    return v, f
+
+
+def test_convert_every_unit_and_prefix_of_the_extra_sheet(book):
+    """EXTRA!T:AR: a unit per row (T), CONVERT(1,T,"base") in U and CONVERT(1,prefix&T,
+    "base") under each prefix of row 1: the ^2/^3 spellings, ly2/ly3, Pica2/Pica3,
+    prefixes on uk_pt and mph, "pc" read as a picocalorie next to "J"."""
+    values, formulas = _rows(book, "EXTRA", 1, 170, 44)
+    prefixes = values[0]
+    simple = re.compile(r'=CONVERT\(1,T(\d+),"([^"]+)"\)')
+    prefixed = re.compile(r'=CONVERT\(1,([A-Z]+)\$1&\$T(\d+),"([^"]+)"\)')
+    checked = 0
+    for vrow, frow in zip(values, formulas):
+        for j, text in enumerate(frow):
+            if not isinstance(text, str):
+                continue
+            if m := simple.fullmatch(text):
+                unit, to = values[int(m.group(1)) - 1][19], m.group(2)
+            elif m := prefixed.fullmatch(text):
+                unit, to = prefixes[j] + values[int(m.group(2)) - 1][19], m.group(3)
+            else:
+                continue
+            got, cached = fx.call("CONVERT", [1.0, unit, to]), vrow[j]
+            if isinstance(cached, str):  # an error: a unit or prefix Excel refuses
+                assert str(got) == cached, (unit, to)
+            else:
+                assert got == pytest.approx(cached, rel=1e-12), (unit, to)
+            checked += 1
+    assert checked >= 1000
+    assert fx.call("CONVERT", [1.0, "pc", "m"]) == pytest.approx(30856775812815500.0)
