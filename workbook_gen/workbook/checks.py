@@ -8,6 +8,7 @@ flags, guarded the same way, that the residuals refer to.
 
 from __future__ import annotations
 
+from functools import lru_cache
 
 import numpy as np
 from xlsxwriter.utility import xl_col_to_name
@@ -32,6 +33,7 @@ TOLERANCE_NAME = "check_tol"
 SKIPPED = "n/a"
 
 
+@lru_cache(maxsize=4096)   # trees are immutable: the same guarded tree for every variant
 def guarded(check: Node) -> Node:
     """The residual where the row is 'ok', else a text that MAX and MIN skip.
 
@@ -40,10 +42,12 @@ def guarded(check: Node) -> Node:
     return if_(eq(Var(STATUS), "ok"), check, SKIPPED)
 
 
+@lru_cache(maxsize=1)
 def cannot_assemble_flag() -> Node:
     return if_(eq(Var(STATUS), "cannot assemble"), 1, 0)
 
 
+@lru_cache(maxsize=1)
 def flagged_flag() -> Node:
     """1 where the row assembles but is flagged (toggle, dead centre, not converged ...)."""
     return if_(eq(Var(STATUS), "ok"), 0, if_(eq(Var(STATUS), "cannot assemble"), 0, 1))

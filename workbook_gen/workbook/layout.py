@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 from xlsxwriter.utility import xl_col_to_name
 
@@ -53,7 +53,11 @@ class TableLayout:
         """``node`` printed for a Table row, or for a Checks row (``on_checks``) where the
         names in ``local`` are columns of the Checks sheet; printed once per tree and
         layout in a process (a batch prints each template's trees once)."""
-        return _printed(node, tuple(self.letters.items()), on_checks, local)
+        return _printed(node, self._letter_items, on_checks, local)
+
+    @cached_property
+    def _letter_items(self) -> tuple[tuple[str, str], ...]:
+        return tuple(self.letters.items())
 
     def column(self, name: str, absolute: bool = False) -> str:
         """The whole data range of a column, e.g. ``Table!C$2:C$38``."""

@@ -151,10 +151,16 @@ _DRAWING_XML: dict[str, str] = {}
 _DRAWING_XML_LIMIT = 256
 
 
+_PLAIN_TYPES = frozenset((type(None), bool, int, float, str))
+
+
 def _plain(value) -> bool:
+    kind = type(value)
+    if kind in _PLAIN_TYPES:
+        return True
     if isinstance(value, (list, tuple)):
-        return all(_plain(v) for v in value)
-    return value is None or isinstance(value, (bool, int, float, str, Enum))
+        return all(type(v) in _PLAIN_TYPES or _plain(v) for v in value)
+    return isinstance(value, (bool, int, float, str, Enum))
 
 
 def _drawing_key(drawing) -> str | None:
