@@ -143,6 +143,9 @@ MISC = [
     "T(Data!$A$1:$B$2)", "T(Data!$F$1:$F$2)", 'HYPERLINK("http://example.com","see")',
     'HYPERLINK("http://example.com")', "SUM(OFFSET(Data!$A$1:$B$2,0,0,1,))",
     "SUM(OFFSET(Data!$A$1:$B$2,0,0,,1))", "SUM(OFFSET(Data!$A$1:$B$2,1,,))",
+    # ASC: full-width to half-width (helper corpb3)
+    'ASC("ＥＸＣＥＬ")', 'ASC("エクセル")', 'ASC("ガギグ パピ")', 'ASC("１２３　ａｂｃ")',
+    'ASC("。「」ー")', "ASC(65.8)", "ASC(Data!$C$1)", 'ASC("half ｶﾅ")',
 ]
 FAMILIES = {"distributions": DISTRIBUTIONS, "stattests": STATTESTS, "complex": COMPLEX,
             "engineering": ENGINEERING, "database": DATABASE, "matrix": MATRIX,
@@ -192,6 +195,7 @@ EXCEL = [
     ("PERCENTRANK.EXC({1,2,3,6,6,6,7,8,9},7)", 0.7),
     ("PERCENTRANK.INC({13,12,11,8,4,3,2,1,1,1},8)", 0.666),
     ("GAMMALN(4)", 1.791759469), ("BESSELJ(1.9,2)", 0.329925829), ("BESSELI(1.5,1)", 0.981666428),
+    ('ASC("ＥＸＣＥＬ")', "EXCEL"),
     ("BESSELK(1.5,1)", 0.277387804), ("BESSELY(2.5,1)", 0.145918138), ("PERMUTATIONA(3,2)", 9.0), ("MULTINOMIAL(2,3,4)", 1260.0),
 ]
 
