@@ -19,6 +19,7 @@ import pytest
 from workbook_gen import audit
 from workbook_gen.engines.libreoffice import recalculate
 from workbook_gen.formula import functions as fx
+from workbook_gen.formula.values import Range
 
 CORPUS = Path("/work/shared/corpus/xlsx")
 VALUES = [1234567.89, 890123.456789, 0.5, -1234.5, 0, 5, 0.000123, 123456789, -0.004]
@@ -120,3 +121,47 @@ def test_time_texts_and_elapsed_counts():
     assert _ours("59:9999.0", "#.#####") == ".1567"
     assert _ours(-1.0, "[h]") == "-24" and _ours(-1.0, "[h]:m") == "#VALUE!"
     assert _ours(2958466.0, "[h]") == "71003184" and _ours(2958466.0, "yy") == "#VALUE!"
+
+
+@pytest.fixture(scope="module")
+def formulas_test():
+    path = CORPUS / "formulas__test.xlsx"
+    if not path.is_file():
+        pytest.fail(f"corpus file missing: {path}", pytrace=False)
+    return openpyxl.load_workbook(path, data_only=True)
+
+
+BIG = "123456789076754345682.2121234567832131341"
+
+
+@pytest.mark.parametrize("cell, call", [  # formulas test.xlsx (saved by Excel): its cells
+    ("EXTRA!A4", ("TEXT", [1.23, '#"°F""'])),                 # an unclosed quote
+    ("EXTRA!A35", ("TEXT", [2.0, "[<=1]a;[=2]xx;xcx"])),      # conditions
+    ("EXTRA!A36", ("TEXT", [3.0, "[<=1]a;[=2]aa;xxx"])),
+    ("EXTRA!A37", ("TEXT", [130.0, "m mm mmm mmmm mmmmm mmmmmm mmmmmmm"])),  # long code runs
+    ("EXTRA!A38", ("TEXT", [130.0, "d dd ddd dddd ddddd dddddd"])),
+    ("EXTRA!A39", ("TEXT", [130.0, "y yy yyy yyyy yyyyyy"])),
+    ("EXTRA!A40", ("TEXT", [130.31322, "s ss sss ssss"])),
+    ("EXTRA!A41", ("TEXT", [130.63332, "h hh hhh hhhh"])),
+    ("EXTRA!N4", ("FIXED", [BIG, "3", 0.0])),                 # 15 significant digits
+    ("EXTRA!P4", ("FIXED", [BIG, "3", 2.0])),
+])
+def test_excel_cells_of_formulas_test(formulas_test, cell, call):
+    sheet, ref = cell.split("!")
+    out = fx.call(*call)
+    out = str(out) if isinstance(out, fx.ExcelError) else out
+    assert out == formulas_test[sheet][ref].value
+
+
+@pytest.mark.parametrize("row", [57, 95])
+def test_large_and_small_give_k_error_first(formulas_test, row):
+    """LARGE/SMALL(C:K, k) with an error among the values and an error k: k's error."""
+    ws = formulas_test["STATISTICAL"]
+    values = [[ws.cell(row, col).value for col in range(3, 12)]]
+    values = [[fx.ExcelError.from_text(v) or v if isinstance(v, str) else v
+               for v in values[0]]]
+    name = ws.cell(row, 1).value
+    for col in range(12, 18):  # L..Q hold #N/A, #DIV/0!, ... as k
+        k = fx.ExcelError.from_text(ws.cell(row, col).value)
+        out = fx.call(name, [Range.of(values), k])
+        assert str(out) == ws.cell(row, col + 15).value == str(k)

@@ -102,9 +102,25 @@ def parse_date_text(text: str) -> float | ExcelError:
 
 # -- TEXT's date formats ------------------------------------------------------------------
 
-_DATE_TOKENS = re.compile(r"\[h+\]|\[m+\]|\[s+\]|(?<=s)\.0+|(?<=\])\.0+|yyyy|yy|e+|mmmm|mmm|mm|m|dddd|"
-                          r"ddd|dd|d|hh|h|ss|s|am/pm|a/p|\"[^\"]*\"|.", re.IGNORECASE)
+_DATE_TOKENS = re.compile(r"\[h+\]|\[m+\]|\[s+\]|(?<=s)\.0+|(?<=\])\.0+|y+|e+|m+|d+|"
+                          r"h+|s+|am/pm|a/p|\"[^\"]*\"|.", re.IGNORECASE)
 FRACTION = re.compile(r"(?<=[sS\]])\.0+")  # fractional seconds: "ss.000", "[ss].00"
+
+
+def _code(tok: str) -> str:
+    """Runs of a code longer than its forms read as the longest (yyy, ddddd, hhh, sss) or
+    shortest (y) form; mmmmm is the month's initial (formulas test.xlsx EXTRA!A37:A42)."""
+    low = tok.lower()
+    if not low or low[0] not in "ydhsm" or low.strip(low[0]):
+        return tok
+    n, k = len(low), low[0]
+    if k == "y":
+        return "yy" if n <= 2 else "yyyy"
+    if k == "d":
+        return tok if n <= 4 else "dddd"
+    if k in "hs":
+        return tok if n <= 2 else k * 2
+    return tok if n <= 5 else "mmmm"
 
 
 def format_date(x: float, fmt: str) -> str | ExcelError:
@@ -116,7 +132,7 @@ def format_date(x: float, fmt: str) -> str | ExcelError:
     from workbook_gen.formula.functions.date import from_serial
     if x < 0:
         return ExcelError.VALUE
-    tokens = _DATE_TOKENS.findall(fmt)
+    tokens = [_code(t) for t in _DATE_TOKENS.findall(fmt)]
     digits = max((len(t) - 1 for t in tokens if t.startswith(".")), default=0)
     scale = 10 ** digits
     units = math.floor(x * 86400 * scale + 0.5)
@@ -157,6 +173,8 @@ def format_date(x: float, fmt: str) -> str | ExcelError:
         elif minute:
             mm = mi if elapsed != "h" else mi
             out.append(f"{mm:02d}" if low == "mm" else str(mm))
+        elif low == "mmmmm":
+            out.append(calendar.month_name[m][:1])
         elif low == "mmmm":
             out.append(calendar.month_name[m])
         elif low == "mmm":

@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import math
 import re
+from decimal import Decimal
 
 from workbook_gen.formula.functions import coerce as c
 from workbook_gen.xlerror import ExcelError
@@ -77,8 +78,9 @@ def format_value(v, fmt: str):
     """TEXT(v, fmt) for a number or a text ``v`` (booleans and errors are the caller's)."""
     from workbook_gen.formula.functions.datetext import FRACTION, format_date
     sections = split_sections(fmt)
-    if len(sections) > 4 or any(_is_text_section(s) for s in sections[:-1]):
-        return ExcelError.VALUE
+    if len(sections) > 4 or any(_is_text_section(s) for s in sections[:-1]) or any(
+            t.startswith('"') and (len(t) == 1 or not t.endswith('"')) for t in _tokens(fmt)):
+        return ExcelError.VALUE  # (an unclosed quote: formulas test.xlsx EXTRA!A4)
     text_section = sections[-1] if len(sections) == 4 or _is_text_section(sections[-1]) \
         else None
     numeric = sections[:-1] if text_section is not None else sections
@@ -91,7 +93,14 @@ def format_value(v, fmt: str):
         if any(t in _PLACEHOLDER for t in _tokens(text_section)):
             return ExcelError.VALUE
         return c.number_to_text(x)
-    if len(numeric) == 1 or x > 0 or (x == 0 and len(numeric) == 2):
+    conditions = [_condition(s) for s in numeric]
+    if any(conditions):  # [<=1]a;[=2]b;c: the first section whose condition holds
+        chosen = next((s for s, cond in zip(numeric, conditions)
+                       if cond is None or cond(x)), None)
+        if chosen is None:
+            return ExcelError.VALUE
+        section, sign = chosen, x < 0
+    elif len(numeric) == 1 or x > 0 or (x == 0 and len(numeric) == 2):
         section, sign = numeric[0], len(numeric) == 1 and x < 0
     elif x < 0:
         section, sign = numeric[1], False
@@ -124,6 +133,22 @@ def format_value(v, fmt: str):
     return ("-" if sign and shown else "") + body
 
 
+_CONDITION = re.compile(r"\[(<=|>=|<>|<|>|=)\s*([-+]?\d*\.?\d+(?:[eE][-+]?\d+)?)\]")
+_COMPARE = {"<": float.__lt__, "<=": float.__le__, ">": float.__gt__, ">=": float.__ge__,
+            "=": float.__eq__, "<>": float.__ne__}
+
+
+def _condition(section: str):
+    """The test of a section's ``[<=100]`` condition, or None (formulas test.xlsx EXTRA!A35:
+    TEXT(2,"[<=1]a;[=2]xx;xcx") is xx)."""
+    for tok in _tokens(section):
+        m = _CONDITION.fullmatch(tok)
+        if m:
+            op, bound = m.group(1), float(m.group(2))
+            return lambda x: _COMPARE[op](float(x), bound)
+    return None
+
+
 def _digits_of(x: float, tokens: list[str]) -> str:
     """The rounded digits a section shows of ``x`` (for the sign of a value shown as 0)."""
     dot = next((i for i, t in enumerate(tokens) if t == "."), len(tokens))
@@ -132,6 +157,15 @@ def _digits_of(x: float, tokens: list[str]) -> str:
     places = [i for i, t in enumerate(tokens) if t in _PLACEHOLDER]
     scale = _commas(tokens, len(tokens), dot, places)[1]
     return f"{_round(x * 100 ** pct / 1000 ** scale, decimals):.{decimals}f}"
+
+
+def fixed_digits(x: float, decimals: int) -> str:
+    """``x`` >= 0 in fixed point with ``decimals`` places as Excel shows numbers: 15
+    significant digits, then zeros (FIXED of 1.2345678907675434e20 is
+    123,456,789,076,754,000,000: formulas test.xlsx TEXT!R18)."""
+    if x == 0 or not math.isfinite(x):
+        return f"{x:.{decimals}f}"
+    return f"{Decimal(f'{x:.14e}'):.{decimals}f}"
 
 
 def _round(x: float, d: int) -> float:
@@ -157,7 +191,7 @@ def _number(x: float, tokens: list[str]):
     if exp is not None:
         exponent, x = _scientific(x, len(int_places), tokens[:int_end], len(frac_places))
     r = _round(x, len(frac_places))
-    whole, _, frac = f"{r:.{len(frac_places)}f}".partition(".")
+    whole, _, frac = fixed_digits(r, len(frac_places)).partition(".")
     whole = "" if whole == "0" else whole
     out: dict[int, str] = {}
     _lay_integer(whole, int_places, tokens, grouping, out)

@@ -268,12 +268,12 @@ def _sumproduct(ctx, *args):
 
 
 def _kth(ctx, area, kth, largest: bool):
+    kk = c.to_number(kth)  # k's error first (formulas test.xlsx STATISTICAL!AA57:AF57)
+    if isinstance(kk, ExcelError):
+        return kk
     xs = c.numbers([area], ctx)  # a direct argument converts: LARGE("2.3",1) is 2.3
     if isinstance(xs, ExcelError):
         return xs
-    kk = c.to_number(kth)
-    if isinstance(kk, ExcelError):
-        return kk
     kk = math.ceil(kk)
     if not 1 <= kk <= len(xs):
         return ExcelError.NUM

@@ -8,7 +8,7 @@ import math
 import re
 
 from workbook_gen.formula.functions import coerce as c
-from workbook_gen.formula.functions.numformat import format_value
+from workbook_gen.formula.functions.numformat import fixed_digits, format_value
 from workbook_gen.formula.functions.registry import register
 from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
@@ -266,7 +266,7 @@ def _group(digits: str) -> str:
 def format_number(x: float, decimals: int, grouping: bool) -> str:
     """``x`` with ``decimals`` places (half away from zero) and optional thousands commas."""
     r = _round_half_up(x, decimals)
-    text = f"{abs(r):.{max(decimals, 0)}f}"
+    text = fixed_digits(abs(r), max(decimals, 0))
     whole, _, frac = text.partition(".")
     if grouping:
         whole = _group(whole)
