@@ -61,3 +61,39 @@ def test_convert_every_unit_and_prefix_of_the_extra_sheet(book):
             checked += 1
     assert checked >= 1000
     assert fx.call("CONVERT", [1.0, "pc", "m"]) == pytest.approx(30856775812815500.0)
+
+
+def _evaluate_block(book, sheet, first, last, cols, pick):
+    """Evaluate the formula cells of a block (those whose text ``pick`` accepts) from the
+    block's constant cells, with our evaluator; returns [(cell, formula, ours, cached)]."""
+    from workbook_gen.evaluator import evaluate_cells
+    from workbook_gen.xlerror import ExcelError
+    values, formulas = _rows(book, sheet, first, last, cols)
+    constants, wanted, cached = {}, {}, {}
+    for i, (vrow, frow) in enumerate(zip(values, formulas)):
+        for j, (v, f) in enumerate(zip(vrow, frow)):
+            key = (sheet, first + i, j + 1)
+            if isinstance(f, str) and f.startswith("=") and pick(f):
+                wanted[key], cached[key] = f[1:], v
+            elif v is not None:  # (another formula: its cached value)
+                constants[key] = (ExcelError.from_text(v) or v) if isinstance(v, str) else v
+    result = evaluate_cells(wanted, constants, {})
+    return [(k, wanted[k], result.values[k], cached[k]) for k in wanted]
+
+
+def _same(ours, cached) -> bool:
+    if isinstance(cached, str) and cached.startswith("#"):
+        return str(ours) == cached
+    if isinstance(cached, (int, float)) and not isinstance(cached, bool):
+        return isinstance(ours, float) and ours == pytest.approx(cached, rel=1e-12)
+    return ours == cached
+
+
+def test_xmatch_modes_across_types_and_binary_searches(book):
+    """LOOKUP!R170:Y197 and EXTRA!K70:P95: next smaller/larger across types (numbers <
+    text < FALSE < TRUE, an empty lookup past everything), wildcards with a binary search
+    (#VALUE!), the binary search over descending data, "ß" = "ss"."""
+    cases = (_evaluate_block(book, "LOOKUP", 160, 200, 26, lambda f: "XMATCH(" in f)
+             + _evaluate_block(book, "EXTRA", 70, 95, 17, lambda f: "XMATCH(" in f))
+    wrong = [c for c in cases if not _same(c[2], c[3])]
+    assert len(cases) >= 150 and wrong == []

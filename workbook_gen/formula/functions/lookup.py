@@ -120,21 +120,61 @@ def _bisect(lookup, values: list, typed: bool = False):
     return found
 
 
+def _xcompare(v, lookup) -> int:
+    """XLOOKUP/XMATCH's order over every type: numbers < text < FALSE < TRUE, text
+    without case (casefolded: "ß" is "ss"); an empty lookup value is past everything
+    (formulas__test.xlsx LOOKUP!W171:Y197, EXTRA!L75)."""
+    if lookup is None:
+        return -1
+    ra, rb = c.rank(v), c.rank(lookup)
+    if ra != rb:
+        return -1 if ra < rb else 1
+    if ra == 1:
+        a, b = v.casefold(), lookup.casefold()
+        return (a > b) - (a < b)
+    return c.compare(v, lookup)
+
+
 def _nearest(lookup, values: list, mode: int, reverse: bool):
-    """XLOOKUP/XMATCH modes -1 / 1: exact, else the next smaller / larger (any order)."""
+    """XLOOKUP/XMATCH modes 0, -1, 1: exact, else the next smaller / larger (any order,
+    across types in :func:`_xcompare`'s order)."""
     best = None
     order = range(len(values) - 1, -1, -1) if reverse else range(len(values))
     for i in order:
         v = values[i]
-        if v is None or isinstance(v, ExcelError) or c.rank(v) != c.rank(lookup):
+        if v is None or isinstance(v, ExcelError):
             continue
-        cmp = c.compare(v, lookup)
+        cmp = _xcompare(v, lookup)
         if cmp == 0:
             return i
         if (cmp < 0 and mode < 0) or (cmp > 0 and mode > 0):
-            if best is None or c.compare(v, values[best]) == (1 if mode < 0 else -1):
+            if best is None or _xcompare(v, values[best]) == (1 if mode < 0 else -1):
                 best = i
     return best
+
+
+def _bisect_down(lookup, values: list, mode: int):
+    """XLOOKUP/XMATCH's binary search over descending data (search mode -2): an equal
+    value, else (``mode`` -1) the last probe below the lookup value or (1) the last probe
+    above it; on data not in that order, where the bisection lands (formulas__test.xlsx
+    EXTRA!K80, L87, L92)."""
+    lo, hi, below, above = 0, len(values) - 1, None, None
+    while lo <= hi:
+        mid = (lo + hi) // 2
+        probe = mid
+        while probe >= lo and (values[probe] is None or isinstance(values[probe], ExcelError)):
+            probe -= 1
+        if probe < lo:
+            lo = mid + 1
+            continue
+        cmp = _xcompare(values[probe], lookup)
+        if cmp == 0:
+            return probe
+        if cmp > 0:
+            above, lo = probe, mid + 1
+        else:
+            below, hi = probe, probe - 1
+    return None if mode == 0 else below if mode < 0 else above
 
 
 def _vector(area: Range) -> list | None:
@@ -260,6 +300,10 @@ def _lookup(ctx, lookup, where, result=None):
 
 
 def _xfind(lookup, values, match_mode: int, search_mode: int):
+    if search_mode == 2 and lookup is None:  # past everything: the last value or nothing
+        last = next((i for i in range(len(values) - 1, -1, -1) if values[i] is not None
+                     and not isinstance(values[i], ExcelError)), None)
+        return last if match_mode < 0 else None
     if search_mode == 2 and match_mode != 2:  # binary search over ascending data
         i = _bisect(lookup, values, typed=True)
         if i is not None and c.compare(values[i], lookup) == 0:
@@ -270,9 +314,11 @@ def _xfind(lookup, values, match_mode: int, search_mode: int):
             return i
         j = 0 if i is None else i + 1
         return j if j < len(values) else None
-    reverse = search_mode in (-1, -2)
+    if search_mode == -2:
+        return _bisect_down(lookup, values, match_mode)
+    reverse = search_mode == -1
     if match_mode == 0:
-        return find(lookup, values, 0, wildcards=False, reverse=reverse)
+        return None if lookup is None else _nearest(lookup, values, 0, reverse)
     if match_mode == 2:
         return find(lookup, values, 2, reverse=reverse)
     return _nearest(lookup, values, match_mode, reverse)
@@ -284,8 +330,8 @@ def _modes(match_mode, search_mode):
         if isinstance(x, ExcelError):
             return x
     m, s = int(m), int(s)
-    if m not in (-1, 0, 1, 2) or s not in (-2, -1, 1, 2):
-        return ExcelError.VALUE
+    if m not in (-1, 0, 1, 2) or s not in (-2, -1, 1, 2) or (m == 2 and s in (-2, 2)):
+        return ExcelError.VALUE  # (wildcards with a binary search: #VALUE! in Excel)
     return m, s
 
 
