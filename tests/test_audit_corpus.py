@@ -24,8 +24,10 @@ import pytest
 # (closedxml__functions-excel-2010.xlsx fully audited; helper corpa3): 63 with POI's;
 # MATCH's -1 scan stops past a run equal to the lookup value (pycel__lookup.xlsx): 64;
 # TEXT's number formats placeholder by placeholder (pycel__text.xlsx): 65
-MIN_FULLY_AUDITED = 65
-MIN_RECOMPUTED_CELLS = 56_600
+# 22:35: securities, ODD*, AMOR*, CHAR/CODE in the Mac character set, ASC (helper corpb3):
+# coverage.py 66 of 76, 56,831 of 57,344 evaluated; >= 56,800 recomputed here
+MIN_FULLY_AUDITED = 66
+MIN_RECOMPUTED_CELLS = 56_800
 MAX_DISAGREEING_FILES = 8
 MAX_REFUSED = 0
 # files whose cached values are wrong or odd: the audit is right to report them, always
