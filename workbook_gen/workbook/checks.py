@@ -91,13 +91,13 @@ def residuals(result: Evaluated) -> tuple[dict[str, xm.XArray], dict[str, xm.XAr
 def _cells(column: xm.XArray, ok: xm.XArray) -> tuple[list, np.ndarray]:
     """``cached_values(xm.where(ok, column, "n/a"))`` and that column's error codes,
     without the object arrays for a plain numeric column."""
-    if column.is_text or column.boolean or ok.err.any():
+    if column.is_text or column.boolean or np.count_nonzero(ok.err):
         guarded_column = xm.where(ok, column, xm.const(SKIPPED, len(column.val)))
         return cached_values(guarded_column), guarded_column.err
     picks = ok.val != 0
     cells = [v if p else SKIPPED for v, p in zip(column.val.tolist(), picks.tolist())]
     err = np.where(picks, column.err, 0).astype(np.uint8)
-    if err.any():
+    if np.count_nonzero(err):
         for i in np.flatnonzero(err):
             cells[i] = ExcelError.from_code(int(err[i])).value
     return cells, err
@@ -106,7 +106,7 @@ def _cells(column: xm.XArray, ok: xm.XArray) -> tuple[list, np.ndarray]:
 def _max_abs(cells: list, err: np.ndarray) -> float | str:
     """What MAX(MAX(r),-MIN(r)) gives: the first error of the range if any (Excel's
     MAX propagates it), else the largest magnitude; texts are skipped, none left is 0."""
-    if err.any():
+    if np.count_nonzero(err):
         return ExcelError.from_code(int(err[np.flatnonzero(err)[0]])).value
     numbers = [abs(v) for v in cells if not isinstance(v, str)]
     return max(numbers, default=0.0)

@@ -19,7 +19,7 @@ from xlsxwriter.utility import xl_col_to_name
 
 def _extreme(column: xm.XArray, inputs: np.ndarray, pick) -> tuple[object, object]:
     """What MAX/MIN and INDEX(MATCH(...)) give: the first error of the range if any."""
-    if column.err.any():
+    if np.count_nonzero(column.err):   # (a C call: .any() is Python-level in numpy)
         first = ExcelError.from_code(int(column.err[np.flatnonzero(column.err)[0]])).value
         return first, first
     i = int(pick(column.val))
