@@ -64,21 +64,35 @@ def test_convert_every_unit_and_prefix_of_the_extra_sheet(book):
 
 
 def _evaluate_block(book, sheet, first, last, cols, pick):
-    """Evaluate the formula cells of a block (those whose text ``pick`` accepts) from the
-    block's constant cells, with our evaluator; returns [(cell, formula, ours, cached)]."""
+    """Evaluate the formula cells of a block (those whose text ``pick`` accepts; array
+    formulas over their whole area) from the block's other cells (constants, and other
+    formulas' cached values), with our evaluator: [(cell, formula, ours, cached)]."""
+    from openpyxl.utils.cell import range_boundaries
+    from openpyxl.worksheet.formula import ArrayFormula
+
     from workbook_gen.evaluator import evaluate_cells
     from workbook_gen.xlerror import ExcelError
     values, formulas = _rows(book, sheet, first, last, cols)
-    constants, wanted, cached = {}, {}, {}
-    for i, (vrow, frow) in enumerate(zip(values, formulas)):
-        for j, (v, f) in enumerate(zip(vrow, frow)):
+    constants, wanted, arrays, texts = {}, {}, {}, {}
+    for i, frow in enumerate(formulas):
+        for j, f in enumerate(frow):
             key = (sheet, first + i, j + 1)
-            if isinstance(f, str) and f.startswith("=") and pick(f):
-                wanted[key], cached[key] = f[1:], v
-            elif v is not None:  # (another formula: its cached value)
+            if isinstance(f, ArrayFormula) and pick(f.text):
+                _, _, c2, r2 = range_boundaries(f.ref)
+                arrays[key] = (f.text[1:], (r2, c2))
+                for r in range(key[1], r2 + 1):
+                    for k in range(key[2], c2 + 1):
+                        texts[(sheet, r, k)] = f.text
+            elif isinstance(f, str) and f.startswith("=") and pick(f):
+                wanted[key] = texts[key] = f[1:]
+    for i, vrow in enumerate(values):
+        for j, v in enumerate(vrow):
+            key = (sheet, first + i, j + 1)
+            if key not in texts and v is not None:
                 constants[key] = (ExcelError.from_text(v) or v) if isinstance(v, str) else v
-    result = evaluate_cells(wanted, constants, {})
-    return [(k, wanted[k], result.values[k], cached[k]) for k in wanted]
+    result = evaluate_cells(wanted, constants, {}, arrays=arrays)
+    return [(k, texts[k], result.values[k], values[k[1] - first][k[2] - 1])
+            for k in texts if k[1] <= last and k[2] <= cols]
 
 
 def _same(ours, cached) -> bool:
@@ -97,3 +111,13 @@ def test_xmatch_modes_across_types_and_binary_searches(book):
              + _evaluate_block(book, "EXTRA", 70, 95, 17, lambda f: "XMATCH(" in f))
     wrong = [c for c in cases if not _same(c[2], c[3])]
     assert len(cases) >= 150 and wrong == []
+
+
+def test_criteria_functions_map_over_an_array_of_criteria(book):
+    """{=COUNTIF(F24:J24,{"*ao","","TRUE",TRUE,"*a?"})} and the SUMIF, AVERAGEIF(S),
+    SUMIFS, COUNTIFS, MAXIFS, MINIFS rows: one result per criterion, #N/A past them."""
+    crit = '{"*ao","","TRUE",TRUE,"*a?"}'
+    cases = (_evaluate_block(book, "STATISTICAL", 1, 130, 50, lambda f: crit in f)
+             + _evaluate_block(book, "MATH & TRIG", 60, 90, 50, lambda f: crit in f))
+    wrong = [c for c in cases if not _same(c[2], c[3])]
+    assert len(cases) >= 100 and wrong == []

@@ -114,7 +114,9 @@ class ArrayEvaluator(Evaluator):
                 result = fx.call(node.name, [lambda v=v: v for v in items], self.ctx)
                 return xv.scalar_of(result) if isinstance(result, Range) else result
             return _broadcast(each, args)
-        lifted = [i for i, a in enumerate(args) if entry.kind(i) == "scalar" and _multi(a)]
+        mapped = fx.registry.ARRAY_LIFTED.get(node.name)
+        lifted = [i for i, a in enumerate(args) if _multi(a) and (
+            entry.kind(i) == "scalar" or (mapped is not None and mapped(i)))]
         if not lifted:
             return fx.call(node.name, args, self.ctx)
 

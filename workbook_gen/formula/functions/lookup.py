@@ -321,7 +321,26 @@ def _xfind(lookup, values, match_mode: int, search_mode: int):
         return None if lookup is None else _nearest(lookup, values, 0, reverse)
     if match_mode == 2:
         return find(lookup, values, 2, reverse=reverse)
+    if match_mode == 3:  # Excel 365's regular expression match (REGEXTEST's rule: a match
+        return _regex_find(lookup, values, reverse)  # anywhere in the value's text)
     return _nearest(lookup, values, match_mode, reverse)
+
+
+def _regex_find(lookup, values: list, reverse: bool):
+    import re
+    pattern = c.to_text(lookup)
+    if isinstance(pattern, ExcelError):
+        return pattern
+    try:
+        rx = re.compile(pattern)
+    except (re.error, OverflowError):
+        return ExcelError.VALUE
+    order = range(len(values) - 1, -1, -1) if reverse else range(len(values))
+    for i in order:
+        v = values[i]
+        if v is not None and not isinstance(v, ExcelError) and rx.search(c.to_text(v)):
+            return i
+    return None
 
 
 def _modes(match_mode, search_mode):
@@ -330,8 +349,8 @@ def _modes(match_mode, search_mode):
         if isinstance(x, ExcelError):
             return x
     m, s = int(m), int(s)
-    if m not in (-1, 0, 1, 2) or s not in (-2, -1, 1, 2) or (m == 2 and s in (-2, 2)):
-        return ExcelError.VALUE  # (wildcards with a binary search: #VALUE! in Excel)
+    if m not in (-1, 0, 1, 2, 3) or s not in (-2, -1, 1, 2) or (m >= 2 and s in (-2, 2)):
+        return ExcelError.VALUE  # (wildcards or a regex with a binary search: #VALUE!)
     return m, s
 
 
@@ -346,6 +365,8 @@ def _xmatch(ctx, lookup, where, match_mode=0.0, search_mode=1.0):
     if values is None:
         return ExcelError.VALUE
     i = _xfind(lookup, values, *modes)
+    if isinstance(i, ExcelError):
+        return i
     return ExcelError.NA if i is None else float(i + 1)
 
 
@@ -364,6 +385,8 @@ def _xlookup(ctx, lookup, where, result, if_not_found=None, match_mode=None,
     if values is None:
         return ExcelError.VALUE
     i = _xfind(lookup, values, *modes)
+    if isinstance(i, ExcelError):
+        return i
     if i is None:
         return if_not_found() if if_not_found is not None else ExcelError.NA
     nrows, ncols = out.shape

@@ -104,6 +104,9 @@ class Function:
 
 
 REGISTRY: dict[str, Function] = {}
+# arguments that an array formula maps over although the function reads them as a whole
+# (the criteria of SUMIF, COUNTIFS...): name -> which argument positions
+ARRAY_LIFTED: dict[str, Callable[[int], bool]] = {}
 
 
 def register(name: str, family: str, min_args: int, max_args: int | None = None,

@@ -10,7 +10,7 @@ import numpy as np
 
 from workbook_gen.formula.functions import coerce as c
 from workbook_gen.formula.functions.math import fsum
-from workbook_gen.formula.functions.registry import register
+from workbook_gen.formula.functions.registry import ARRAY_LIFTED, register
 from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
 from workbook_gen.xlmath import kernels as k
@@ -237,6 +237,13 @@ def _xifs(name, fn, empty):
         return c.result(fn(xs)) if xs else empty
     register(name, "stats", 3, -1, "range")(scalar)
 
+
+# an array of criteria in an array formula gives one result per criterion (formulas__test
+# STATISTICAL!AH24:AW24 {=COUNTIF(F24:J24,{"*ao","","TRUE",TRUE,"*a?"})} = {0,1,1,1,0})
+ARRAY_LIFTED.update({"SUMIF": (1).__eq__, "AVERAGEIF": (1).__eq__, "COUNTIF": (1).__eq__,
+                     "COUNTIFS": lambda i: i % 2 == 1})
+ARRAY_LIFTED.update({name: (lambda i: i >= 2 and i % 2 == 0)
+                     for name in ("SUMIFS", "AVERAGEIFS", "MAXIFS", "MINIFS")})
 
 _xifs("SUMIFS", fsum, 0.0)
 _xifs("AVERAGEIFS", lambda xs: fsum(xs) / len(xs), ExcelError.DIV0)
