@@ -80,6 +80,10 @@ def test_generated_function_gives_the_closure_printers_bits(tree, xs, ys, codes,
                            np.array(codes, dtype=np.uint8) * 0)}
     fast, slow = _both(tree, cols, {"p": p, "q": q})
     assert _same(fast, slow), source(tree)
+    # numeric literals as numpy scalars (--summary-only's blocks): the same bits
+    from workbook_gen.expr.fastnum import generate_set
+    broadcast = generate_set((("r", tree),), scalars=True)(cols, {"p": p, "q": q}, ROWS)["r"]
+    assert _same(broadcast, slow), source(tree)
 
 
 def test_shared_subtrees_are_computed_once():
@@ -177,3 +181,35 @@ def test_a_set_of_trees_in_one_function_gives_each_trees_bits():
         fast, slow = generate_set(named)(cols, result.params, result.rows), \
             _sequential(named, cols, result.params, result.rows)
         assert all(_same(fast[k], slow[k]) for k in slow), name
+
+
+def test_zero_bases_of_a_power_give_the_kernels_bits():
+    """0 ^ positive is 0 (the fast path); 0 ^ 0, 0 ^ negative and errors elsewhere go to
+    the kernel: both give compile_numpy's bits, literal exponents as columns or scalars."""
+    from workbook_gen.expr.fastnum import generate_set
+    x, y = Var("x"), Var("y")
+    cols = {"x": _column([0.0, -0.0, 1.5, -2.0, 3.0, 0.0], [0] * ROWS),
+            "y": _column([2.0, 3.0, 0.5, 2.0, -1.0, 1e-3], [0] * ROWS),
+            "z": _column([2.0, 0.0, 1.0, 2.0, 1.0, -1.0], [0] * ROWS)}
+    trees = [x ** 2.0, x ** 3.0, x ** 0.5, x ** y, power(x, Var("z")), (x * 0.0) ** 2.0,
+             power(x + 1.0, 0.5)]
+    for tree in trees:
+        fast, slow = _both(tree, cols, {})
+        broadcast = generate_set((("r", tree),), scalars=True)(cols, {}, ROWS)["r"]
+        assert _same(fast, slow) and _same(broadcast, slow), source(tree)
+        if tree in trees[:3]:   # Excel: 0 ^ positive is 0, no error
+            assert not fast.err[0] and fast.val[0] == 0.0 and fast.val[5] == 0.0
+
+
+def test_scalar_literals_on_long_columns_give_the_kernels_bits():
+    """numpy's own loops for a scalar operand (x ^ 2 computed as x * x) must not be
+    taken: on 20,000 values the broadcast literals give compile_numpy's bits."""
+    from workbook_gen.expr.fastnum import generate_set
+    x = Var("x")
+    values = np.random.default_rng(5).uniform(-300.0, 300.0, 20000)
+    cols = {"x": _column(values, [0] * values.size)}
+    for tree in (x ** 2.0, power(x, 3.0), 2.0 ** (x / 100.0), atan2(x, 2.5), atan2(1.5, x),
+                 x * 0.1 + 3.0, sin(x * 0.01) / 7.0, mod(x, 2.5)):
+        slow = compile_numpy(tree)(cols, {}, values.size)
+        fast = generate_set((("r", tree),), scalars=True)(cols, {}, values.size)["r"]
+        assert _same(fast, slow), source(tree)

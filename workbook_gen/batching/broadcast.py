@@ -22,6 +22,7 @@ import numpy as np
 
 from .. import xlmath as xm
 from ..expr import Bin, Call, Neg, Node, Num, Param, Text, Var
+from ..expr import fastnum
 from ..expr.numeric import Compiled, compile_numpy
 from ..expr.tree import children
 from ..model import select
@@ -60,7 +61,10 @@ class Plan:
         for _, tree in roots:
             self._count(tree)
         for name, tree in roots:
-            self._row_steps.append((name, compile_numpy(self._rewrite(tree, top=True))))
+            self._row_steps.append((name, self._rewrite(tree, top=True)))
+        # every per-row step as one generated function (fastnum: the same bits as
+        # compile_numpy, each distinct subtree and literal once per block)
+        self._rows = fastnum.generate_set(tuple(self._row_steps), scalars=True)
 
     # -- rewriting ---------------------------------------------------------------------
     def _is_rowdep(self, node: Node) -> bool:
@@ -83,7 +87,7 @@ class Plan:
         if name is None:
             name = f"{_HIDDEN}{len(self._hoisted)}"
             self._hoisted[node] = name
-            steps.append((name, compile_numpy(tree)))
+            steps.append((name, tree if steps is self._row_steps else compile_numpy(tree)))
         return name
 
     def _rewrite(self, node: Node, top: bool = False) -> Node:
@@ -125,8 +129,7 @@ class Plan:
             rows[name] = xm.XArray(np.repeat(source.val, n), np.repeat(source.err, n),
                                    source.boolean)
         rows[self.input] = xm.array(np.tile(inputs, count))
-        for name, fn in self._row_steps:
-            rows[name] = fn(rows, {}, count * n)
+        rows.update(self._rows(rows, {}, count * n))
         status = rows.pop("\x00status")
         return rows, status
 

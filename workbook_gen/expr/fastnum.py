@@ -54,8 +54,24 @@ def _heavy(a: tuple) -> xm.XArray:
 
 
 def _slow(fn, *args: tuple) -> tuple:
-    """The ``xlmath`` function itself (errors, text, non-finite results)."""
+    """The ``xlmath`` function itself (errors, text, non-finite results); a scalar
+    literal (``generate_set(..., scalars=True)``) becomes its column first."""
+    if any(a[0].ndim == 0 for a in args):
+        args = _columns(*args)
     return _light(fn(*(_heavy(a) for a in args)))
+
+
+def _scalar(value: float) -> tuple:
+    """A numeric literal as a numpy scalar (no column): numpy broadcasts it with the
+    same float64 operation on every element, so the values are the column's."""
+    return np.float64(value), None, False
+
+
+def _columns(*args: tuple) -> list[tuple]:
+    """The operands with every scalar literal made a column (as ``_const``)."""
+    size = max((a[0].shape for a in args), key=len)
+    return [(np.full(size, a[0]), a[1], a[2]) if a[0].ndim == 0 else a for a in args]
+
 
 
 def _const(value, n: int) -> tuple:
@@ -89,14 +105,25 @@ ADD, SUB, MUL, DIV = (_arith(op, fn) for op, fn in
 
 
 def POW(a: tuple, b: tuple) -> tuple:
-    """kernels.power where no base is 0 and no negative base has a fractional exponent:
-    the valid mask is all true, so the value is POW(x, y)."""
+    """kernels.power where no negative base has a fractional exponent and every zero
+    base has a positive exponent: the kernel's value is POW(x, y) (computed there only
+    where the base is not 0, element by element) with 0 where the base is 0.  A scalar
+    literal is made a column first: numpy's power has its own loop for a scalar
+    exponent (x ^ 2 as x * x), which differs from pow in the last bit."""
+    if a[0].ndim == 0 or b[0].ndim == 0:
+        a, b = _columns(a, b)
     if a[1] is None and b[1] is None:
         x, y = a[0], b[0]
-        if not _count(x == 0) and not _count((x < 0) & (np.floor(y) != y)):
-            v = kernels.POW(x, y)
-            if _finite(v):
-                return v + 0.0, None, False
+        if not _count((x < 0) & (np.floor(y) != y)):
+            zero = x == 0
+            if not _count(zero):
+                v = kernels.POW(x, y)
+                if _finite(v):
+                    return v + 0.0, None, False
+            elif not _count(zero & ~(y > 0)):
+                v = np.where(zero, 0.0, kernels.POW(x, y))
+                if _finite(v):
+                    return v + 0.0, None, False
     return _slow(xm.power, a, b)
 
 
@@ -126,6 +153,8 @@ UNARY = {name: _unary(name) for name in kernels.UNARY}
 
 
 def ATAN2(a: tuple, b: tuple) -> tuple:
+    if a[0].ndim == 0 or b[0].ndim == 0:   # as POW: the kernel's loop over two columns
+        a, b = _columns(a, b)
     if a[1] is None and b[1] is None:
         x, y = a[0], b[0]
         if not _count((x == 0) & (y == 0)):
@@ -173,19 +202,21 @@ def IF(c: tuple, t: tuple, o: tuple) -> tuple:
 
 
 def ISERROR(a: tuple) -> tuple:
-    if a[1] is None:
+    if a[1] is None and a[0].ndim:
         return np.zeros(a[0].shape), None, True
     return _slow(xm.iserror, a)
 
 
 def NOT(a: tuple) -> tuple:
-    if a[1] is None:
+    if a[1] is None and a[0].ndim:
         return (a[0] == 0).astype(float) + 0.0, None, True
     return _slow(xm.not_, a)
 
 
 def _logical(ufunc):
     def apply(*args: tuple) -> tuple:
+        if any(a[0].ndim == 0 for a in args):
+            args = _columns(*args)
         if all(a[1] is None for a in args):
             r = ufunc.reduce(np.array([a[0] != 0 for a in args]), axis=0)
             return r.astype(float) + 0.0, None, True
@@ -195,6 +226,8 @@ def _logical(ufunc):
 
 def _extreme(ufunc):
     def apply(*args: tuple) -> tuple:
+        if any(a[0].ndim == 0 for a in args):
+            args = _columns(*args)
         if all(a[1] is None for a in args):
             v = ufunc.reduce(np.array([a[0] for a in args]), axis=0)
             if _finite(v):
@@ -213,6 +246,7 @@ _CALLS = {"ATAN2": "ATAN2", "MOD": "MOD", "POWER": "POW", "IF": "IF", "ISERROR":
           "MAX": "MAX"}
 _NAMESPACE = {
     "np": np, "_errstate": np.errstate, "_const": _const, "_var": _var, "_heavy": _heavy,
+    "_scalar": _scalar,
     "ADD": ADD, "SUB": SUB, "MUL": MUL, "DIV": DIV, "POW": POW, "NEG": NEG,
     "UNARY": UNARY, "COMPARE": COMPARE, "ATAN2": ATAN2, "MOD": MOD, "IF": IF,
     "ISERROR": ISERROR, "NOT": NOT, "IFERROR": IFERROR,
@@ -221,12 +255,15 @@ _NAMESPACE = {
 }
 
 
+_PI = Call("PI", ())
+
+
 def _negative_zero(tree: Node) -> bool:
     return any(isinstance(k, Num) and math.copysign(1.0, k.value) < 0 for k in walk(tree))
 
 
-def _print(tree: Node, names: dict | None = None, lines: list | None = None
-           ) -> tuple[list[str], list[Node] | None, str]:
+def _print(tree: Node, names: dict | None = None, lines: list | None = None,
+           scalars: bool = False) -> tuple[list[str], list[Node] | None, str]:
     """One line per distinct subtree, children first: the lines, the subtrees in order
     (None where a tree holds a -0 literal: see below) and the root's name.  ``names``
     and ``lines``: those of trees printed before into the same function (a Var whose
@@ -238,13 +275,28 @@ def _print(tree: Node, names: dict | None = None, lines: list | None = None
     # in sign, so a tree holding a -0 literal is printed without sharing.
     negative_zero = _negative_zero(tree)
     key = id if negative_zero else (lambda node: node)
+    varies: dict[Node, bool] = {}
 
-    def emit(node: Node) -> str:
-        found = names.get(key(node))
+    def varying(node: Node) -> bool:
+        """Whether ``node`` reads a column (its value is a column, never a scalar)."""
+        known = varies.get(node)
+        if known is None:
+            known = isinstance(node, (Var, Param, Text)) or any(map(varying, children(node)))
+            varies[node] = known
+        return known
+
+    def emit(node: Node, scalar: bool = False) -> str:
+        # ``scalar``: a literal operand of an operation that also reads a column (numpy
+        # broadcasts it; every operation's result is still a column)
+        literal = scalar and (isinstance(node, Num) or node == _PI)
+        found = names.get(("scalar", key(node)) if literal else key(node))
         if found is not None:
             return found
-        args = [emit(k) for k in children(node)]
-        if isinstance(node, (Num, Text)):
+        inner = scalars and varying(node)
+        args = [emit(k, inner) for k in children(node)]
+        if literal:
+            expr = f"_scalar({'np.pi' if node == _PI else repr(node.value)})"
+        elif isinstance(node, (Num, Text)):
             expr = f"_const({node.value!r}, n)"
         elif isinstance(node, Param):
             expr = f"_const(params[{node.name!r}], n)"
@@ -261,13 +313,14 @@ def _print(tree: Node, names: dict | None = None, lines: list | None = None
         elif node.fn == "PI":
             expr = "_const(np.pi, n)"
         elif node.fn == "IF" and len(args) == 2:
-            expr = f"IF({args[0]}, {args[1]}, _const(0.0, n))"
+            zero = "_scalar(0.0)" if inner else "_const(0.0, n)"
+            expr = f"IF({args[0]}, {args[1]}, {zero})"
         elif node.fn in kernels.UNARY:
             expr = f"UNARY[{node.fn!r}]({args[0]})"
         else:
             expr = f"{_CALLS[node.fn]}({', '.join(args)})"
         name = f"t{len(lines)}"
-        names[key(node)] = name
+        names[("scalar", key(node)) if literal else key(node)] = name
         nodes.append(node)
         lines.append(f"        {name} = {expr}")
         return name
@@ -333,13 +386,15 @@ def _one_by_one(named: tuple[tuple[str, Node], ...]) -> Callable:
     return f
 
 
-def generate_set(named: tuple[tuple[str, Node], ...]) -> Callable:
+def generate_set(named: tuple[tuple[str, Node], ...], scalars: bool = False) -> Callable:
     """``f(columns, params, n) -> {name: XArray}`` for trees evaluated in order, each as
     ``numeric.compile_numpy(tree)(columns, params, n)`` gives it with the results of the
     trees before it added to ``columns`` under their names: one function for a whole
     set (a scene's Table columns, the Checks' terms and residuals), each distinct
     subtree once.  (Tree by tree where a -0 literal or a name read before it is given
-    would make sharing subtrees wrong.)"""
+    would make sharing subtrees wrong.)  ``scalars``: numeric literals are numpy scalars
+    that numpy broadcasts, not columns of ``n`` copies (the same bits, less memory
+    traffic; every result is still a column)."""
     if any(_negative_zero(tree) for _, tree in named):
         return _one_by_one(named)
     names: dict = {}
@@ -354,7 +409,7 @@ def generate_set(named: tuple[tuple[str, Node], ...]) -> Callable:
             lines.append(f"        t{len(lines)} = _var({given})")
             names[Var(name)] = f"t{len(lines) - 1}"
             continue
-        _, _, last = _print(tree, names, lines)
+        _, _, last = _print(tree, names, lines, scalars)
         results.append((name, f"_heavy({last})"))
         names[Var(name)] = last
     out = ", ".join(f"{n!r}: {r}" for n, r in results)
