@@ -69,3 +69,34 @@ def test_excel_scan_on_ascending_data():
         assert (str(ours) if isinstance(ours, fx.ExcelError) else ours) == excel, (col, x)
     report = audit(path)
     assert report.mismatches == [] and report.not_checked == {}
+
+
+ARRAYS = {  # formulas test.xlsx LOOKUP rows: the array constant each row looks up
+    56: [-1.1, 2.1, 3.1, 4.1], 57: ["a", 2.1, "b", 4.1], 58: [False, 2.1, True, 4.1],
+    59: [4.1, 2.1, 3.1, 1.1], 60: ["b", 4.1, "a", 1.1], 61: ["", 4.1, "a", 1.1],
+    62: [True, 4.1, False, 1.1], 63: [True, 4.1, False, "b"], 64: [True, False, "a", "b"],
+    65: [-1.1, 2.1, 3.1, 4.1], 66: ["a", 2.1, "c bau c", 4.1], 67: [False, 2.1, True, 4.1],
+    68: [4.1, 3.1, 2.1, 1.1], 69: ["c bau c", 4.1, "a", 1.1], 70: ["", 4.1, "a", 1.1],
+    71: [True, 4.1, False, 1.1], 72: [True, 4.1, False, "c bau c"],
+    73: [True, False, "a", "c bau c"],
+}
+
+
+def test_approximate_lookup_over_mixed_types():
+    """Excel's bisection over arrays of mixed types (formulas test.xlsx, saved by Excel,
+    LOOKUP!X56:Y73): a value of another type at the middle sends the search back to the
+    previous comparable value, which is then only a candidate, even when equal."""
+    path = CORPUS / "formulas__test.xlsx"
+    if not path.is_file():
+        pytest.fail(f"corpus file missing: {path}", pytrace=False)
+    ws = openpyxl.load_workbook(path, data_only=True)["LOOKUP"]
+    for row, items in ARRAYS.items():
+        array = Range.array_of([items])
+        for col in ("X", "Y"):
+            src = ws[f"{'I' if col == 'X' else 'J'}{row if row >= 65 else 56}"].value
+            if row < 65:
+                ours = fx.call("LOOKUP", [src, array])
+            else:
+                ours = fx.call("MATCH", [src, array])
+            ours = str(ours) if isinstance(ours, fx.ExcelError) else ours
+            assert ours == ws[f"{col}{row}"].value, (col, row, src)

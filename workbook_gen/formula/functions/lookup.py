@@ -102,12 +102,19 @@ def _bisect(lookup, values: list, typed: bool = False):
     while lo <= hi:
         mid = (lo + hi) // 2
         probe = mid
+        v = values[mid]
+        # a value of another type at mid: the one found stepping back is only a candidate,
+        # even if equal (formulas test.xlsx LOOKUP!X60: LOOKUP("b",{"b",4.1,"a",1.1}) is
+        # "a"; Y71: MATCH(TRUE,{TRUE,4.1,FALSE,1.1}) is 3)
+        other = not typed and v is not None and not isinstance(v, ExcelError) and not usable(v)
         while probe >= lo and not usable(values[probe]):
             probe -= 1
         if probe < lo:
             lo = mid + 1
             continue
         cmp = c.compare(values[probe], lookup)
+        if cmp == 0 and other:
+            cmp = -1
         if cmp == 0:
             while probe + 1 < len(values) and usable(values[probe + 1]) and (
                     c.compare(values[probe + 1], lookup) == 0):
