@@ -34,7 +34,7 @@ import numpy as np
 from .compare import ColumnStats, compare, compare_numbers
 from .findings import find as find_findings
 from .inputs import AuditInputs, read_inputs
-from .mechanics import check_mechanics
+from .mechanics import check_mechanics, noise_trees
 from .report import AuditReport, EngineResult, Mismatch
 from .saved import last_saved
 from .structure import check_structure
@@ -215,8 +215,9 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
     t = time.perf_counter()
     semantics = dialect_of(inputs.book.application)  # the engine that saved the file
     clock = Clock(inputs.cached, last_saved(path), _agree, inputs.book.date1904)
-    # the aggregates' local evaluation needs nothing of the full one: on the other core
-    aside = Forked(_local_values, inputs, semantics, clock)
+    # the aggregates' local evaluation and the reference check's formula trees need
+    # nothing of the full evaluation: on the other core
+    aside = Forked(_beside_evaluation, inputs, semantics, clock)
     try:
         evaluation = evaluate_cells(inputs.formulas, inputs.constants, inputs.book.defined_names,
                                     vectorize=vectorize, uncheckable=inputs.uncheckable(),
@@ -233,7 +234,7 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
     skipped = evaluation.not_checked
 
     values, constants = evaluation.values, inputs.constants
-    local = aside.result()
+    local, trees = aside.result()
     timings["evaluate_all"] = time.perf_counter() - t
     # "parse": cutting the columns into runs equal in R1C1 form (the formula text analysis);
     # "evaluate": ordering, vectorised and cell-by-cell evaluation (both passes)
@@ -249,7 +250,8 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
                                                                *rect)
 
     # the reference model's check on the other core while this one compares and finds
-    aside = Forked(_timed, check_mechanics, inputs.book, value_of, evaluation.store.column_values)
+    aside = Forked(_timed, check_mechanics, inputs.book, value_of, evaluation.store.column_values,
+                   trees)
     try:
         mismatches, columns, checked, explained, max_abs, max_rel = _compare(
             inputs, evaluation, local, semantics, value_of, timings)
@@ -296,9 +298,11 @@ class _Local:
     seconds: dict
 
 
-def _local_values(inputs: AuditInputs, dialect: str, clock: Clock) -> _Local:
+def _beside_evaluation(inputs: AuditInputs, dialect: str, clock: Clock):
+    """(the aggregates' local evaluation, ``noise_trees``), both compact to pickle."""
     local = _local_evaluation(inputs, dialect=dialect, saved=clock)
-    return _Local(dict(local.values), dict(local.operands_scale), local.seconds)
+    return (_Local(dict(local.values), dict(local.operands_scale), local.seconds),
+            noise_trees(inputs.book))
 
 
 def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, timings):

@@ -17,7 +17,7 @@ from xlsxwriter.utility import xl_cell_to_rowcol, xl_rowcol_to_cell
 
 from .. import reference
 from ..reference.newton import NOISE
-from .noise import ColumnNoise
+from .noise import ColumnNoise, column_trees
 
 REFERENCE_TOLERANCE = 1e-9  # of the column's magnitude, or of its rounding noise (noise.py)
 # An angle's magnitude is at least a radian: a rod 1e20 long at 4e-17 deg to the slide is
@@ -93,17 +93,37 @@ def _about(book) -> dict[str, object]:
     return out
 
 
-def check_mechanics(book, value_of, column_of) -> MechanicsReport | None:
-    """``value_of(sheet, row, col)`` gives one recomputed value, ``column_of(sheet, col,
-    first, last)`` a column of them."""
-    """None unless the workbook was made by workbook-gen for a mechanism we model."""
+def _ours(book) -> tuple[str, str, dict] | None:
+    """(mechanism, generator, About) of a workbook made by workbook-gen for a mechanism
+    we model, with its Table and Parameters sheets; else None."""
     about = _about(book)
     mechanism, generator = about.get("mechanism"), str(about.get("generator", ""))
     if not generator.startswith("workbook-gen") or mechanism not in reference.MECHANISMS:
         return None
-    table, params_sheet = _sheet(book, "Table"), _sheet(book, "Parameters")
-    if table is None or params_sheet is None:
+    if _sheet(book, "Table") is None or _sheet(book, "Parameters") is None:
         return None
+    return mechanism, generator, about
+
+
+def noise_trees(book) -> dict | None:
+    """The formula trees of the Table's columns, read from their text alone (no value):
+    ``check_mechanics``'s ``trees``, computed ahead (e.g. while the evaluator runs)."""
+    if _ours(book) is None:
+        return None
+    table = _sheet(book, "Table")
+    return column_trees(table, range(2, table.max_row + 1))
+
+
+def check_mechanics(book, value_of, column_of, trees: dict | None = None
+                    ) -> MechanicsReport | None:
+    """``value_of(sheet, row, col)`` gives one recomputed value, ``column_of(sheet, col,
+    first, last)`` a column of them; ``trees``: ``noise_trees(book)`` if already known.
+    None unless the workbook was made by workbook-gen for a mechanism we model."""
+    ours = _ours(book)
+    if ours is None:
+        return None
+    mechanism, generator, about = ours
+    table, params_sheet = _sheet(book, "Table"), _sheet(book, "Parameters")
     params, known = {}, reference.known_parameters(mechanism)
     for cell in params_sheet.column(1)[1:]:
         value = value_of("Parameters", cell.row, 2)
@@ -125,7 +145,7 @@ def check_mechanics(book, value_of, column_of) -> MechanicsReport | None:
                     flagged[text] = flagged.get(text, 0) + 1
                     singular[i] = text in SINGULAR
     noise = ColumnNoise(table, rows, lambda col: _column(column_of, "Table", col, rows),
-                        lambda name: _name_value(book, value_of, name))
+                        lambda name: _name_value(book, value_of, name), trees)
     quantities = []
     for cell in _row(table, 1)[1:]:
         match = _HEADER.match(str(cell.value))

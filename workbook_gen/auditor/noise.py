@@ -43,6 +43,53 @@ class _Unsupported(Exception):
     pass
 
 
+INPUT = "input"  # column_tree of a column whose first data row holds no formula
+
+
+def column_tree(sheet, rows: range, col: int):
+    """The one formula tree of a Table column's rows (from the formula text alone), INPUT
+    for an input column; raises _Unsupported (or a parse error) if it has no single tree."""
+    first = sheet.cell(rows.start, col)
+    if first is None or not first.has_formula:
+        return INPUT
+    texts = []
+    cells, letters = sheet.cells, column_letters(col)  # sheet.cell, quicker
+    source_of = sheet.formula_source
+    for row in rows:
+        cell = cells.get(f"{letters}{row}")
+        if cell is not None and cell.formula is not None:  # formula_source's first case
+            texts.append((cell.formula, cell.ref))
+            continue
+        source = source_of(cell) if cell is not None else None
+        if source is None:
+            raise _Unsupported
+        texts.append(source)
+    # One tree for the column: the same text but for numbers on every row (cheap),
+    # and the same relative form on the first and last rows (exact).
+    # (one substitution over all texts: formula text never holds a NUL)
+    if len(set(_DIGITS.sub("#", "\0".join(text for text, _ in texts)).split("\0"))) != 1:
+        raise _Unsupported
+    trees = [ast.shift(parse(text), *_offset(origin, row, col))
+             for (text, origin), row in ((texts[0], rows.start),
+                                         (texts[-1], rows.stop - 1))]
+    if to_relative(trees[0], rows.start, col) != to_relative(
+            trees[1], rows.stop - 1, col):
+        raise _Unsupported
+    return trees[0]
+
+
+def column_trees(sheet, rows: range) -> dict:
+    """column_tree of every column of the sheet, None where it has none (ahead of
+    ColumnNoise, e.g. in another process)."""
+    out = {}
+    for col in range(1, sheet.max_col + 1):
+        try:
+            out[col] = column_tree(sheet, rows, col)
+        except (_Unsupported, WorkbookGenError, ArithmeticError, ValueError, TypeError):
+            out[col] = None
+    return out
+
+
 class ColumnNoise:
     """``of(col)``: the noise magnitude of every data row of a Table column (None:
     formulas this module does not follow).
@@ -51,9 +98,10 @@ class ColumnNoise:
     a defined name's number (None if it is not one)."""
 
     def __init__(self, sheet, rows: range, values: Callable[[int], list],
-                 name_value: Callable[[str], float | None]):
+                 name_value: Callable[[str], float | None], trees: dict | None = None):
         self.sheet, self.rows = sheet, rows
         self._values, self._name_value = values, name_value
+        self._trees = trees or {}  # col -> column_tree's result computed ahead (None: none)
         self._memo: dict[int, np.ndarray | None] = {}
         self._numbers_memo: dict[int, np.ndarray] = {}
 
@@ -67,33 +115,14 @@ class ColumnNoise:
         return self._memo[col]
 
     def _column(self, col: int) -> np.ndarray | None:
-        first = self.sheet.cell(self.rows.start, col)
-        if first is None or not first.has_formula:
-            return np.abs(self._numbers(col))  # an input column: exact as given
-        texts = []
-        cells, letters = self.sheet.cells, column_letters(col)  # sheet.cell, quicker
-        source_of = self.sheet.formula_source
-        for row in self.rows:
-            cell = cells.get(f"{letters}{row}")
-            if cell is not None and cell.formula is not None:  # formula_source's first case
-                texts.append((cell.formula, cell.ref))
-                continue
-            source = source_of(cell) if cell is not None else None
-            if source is None:
+        if col in self._trees:
+            tree = self._trees[col]
+            if tree is None:
                 raise _Unsupported
-            texts.append(source)
-        # One tree for the column: the same text but for numbers on every row (cheap),
-        # and the same relative form on the first and last rows (exact).
-        # (one substitution over all texts: formula text never holds a NUL)
-        if len(set(_DIGITS.sub("#", "\0".join(text for text, _ in texts)).split("\0"))) != 1:
-            raise _Unsupported
-        trees = [ast.shift(parse(text), *_offset(origin, row, col))
-                 for (text, origin), row in ((texts[0], self.rows.start),
-                                             (texts[-1], self.rows.stop - 1))]
-        if to_relative(trees[0], self.rows.start, col) != to_relative(
-                trees[1], self.rows.stop - 1, col):
-            raise _Unsupported
-        tree = trees[0]
+        else:
+            tree = column_tree(self.sheet, self.rows, col)
+        if isinstance(tree, str):  # INPUT (equal, not the same object, from another process)
+            return np.abs(self._numbers(col))  # an input column: exact as given
         with np.errstate(all="ignore"):
             _, noise = self._eval(tree, self.rows.start)
         return np.broadcast_to(np.abs(noise), (len(self.rows),)).copy()
