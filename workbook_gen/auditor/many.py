@@ -90,7 +90,7 @@ def audit_many(paths: Iterable[str | Path], *, jobs: int | None = None,
                 progress(Path(path).name)
             yield result
         return
-    with ProcessPoolExecutor(max_workers=jobs) as pool:
+    with ProcessPoolExecutor(max_workers=jobs, initializer=_one_process) as pool:
         futures = [pool.submit(audit_file, path, engine) for path in files]
         for path, future in zip(files, futures):
             try:
@@ -101,6 +101,12 @@ def audit_many(paths: Iterable[str | Path], *, jobs: int | None = None,
             if progress:
                 progress(Path(path).name)
             yield result
+
+
+def _one_process() -> None:
+    """In a worker: the workers already share the cores, so an audit forks no helper
+    process of its own (workbook_gen/forked.py)."""
+    os.environ["WORKBOOK_GEN_SERIAL"] = "1"
 
 
 def total_line(results: list[FileResult]) -> str:
