@@ -121,3 +121,18 @@ def test_criteria_functions_map_over_an_array_of_criteria(book):
              + _evaluate_block(book, "MATH & TRIG", 60, 90, 50, lambda f: crit in f))
     wrong = [c for c in cases if not _same(c[2], c[3])]
     assert len(cases) >= 100 and wrong == []
+
+
+def test_is_functions_map_over_a_range_and_n_takes_its_first_cell(book):
+    """INFORMATION!R5:AW20: {=ISERR(C7:Q7)} tests each cell; {=N(C19:Q19)} is N(C19) in
+    every cell of its area. (Left: the cells of an area past its range, where Excel tests
+    the #N/A that pads the range to the area (ISNA gives TRUE there): ours is the padding
+    #N/A itself.)"""
+    from workbook_gen.xlerror import ExcelError
+    cases = _evaluate_block(book, "INFORMATION", 5, 20, 49, lambda f: f.startswith(
+        ("=ISBLANK", "=ISERR", "=ISNA", "=ISNUMBER", "=ISTEXT", "=ISNONTEXT", "=ISLOGICAL",
+         "=N(")))
+    wrong = [c for c in cases if not _same(c[2], c[3])]
+    assert len(cases) >= 250
+    assert all(c[2] is ExcelError.NA and isinstance(c[3], bool) for c in wrong), wrong
+    assert len(wrong) <= 20

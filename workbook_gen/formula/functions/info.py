@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from workbook_gen.formula.functions import coerce as c
-from workbook_gen.formula.functions.registry import register
+from workbook_gen.formula.functions.registry import ARRAY_LIFTED, register
 from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
 
@@ -17,6 +17,8 @@ def _value(ctx, v):
 
 def _is(name, test, vector=None):
     register(name, "info", 1, 1, "range", vector=vector)(lambda ctx, v: test(_value(ctx, v)))
+    # in an array formula, one test per cell (formulas__test INFORMATION!AG7:AW18)
+    ARRAY_LIFTED[name] = (0).__eq__
 
 
 def _iserror_vector(xs, n):
@@ -53,8 +55,14 @@ register("ISODD", "info", 1, 1)(lambda ctx, v: _parity(ctx, v, True))
 register("NA", "info", 0, 0)(lambda ctx: ExcelError.NA)
 
 
-@register("N", "info", 1, 1)
+@register("N", "info", 1, 1, "range")
 def _n(ctx, v):
+    """A reference gives its first cell, as T (formulas__test INFORMATION!AH19:AW19:
+    {=N(C19:Q19)} is N(C19) in every cell); LibreOffice intersects, as for T."""
+    if isinstance(v, Range) and ctx.dialect == "libreoffice":
+        v = ctx.scalar(v)
+    elif isinstance(v, Range):
+        v = v.rows[0][0] if v.rows and v.rows[0] else None
     if isinstance(v, ExcelError):
         return v
     if isinstance(v, bool):
