@@ -26,9 +26,13 @@ import pytest
 # TEXT's number formats placeholder by placeholder (pycel__text.xlsx): 65
 # 22:35: securities, ODD*, AMOR*, CHAR/CODE in the Mac character set, ASC (helper corpb3):
 # coverage.py 66 of 76, 56,831 of 57,344 evaluated; >= 56,800 recomputed here
+# 22:58: circular references as Excel evaluates them with iteration off (formulas__circular
+# fully audited), CONVERT, XMATCH, criteria arrays, IS* in array formulas (formulas__test:
+# 944 -> 219 disagreeing cells; helper corpc3): 6 files with disagreements (4 known, the
+# sheetjs stress test's XNPV, formulas__test)
 MIN_FULLY_AUDITED = 66
 MIN_RECOMPUTED_CELLS = 56_800
-MAX_DISAGREEING_FILES = 8
+MAX_DISAGREEING_FILES = 6
 MAX_REFUSED = 0
 # files whose cached values are wrong or odd: the audit is right to report them, always
 KNOWN_DISAGREEMENTS = {
