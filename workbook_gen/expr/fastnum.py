@@ -258,6 +258,11 @@ _NAMESPACE = {
 _PI = Call("PI", ())
 
 
+def _two_columns(node: Node) -> bool:
+    return (isinstance(node, Bin) and node.op == "^") or (
+        isinstance(node, Call) and node.fn in ("POWER", "ATAN2"))
+
+
 def _negative_zero(tree: Node) -> bool:
     return any(isinstance(k, Num) and math.copysign(1.0, k.value) < 0 for k in walk(tree))
 
@@ -292,7 +297,9 @@ def _print(tree: Node, names: dict | None = None, lines: list | None = None,
         found = names.get(("scalar", key(node)) if literal else key(node))
         if found is not None:
             return found
-        inner = scalars and varying(node)
+        # POW and ATAN2 take two columns (see POW): their literals are columns, made
+        # once per call of the function like any shared subtree
+        inner = scalars and varying(node) and not _two_columns(node)
         args = [emit(k, inner) for k in children(node)]
         if literal:
             expr = f"_scalar({'np.pi' if node == _PI else repr(node.value)})"
