@@ -136,3 +136,17 @@ def test_is_functions_map_over_a_range_and_n_takes_its_first_cell(book):
     assert len(cases) >= 250
     assert all(c[2] is ExcelError.NA and isinstance(c[3], bool) for c in wrong), wrong
     assert len(wrong) <= 20
+
+
+def test_isoweeknum_datedif_yd_and_quartile_rows(book):
+    """DATE & TIME rows 4 and 12: ISOWEEKNUM before March 1900 on Excel's weekdays
+    (serial 1 a Sunday: week 52), DATEDIF "YD" in the start date's year (DATEDIF(8, 1987,
+    "YD") = 153); COMPATIBILITY row 32 and STATISTICAL row 88: the quart argument floored
+    (-0.1 is -1: #NUM!)."""
+    cases = (_evaluate_block(book, "DATE & TIME", 4, 4, 49, lambda f: "DATEDIF(" in f)
+             + _evaluate_block(book, "DATE & TIME", 12, 12, 49, lambda f: "ISOWEEKNUM(" in f)
+             + _evaluate_block(book, "COMPATIBILITY", 32, 32, 49, lambda f: "QUARTILE(" in f)
+             + _evaluate_block(book, "STATISTICAL", 88, 88, 49, lambda f: "QUARTILE" in f))
+    wrong = [c for c in cases if not _same(c[2], c[3])]
+    assert len(cases) >= 80 and wrong == []
+    assert fx.call("DATEDIF", [37043.0, 37483.0, "YD"]) == 75.0  # Microsoft's example

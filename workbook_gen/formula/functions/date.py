@@ -287,6 +287,16 @@ def _datedif(ctx, a, b, unit):
         return float((d2 - d1).days if d2.day >= d1.day and months == 0 else
                      (d2.day - d1.day) % calendar.monthrange(
                          d2.year if d2.month > 1 else d2.year - 1, (d2.month - 2) % 12 + 1)[1])
+    if u == "YD" and ctx.dialect != "libreoffice":
+        # Excel moves the end date into the start date's year (then the next year if it
+        # falls before the start) and subtracts serials: DATEDIF(8, 1987, "YD") is 153,
+        # Jan 8 to Jun 9 of 1900 with its 29 February (formulas__test DATE & TIME!R4)
+        def on(year):
+            return dt.date(year, d2.month, min(d2.day, calendar.monthrange(year, d2.month)[1]))
+        end = on(d1.year)
+        if end < d1:
+            end = on(d1.year + 1)
+        return float(to_serial(end) - to_serial(d1))
     if u == "YD":
         start = dt.date(d2.year, d1.month, min(d1.day, calendar.monthrange(d2.year, d1.month)[1]))
         if start > d2:
@@ -336,8 +346,18 @@ def _weeknum(ctx, v, kind=1.0):
 
 @register("ISOWEEKNUM", "date", 1, 1)
 def _isoweeknum(ctx, v):
-    ymd = _date(v)
-    return ymd if isinstance(ymd, ExcelError) else float(_ymd_date(ymd).isocalendar()[1])
+    n = serial_arg(v)
+    if isinstance(n, ExcelError):
+        return n
+    n = int(n)
+    if n >= 61:
+        return float(_ymd_date(from_serial(n)).isocalendar()[1])
+    # before the 29 February 1900 that never was, Excel's weekdays are a day early (serial
+    # 1 is a Sunday, as WEEKDAY says): 1900-01-01 is in week 52 of 1899, 1900-01-08 in week
+    # 1 (formulas__test DATE & TIME!S12:Y12; serial 0 is the Saturday before)
+    weekday = (n + 5) % 7 + 1  # ISO: Monday 1 .. Sunday 7
+    week = (n - weekday + 10) // 7  # (n is the day of 1900)
+    return float(week) if week >= 1 else 52.0  # (1899 has 52 ISO weeks)
 
 
 @register("DATEVALUE", "date", 1, 1)

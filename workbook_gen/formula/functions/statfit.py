@@ -156,7 +156,7 @@ def _quantile(name, exclusive, quart):
         if not xs:
             return ExcelError.NUM
         if quart:
-            q = int(p)
+            q = math.floor(p)  # -0.1 is quart -1, #NUM! (formulas__test COMPATIBILITY!U32)
             if not (1 if exclusive else 0) <= q <= (3 if exclusive else 4):
                 return ExcelError.NUM
             p = q / 4
