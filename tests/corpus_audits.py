@@ -10,6 +10,7 @@ crash (any other exception).
 from __future__ import annotations
 
 import multiprocessing
+import os
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
@@ -53,10 +54,15 @@ def audit_one(path: Path) -> Outcome:
                    report if path.name in WHOLE_REPORTS else None)
 
 
+def _one_process() -> None:
+    """The workers already share the cores: an audit forks no reader of its own."""
+    os.environ["WORKBOOK_GEN_SERIAL"] = "1"
+
+
 def audit_corpus(workers: int = 2) -> dict[str, Outcome]:
     """Every corpus file's outcome by file name, audited in ``workers`` fresh processes."""
     files = sorted(corpus_files(), key=lambda p: -p.stat().st_size)
     context = multiprocessing.get_context("spawn")  # no fork of the test process's threads
-    with ProcessPoolExecutor(workers, mp_context=context) as pool:
+    with ProcessPoolExecutor(workers, mp_context=context, initializer=_one_process) as pool:
         outcomes = dict(zip((p.name for p in files), pool.map(audit_one, files)))
     return dict(sorted(outcomes.items()))
