@@ -172,6 +172,26 @@ def _is_leap(y: int) -> bool:
     return calendar.isleap(y)
 
 
+def days_30_360(start: tuple[int, int, int], start_feb_end: bool,
+                end: tuple[int, int, int], end_feb_end: bool, european: bool) -> int:
+    """Days from ``start`` to ``end`` (year, month, day) on a calendar of 30-day months:
+    the US (NASD) rule of basis 0, where ``*_feb_end`` says a date is February's last
+    day, or the European rule of basis 4."""
+    (y1, m1, t1), (y2, m2, t2) = start, end
+    if european:
+        t1, t2 = min(t1, 30), min(t2, 30)
+    else:
+        if start_feb_end and end_feb_end:
+            t2 = 30
+        if start_feb_end:
+            t1 = 30
+        if t2 == 31 and t1 >= 30:
+            t2 = 30
+        if t1 == 31:
+            t1 = 30
+    return (y2 - y1) * 360 + (m2 - m1) * 30 + (t2 - t1)
+
+
 def _end_of_feb(y: int, m: int, d: int) -> bool:
     return m == 2 and d == (29 if y == 1900 else calendar.monthrange(y, 2)[1])
 
@@ -188,19 +208,8 @@ def yearfrac(s: float, e: float, basis: int) -> float | ExcelError:
             return ExcelError.NUM
     if basis in (0, 4):  # on Excel's own calendar: serial 0 is 1900-01-00, 60 is 02-29
         (y1, m1, t1), (y2, m2, t2) = from_serial(s), from_serial(e)
-        if basis == 0:
-            feb1, feb2 = _end_of_feb(y1, m1, t1), _end_of_feb(y2, m2, t2)
-            if feb1 and feb2:
-                t2 = 30
-            if feb1:
-                t1 = 30
-            if t2 == 31 and t1 >= 30:
-                t2 = 30
-            if t1 == 31:
-                t1 = 30
-        else:
-            t1, t2 = min(t1, 30), min(t2, 30)
-        return ((y2 - y1) * 360 + (m2 - m1) * 30 + (t2 - t1)) / 360.0
+        return days_30_360((y1, m1, t1), _end_of_feb(y1, m1, t1),
+                           (y2, m2, t2), _end_of_feb(y2, m2, t2), basis == 4) / 360.0
     d1, d2 = _ymd_date(from_serial(s)), _ymd_date(from_serial(e))
     days = e - s
     if basis == 2:

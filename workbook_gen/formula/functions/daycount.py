@@ -12,7 +12,8 @@ import datetime as dt
 import math
 
 from workbook_gen.formula.functions import coerce as c
-from workbook_gen.formula.functions.date import from_serial, serial_arg, to_serial, yearfrac
+from workbook_gen.formula.functions.date import (days_30_360, from_serial, serial_arg,
+                                                 to_serial, yearfrac)
 from workbook_gen.xlerror import ExcelError
 
 FREQUENCIES = (1, 2, 4)
@@ -42,21 +43,9 @@ def days(d1: dt.date, d2: dt.date, basis: int) -> int:
     """Days from d1 to d2 in the basis (30/360 for 0 and 4, actual days otherwise)."""
     if basis not in (0, 4):
         return (d2 - d1).days
-    t1, t2 = d1.day, d2.day
-    if basis == 0:
-        feb1 = d1.month == 2 and _month_end(d1)
-        feb2 = d2.month == 2 and _month_end(d2)
-        if feb1 and feb2:
-            t2 = 30
-        if feb1:
-            t1 = 30
-        if t2 == 31 and t1 >= 30:
-            t2 = 30
-        if t1 == 31:
-            t1 = 30
-    else:
-        t1, t2 = min(t1, 30), min(t2, 30)
-    return (d2.year - d1.year) * 360 + (d2.month - d1.month) * 30 + (t2 - t1)
+    return days_30_360((d1.year, d1.month, d1.day), d1.month == 2 and _month_end(d1),
+                       (d2.year, d2.month, d2.day), d2.month == 2 and _month_end(d2),
+                       basis == 4)
 
 
 def year_days(basis: int, d: dt.date | None = None) -> float:
