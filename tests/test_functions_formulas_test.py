@@ -63,7 +63,7 @@ def test_convert_every_unit_and_prefix_of_the_extra_sheet(book):
     assert fx.call("CONVERT", [1.0, "pc", "m"]) == pytest.approx(30856775812815500.0)
 
 
-def _evaluate_block(book, sheet, first, last, cols, pick):
+def _evaluate_block(book, sheet, first, last, cols, pick, arrays_too=True):
     """Evaluate the formula cells of a block (those whose text ``pick`` accepts; array
     formulas over their whole area) from the block's other cells (constants, and other
     formulas' cached values), with our evaluator: [(cell, formula, ours, cached)]."""
@@ -77,7 +77,7 @@ def _evaluate_block(book, sheet, first, last, cols, pick):
     for i, frow in enumerate(formulas):
         for j, f in enumerate(frow):
             key = (sheet, first + i, j + 1)
-            if isinstance(f, ArrayFormula) and pick(f.text):
+            if isinstance(f, ArrayFormula) and arrays_too and pick(f.text):
                 _, _, c2, r2 = range_boundaries(f.ref)
                 arrays[key] = (f.text[1:], (r2, c2))
                 for r in range(key[1], r2 + 1):
@@ -150,3 +150,15 @@ def test_isoweeknum_datedif_yd_and_quartile_rows(book):
     wrong = [c for c in cases if not _same(c[2], c[3])]
     assert len(cases) >= 80 and wrong == []
     assert fx.call("DATEDIF", [37043.0, 37483.0, "YD"]) == 75.0  # Microsoft's example
+
+
+def test_weeknum_and_edate_on_day_zero(book):
+    """DATE & TIME rows 9 and 23: WEEKNUM of 1900-01-00 is 0 and of TRUE #VALUE!; EDATE
+    from 1900-01-00 keeps day 0 (the day before the 1st)."""
+    cases = (_evaluate_block(book, "DATE & TIME", 9, 9, 49, lambda f: "EDATE(" in f, False)
+             + _evaluate_block(book, "DATE & TIME", 23, 23, 49, lambda f: "WEEKNUM(" in f,
+                               False))
+    wrong = [c for c in cases if not _same(c[2], c[3])]
+    assert len(cases) >= 20 and wrong == []
+    # Excel's 1900 starts on a Sunday: 4 March 1900 (serial 64) opens week 10
+    assert fx.call("WEEKNUM", [64.0, 1.0]) == 10.0 and fx.call("WEEKNUM", [63.0, 1.0]) == 9.0

@@ -1,6 +1,7 @@
 """Dates and times as Excel's serial numbers (1900 system): DATE, YEAR, MONTH, DAY, TIME,
-HOUR, MINUTE, SECOND, TODAY/NOW (volatile), EDATE, EOMONTH, YEARFRAC, WEEKDAY, WEEKNUM,
-ISOWEEKNUM, DAYS, DAYS360, DATEDIF, DATEVALUE, TIMEVALUE, NETWORKDAYS, WORKDAY.
+HOUR, MINUTE, SECOND, TODAY/NOW (volatile), EDATE, EOMONTH, YEARFRAC, WEEKDAY (WEEKNUM and
+ISOWEEKNUM in :mod:`.weeks`),
+DAYS, DAYS360, DATEDIF, DATEVALUE, TIMEVALUE, NETWORKDAYS, WORKDAY.
 
 Serial 1 is 1900-01-01 and serial 60 is the 29 February 1900 that never was (Lotus 1-2-3's
 leap-year bug, kept by Excel): from serial 61 on a serial counts days since 1899-12-30.
@@ -151,6 +152,8 @@ def _add_months(v, months, end_of_month: bool):
     if not 1900 <= y <= 9999:
         return ExcelError.NUM
     last = calendar.monthrange(y, m)[1]
+    if d == 0 and not end_of_month:  # 1900-01-00 keeps its day 0: the day before the 1st
+        return to_serial(dt.date(y, m, 1)) - 1  # (formulas__test DATE & TIME!V9:W9)
     return to_serial(dt.date(y, m, last if end_of_month else min(max(d, 1), last)))
 
 
@@ -333,40 +336,6 @@ def _weekday(ctx, v, kind=1.0):
     if 12 <= k <= 16:
         return float((wd - (k - 11)) % 7 + 1)
     return ExcelError.NUM
-
-
-@register("WEEKNUM", "date", 1, 2)
-def _weeknum(ctx, v, kind=1.0):
-    ymd = _date(v)
-    k = c.to_number(kind)
-    for x in (ymd, k):
-        if isinstance(x, ExcelError):
-            return x
-    d = _ymd_date(ymd)
-    if int(k) == 21:
-        return float(d.isocalendar()[1])
-    first = {1: 6, 17: 6, 2: 0, 11: 0, 12: 1, 13: 2, 14: 3, 15: 4, 16: 5}.get(int(k))
-    if first is None:
-        return ExcelError.NUM
-    jan1 = dt.date(d.year, 1, 1)
-    offset = (jan1.weekday() - first) % 7
-    return float((d.timetuple().tm_yday - 1 + offset) // 7 + 1)
-
-
-@register("ISOWEEKNUM", "date", 1, 1)
-def _isoweeknum(ctx, v):
-    n = serial_arg(v)
-    if isinstance(n, ExcelError):
-        return n
-    n = int(n)
-    if n >= 61:
-        return float(_ymd_date(from_serial(n)).isocalendar()[1])
-    # before the 29 February 1900 that never was, Excel's weekdays are a day early (serial
-    # 1 is a Sunday, as WEEKDAY says): 1900-01-01 is in week 52 of 1899, 1900-01-08 in week
-    # 1 (formulas__test DATE & TIME!S12:Y12; serial 0 is the Saturday before)
-    weekday = (n + 5) % 7 + 1  # ISO: Monday 1 .. Sunday 7
-    week = (n - weekday + 10) // 7  # (n is the day of 1900)
-    return float(week) if week >= 1 else 52.0  # (1899 has 52 ISO weeks)
 
 
 @register("DATEVALUE", "date", 1, 1)
