@@ -20,6 +20,7 @@ itself: the kernels stay the one definition of Excel's semantics.  Internally a 
 from __future__ import annotations
 
 import math
+import re
 from typing import Callable
 
 import numpy as np
@@ -420,5 +421,29 @@ def generate_set(named: tuple[tuple[str, Node], ...], scalars: bool = False) -> 
         results.append((name, f"_heavy({last})"))
         names[Var(name)] = last
     out = ", ".join(f"{n!r}: {r}" for n, r in results)
+    if scalars:
+        lines = _freeing(lines, {r[len("_heavy("):-1] for _, r in results})
     return _compile("def f(cols, params, n):\n    with _errstate(all='ignore'):\n"
                     + "\n".join(lines) + f"\n        return {{{out}}}\n")
+
+
+_LOCAL = re.compile(r"\bt(\d+)\b")
+
+
+def _freeing(lines: list[str], kept: set[str]) -> list[str]:
+    """The lines with each local that is not a result deleted after its last reader
+    (a block's columns are large: they go back to the allocator as soon as they can)."""
+    last: dict[str, int] = {}
+    for i, line in enumerate(lines):
+        for match in _LOCAL.finditer(line):
+            last[match.group(0)] = i
+    after: dict[int, list[str]] = {}
+    for name, i in last.items():
+        if name not in kept:
+            after.setdefault(i, []).append(name)
+    out = []
+    for i, line in enumerate(lines):
+        out.append(line)
+        if i in after:
+            out.append(f"        del {', '.join(sorted(after[i]))}")
+    return out
