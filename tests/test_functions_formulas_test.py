@@ -162,3 +162,11 @@ def test_weeknum_and_edate_on_day_zero(book):
     assert len(cases) >= 20 and wrong == []
     # Excel's 1900 starts on a Sunday: 4 March 1900 (serial 64) opens week 10
     assert fx.call("WEEKNUM", [64.0, 1.0]) == 10.0 and fx.call("WEEKNUM", [63.0, 1.0]) == 9.0
+
+
+def test_and_skips_a_direct_text_argument(book):
+    """LOGICAL rows 3-4: AND(TRUE,"0") is TRUE, AND(TRUE,"0",#REF!) #REF! (Excel 365 skips
+    a direct text argument that is not TRUE/FALSE; an error still propagates)."""
+    cases = _evaluate_block(book, "LOGICAL", 3, 4, 49, lambda f: "AND(" in f, False)
+    wrong = [c for c in cases if not _same(c[2], c[3])]
+    assert len(cases) >= 25 and wrong == []
