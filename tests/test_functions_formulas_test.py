@@ -170,3 +170,12 @@ def test_and_skips_a_direct_text_argument(book):
     cases = _evaluate_block(book, "LOGICAL", 3, 4, 49, lambda f: "AND(" in f, False)
     wrong = [c for c in cases if not _same(c[2], c[3])]
     assert len(cases) >= 25 and wrong == []
+
+
+def test_gcd_and_lcm_want_numbers_in_every_cell(book):
+    """MATH & TRIG rows 34 and 37: GCD/LCM of an empty cell, text or a boolean is #VALUE!,
+    before a negative number's #NUM! (GCD(G34,J34) with G34 = -0.4, J34 = TRUE)."""
+    cases = (_evaluate_block(book, "MATH & TRIG", 34, 34, 33, lambda f: "GCD(" in f, False)
+             + _evaluate_block(book, "MATH & TRIG", 37, 37, 33, lambda f: "LCM(" in f, False))
+    wrong = [c for c in cases if not _same(c[2], c[3])]
+    assert len(cases) >= 28 and wrong == []

@@ -10,6 +10,7 @@ from decimal import (
 
 from workbook_gen.formula.functions import coerce as c
 from workbook_gen.formula.functions.registry import register
+from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
 from workbook_gen.xlmath import kernels as k
 
@@ -308,7 +309,17 @@ def _sumsq(ctx, *args):
     return xs if isinstance(xs, ExcelError) else c.result(fsum([x * x for x in xs]))
 
 
-def _gcd_args(args):
+def _gcd_args(args, strict: bool = False):
+    """``strict`` (Excel): every value, a referenced cell's too, must be a number: an empty
+    cell, text or a boolean is #VALUE! (formulas__test MATH & TRIG!W34:Y37, before a
+    negative's #NUM!)."""
+    if strict:
+        for a in args:
+            for v in (a.flat() if isinstance(a, Range) else [a]):
+                if isinstance(v, ExcelError):
+                    return v
+                if v is None or isinstance(v, (str, bool)):
+                    return ExcelError.VALUE
     xs = c.numbers(args)
     if isinstance(xs, ExcelError):
         return xs
@@ -319,13 +330,13 @@ def _gcd_args(args):
 
 @register("GCD", "math", 1, -1, "range")
 def _gcd(ctx, *args):
-    xs = _gcd_args(args)
+    xs = _gcd_args(args, ctx.dialect != "libreoffice")
     return xs if isinstance(xs, ExcelError) else float(math.gcd(*xs))
 
 
 @register("LCM", "math", 1, -1, "range")
 def _lcm(ctx, *args):
-    xs = _gcd_args(args)
+    xs = _gcd_args(args, ctx.dialect != "libreoffice")
     return xs if isinstance(xs, ExcelError) else c.result(float(math.lcm(*xs)))
 
 
