@@ -164,14 +164,6 @@ def test_weeknum_and_edate_on_day_zero(book):
     assert fx.call("WEEKNUM", [64.0, 1.0]) == 10.0 and fx.call("WEEKNUM", [63.0, 1.0]) == 9.0
 
 
-def test_and_skips_a_direct_text_argument(book):
-    """LOGICAL rows 3-4: AND(TRUE,"0") is TRUE, AND(TRUE,"0",#REF!) #REF! (Excel 365 skips
-    a direct text argument that is not TRUE/FALSE; an error still propagates)."""
-    cases = _evaluate_block(book, "LOGICAL", 3, 4, 49, lambda f: "AND(" in f, False)
-    wrong = [c for c in cases if not _same(c[2], c[3])]
-    assert len(cases) >= 25 and wrong == []
-
-
 def test_gcd_and_lcm_want_numbers_in_every_cell(book):
     """MATH & TRIG rows 34 and 37: GCD/LCM of an empty cell, text or a boolean is #VALUE!,
     before a negative number's #NUM! (GCD(G34,J34) with G34 = -0.4, J34 = TRUE)."""

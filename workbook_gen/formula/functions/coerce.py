@@ -127,11 +127,9 @@ def values_a(args) -> list[float] | ExcelError:
     return out
 
 
-def logicals(args, skip_text: bool = False) -> list[bool] | ExcelError:
+def logicals(args) -> list[bool] | ExcelError:
     """Booleans for AND/OR/XOR: ranges skip text and empties, a direct text argument must
-    be TRUE or FALSE (``skip_text``: other text is skipped too, as Excel 365 does:
-    formulas__test LOGICAL!AT3 AND(TRUE,"0") is TRUE, AP3 AND(TRUE,"0",#REF!) #REF!);
-    no logical value at all is #VALUE!."""
+    be TRUE or FALSE; no logical value at all is #VALUE!."""
     out: list[bool] = []
     for a in args:
         if isinstance(a, Range):
@@ -147,8 +145,6 @@ def logicals(args, skip_text: bool = False) -> list[bool] | ExcelError:
             continue
         b = to_bool(a)
         if isinstance(b, ExcelError):
-            if skip_text and b is ExcelError.VALUE and isinstance(a, str):
-                continue
             return b
         out.append(b)
     return out if out else ExcelError.VALUE
