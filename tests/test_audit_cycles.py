@@ -12,13 +12,13 @@ import re
 import zipfile
 from pathlib import Path
 
-import openpyxl
 import pytest
 
 from workbook_gen import audit
-from workbook_gen.engines.libreoffice import recalculate
 from workbook_gen.evaluator import evaluate_cells
 from workbook_gen.xlerror import ExcelError
+
+from lo_sheet import recalculated_sheet
 
 CORPUS = Path("/work/shared/corpus/xlsx")
 
@@ -130,14 +130,7 @@ LO_CASES = {"A1": "=IFERROR(nosuchname,1)", "A2": "=FLOOR(nosuchname,1,2)",
 
 @pytest.fixture(scope="module")
 def lo_cycles(libreoffice, tmp_path_factory):
-    tmp = tmp_path_factory.mktemp("lo_cycles")
-    wb = openpyxl.Workbook()
-    ws = wb.active
-    ws.title = "S"
-    for ref, value in LO_CASES.items():
-        ws[ref] = value
-    wb.save(tmp / "cycles.xlsx")
-    return recalculate(tmp / "cycles.xlsx", tmp / "out")
+    return recalculated_sheet(tmp_path_factory.mktemp("lo_cycles"), "S", LO_CASES)
 
 
 def test_libreoffice_cycles_agree(lo_cycles):

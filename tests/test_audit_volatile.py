@@ -12,12 +12,12 @@ from __future__ import annotations
 import re
 import zipfile
 
-import openpyxl
 import pytest
 
 from workbook_gen import audit
 from workbook_gen.auditor.saved import parse_w3cdtf
-from workbook_gen.engines.libreoffice import recalculate
+
+from lo_sheet import recalculated_sheet
 
 CASES = {
     "B1": "=TODAY()",
@@ -40,15 +40,7 @@ VOLATILE = {f"Vol!B{i}" for i in range(1, 10)}
 
 @pytest.fixture(scope="module")
 def recalculated(libreoffice, tmp_path_factory):
-    tmp = tmp_path_factory.mktemp("volatile")
-    wb = openpyxl.Workbook()
-    ws = wb.active
-    ws.title = "Vol"
-    ws["A1"] = 3
-    for ref, formula in CASES.items():
-        ws[ref] = formula
-    wb.save(tmp / "volatile.xlsx")
-    return recalculate(tmp / "volatile.xlsx", tmp / "out")
+    return recalculated_sheet(tmp_path_factory.mktemp("volatile"), "Vol", {"A1": 3, **CASES})
 
 
 def _with_cached(src, dst, values: dict[str, str]):
@@ -118,14 +110,7 @@ CYCLES = {
 
 @pytest.fixture(scope="module")
 def cycles_recalculated(libreoffice, tmp_path_factory):
-    tmp = tmp_path_factory.mktemp("cycles")
-    wb = openpyxl.Workbook()
-    ws = wb.active
-    ws.title = "Cyc"
-    for ref, value in CYCLES.items():
-        ws[ref] = value
-    wb.save(tmp / "cycles.xlsx")
-    return recalculate(tmp / "cycles.xlsx", tmp / "out")
+    return recalculated_sheet(tmp_path_factory.mktemp("cycles"), "Cyc", CYCLES)
 
 
 def test_false_cycles_are_evaluated_and_real_ones_reported(cycles_recalculated):

@@ -16,9 +16,10 @@ import openpyxl
 import pytest
 
 from workbook_gen import audit
-from workbook_gen.engines.libreoffice import recalculate
 from workbook_gen.formula import functions as fx
 from workbook_gen.formula.values import Range
+
+from lo_sheet import recalculated_sheet
 
 CORPUS = Path("/work/shared/corpus/xlsx")
 DESC = [40, 30, 20, 20, 10]  # A1:A5
@@ -36,16 +37,9 @@ CASES = {  # formula -> its documented value on descending data (smallest value 
 
 @pytest.fixture(scope="module")
 def recalculated(libreoffice, tmp_path_factory):
-    tmp = tmp_path_factory.mktemp("match")
-    wb = openpyxl.Workbook()
-    ws = wb.active
-    ws.title = "M"
-    for i, x in enumerate(DESC, 1):
-        ws[f"A{i}"] = x
-    for i, formula in enumerate(CASES, 1):
-        ws[f"C{i}"] = formula
-    wb.save(tmp / "match.xlsx")
-    return recalculate(tmp / "match.xlsx", tmp / "out")
+    cells = {**{f"A{i}": x for i, x in enumerate(DESC, 1)},
+             **{f"C{i}": formula for i, formula in enumerate(CASES, 1)}}
+    return recalculated_sheet(tmp_path_factory.mktemp("match"), "M", cells)
 
 
 def test_descending_data_agrees_with_libreoffice_and_the_documentation(recalculated):
