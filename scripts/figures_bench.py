@@ -21,6 +21,7 @@ SUMMARY_VARIANTS, SUMMARY_MAX_S, SUMMARY_VS_FILES, SUMMARY_MAX_MB = 100_000, 10.
 DASK_MAX_RATIO = 1.3
 AUDIT_VS_LO = 4.0           # our audit at 0.1 deg, against LibreOffice recalculating the file
 AUDIT_STEP = 0.1
+CORPUS_FILES, CORPUS_CELLS = 0.90, 0.95  # issue 10: fully audited files, cells evaluated
 
 
 def verdict(ok: bool) -> str:
@@ -261,3 +262,21 @@ def batch_notes_block(batch: dict, generate: dict) -> str:
                      f"variants and writes summary.csv and summary.xlsx, {summary['columns']} "
                      f"columns x {count(n)} rows, formatted exactly): {larger}.")
     return " ".join(parts) + "\n"
+
+
+def corpus_block(record: dict) -> str:
+    """The audit on the real-world corpus (bench/corpus.py, which runs its coverage.py)."""
+    f = record["figures"]
+    files, cells = f["fully"] / f["files"], f["evaluated"] / f["cells"]
+    classes = ", ".join(f"{n} {k}" for k, n in sorted(f["classes"].items(), key=lambda kv: -kv[1]))
+    lines = [f"On the {f['files']} real-world workbooks of `../shared/corpus` "
+             f"(`{record['command']}`, {when(record)}): **{f['fully']} of {f['files']} files "
+             f"audit fully** ({100 * files:.0f}%; target {100 * CORPUS_FILES:.0f}%: "
+             f"{verdict(files >= CORPUS_FILES)}) and **{count(f['evaluated'])} of "
+             f"{count(f['cells'])} formula cells are recomputed** ({100 * cells:.1f}%; target "
+             f"{100 * CORPUS_CELLS:.0f}%: {verdict(cells >= CORPUS_CELLS)}); files per class: "
+             f"{classes}. The files not fully audited:", ""]
+    for name, r in f["not_fully"].items():
+        lines.append(f"- `{name}`: {count(r['evaluated'])} of {count(r['formula_cells'])} "
+                     f"formula cells recomputed, {count(r['disagree'])} disagree")
+    return "\n".join(lines) + "\n"

@@ -13,14 +13,15 @@ average to fall below 1, so that one run's own load is not recorded as the next 
 
 The data: ``workbook-gen tradeoff SCENE --json``, one file per scene under docs/tradeoff/
 (``--measure`` writes them, with the machine and the load around the run), and the
-``--json`` output of bench/generate.py, audit.py, batch.py and read_xlsx.py under
+``--json`` output of bench/generate.py, audit.py, batch.py, read_xlsx.py and corpus.py under
 docs/bench/ (``--measure-bench`` writes them).  A block of README.md between
 ``<!-- figures: KIND [NAME] -->`` and ``<!-- /figures -->`` is rewritten: ``tradeoff NAME``
 the tables of NAME.json; ``runtime`` the whole-run times; ``advice`` the Advice paragraph
 and ``newton`` the sentence under the five-bar's table (scripts/figures_advice.py);
 ``audit-json`` the keys of ``audit --json``; ``bench-machine``, ``bench-generate``,
-``bench-audit``, ``bench-read``, ``bench-batch``, ``bench-batch-notes`` the speed figures
-(scripts/figures_bench.py).  Everything else in the README is left as written.
+``bench-audit``, ``bench-read``, ``bench-batch``, ``bench-batch-notes`` the speed figures,
+``bench-corpus`` the audit on the real-world corpus (scripts/figures_bench.py); ``functions``
+the size of the evaluator's function registry.  Everything else in the README is left as written.
 tests/test_readme_figures.py checks the README equals what the script makes from the
 committed data.
 """
@@ -49,6 +50,7 @@ BENCHES = {
     "audit": ["bench/audit.py", "--only", "lo-formualizer", "--repeat", "1"],
     "read_xlsx": ["bench/read_xlsx.py"],
     "batch": ["bench/batch.py"],
+    "corpus": ["bench/corpus.py"],
 }
 README = ROOT / "README.md"
 # name -> (scene file, options replaced in a copy: the five-bar copy uses Newton steps)
@@ -153,6 +155,12 @@ def audit_json_block() -> str:
     return f"{keys}; each of `mismatches` has {mismatch}.\n"
 
 
+def functions_block() -> str:
+    """How many functions the evaluator's registry knows."""
+    from workbook_gen.formula.functions.registry import REGISTRY
+    return f"The evaluator knows {len(REGISTRY)} functions,\n"
+
+
 def load() -> dict[str, dict]:
     return {path.stem: json.loads(path.read_text(encoding="utf-8"))
             for path in sorted(DATA.glob("*.json"))}
@@ -184,6 +192,8 @@ def render(text: str, all_data: dict[str, dict], bench: dict[str, dict] | None =
         "bench-audit": lambda _: figures_bench.audit_block(need(bench, "audit", BENCH)),
         "bench-read": lambda _: figures_bench.read_block(need(bench, "read_xlsx", BENCH)),
         "bench-batch": lambda _: figures_bench.batch_block(need(bench, "batch", BENCH)),
+        "bench-corpus": lambda _: figures_bench.corpus_block(need(bench, "corpus", BENCH)),
+        "functions": lambda _: functions_block(),
         "bench-batch-notes": lambda _: figures_bench.batch_notes_block(
             need(bench, "batch", BENCH), need(bench, "generate", BENCH)),
     }
@@ -254,7 +264,7 @@ def measure_bench(folder: Path = BENCH, extra: dict[str, list[str]] | None = Non
 # Small sizes, to check --measure-bench end to end in a few minutes (not figures to quote).
 QUICK = {"generate": ["--variants", "2", "--steps", "10,1"], "audit": ["--quick"],
          "read_xlsx": ["--rows", "200", "--repeat", "1"],
-         "batch": ["--variants", "20", "--summary", "200"]}
+         "batch": ["--variants", "20", "--summary", "200"], "corpus": []}
 
 
 def main() -> int:

@@ -127,6 +127,41 @@ def test_targets_are_computed_from_the_data(figures):
     assert "the workers' evaluation is the larger part" in notes
 
 
+CORPUS = {"files": 76, "fully": 66, "cells": 57344, "evaluated": 56849,
+          "classes": {"pass": 70, "disagreements": 6},
+          "not_fully": {"a.xlsx": {"class": "pass", "formula_cells": 9, "evaluated": 8,
+                                   "disagree": 0}},
+          "line": "coverage: 66 of 76 files fully audited, 56849 of 57344 formula cells "
+                  "evaluated (99.1%)"}
+
+
+def test_corpus_targets_are_computed_from_the_data(figures):
+    fb = figures.figures_bench
+    block = fb.corpus_block(_record(CORPUS))
+    assert "(87%; target 90%: not reached)" in block           # 66 / 76
+    assert "(99.1%; target 95%: reached)" in block
+    assert "- `a.xlsx`: 8 of 9 formula cells recomputed, 0 disagree" in block
+    more = copy.deepcopy(CORPUS)
+    more["fully"] = 69
+    assert "(91%; target 90%: reached)" in fb.corpus_block(_record(more))
+
+
+def test_corpus_bench_reads_coverage_output():
+    spec = importlib.util.spec_from_file_location("bench_corpus", ROOT / "bench" / "corpus.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    results = {"a.xlsx": {"class": "pass", "fully": True, "formula_cells": 3, "evaluated": 3},
+               "b.xlsx": {"class": "disagreements", "fully": False, "formula_cells": 5,
+                          "evaluated": 4, "mismatches": 2}}
+    f = module.figures(results, "coverage: 1 of 2 files fully audited, 7 of 8 formula cells "
+                                "evaluated (87.5%)\n")
+    assert (f["fully"], f["files"], f["evaluated"], f["cells"]) == (1, 2, 7, 8)
+    assert f["classes"] == {"pass": 1, "disagreements": 1}
+    assert list(f["not_fully"]) == ["b.xlsx"] and f["not_fully"]["b.xlsx"]["disagree"] == 2
+    with pytest.raises(SystemExit):
+        module.figures(results, "something else")
+
+
 def test_advice_follows_the_data(figures):
     fa = figures.figures_advice
     data = figures.load()
