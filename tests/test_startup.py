@@ -6,6 +6,9 @@ from __future__ import annotations
 
 import subprocess
 import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
 
 HEAVY = ("pandas", "xlsxwriter", "openpyxl", "numpy", "mpmath", "tqdm")
 
@@ -45,6 +48,20 @@ def test_version_imports_no_heavy_library_nor_the_templates():
     out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
                          check=True).stdout
     assert out.split()[-1] == "False"
+
+
+def test_generate_imports_no_pandas_and_a_bad_scene_no_writer(tmp_path):
+    """Writing a workbook needs XlsxWriter and numpy, not pandas; a scene refused while
+    loading is refused before the writer is imported."""
+    scene = tmp_path / "s.toml"
+    scene.write_text((ROOT / "templates" / "sewing_machine.toml").read_text(encoding="utf-8"),
+                     encoding="utf-8")
+    code, _, heavy = _run(["generate", str(scene), "--out", str(tmp_path)])
+    assert code == 0 and (tmp_path / "sewing_machine.xlsx").is_file()
+    assert "pandas" not in heavy and "xlsxwriter" in heavy
+    scene.write_text('mechanism = "loom"\n', encoding="utf-8")
+    code, _, heavy = _run(["generate", str(scene), "--out", str(tmp_path / "no")])
+    assert code == 2 and "xlsxwriter" not in heavy and "pandas" not in heavy
 
 
 def test_importing_the_package_imports_no_heavy_library():

@@ -52,10 +52,10 @@ def _list(args: argparse.Namespace) -> int:
 
 def _generate(args: argparse.Namespace) -> int:
     from .scene import load_scene
-    from .workbook import write_workbook
     scene = load_scene(args.scene, overrides=_overrides(args.scene, args.set), step=args.step,
                        start=args.start, stop=args.stop, name=args.name)
     _warn(scene)
+    from .workbook import write_workbook  # after the scene: a bad one need not pay for it
     from .progress import Progress
     with Progress(2 * scene.sweep.rows, desc=f"{scene.name}.xlsx", unit="row",
                   delay=1.0) as bar:

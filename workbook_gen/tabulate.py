@@ -3,15 +3,18 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from . import xlmath as xm
 from .errors import CannotAssembleError
 from .expr.numeric import compiled, compiled_set
 from .model import Model, select
 from .scene import Scene
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 STATUS_OK = "ok"
 _STATUS = "\x00status"  # the status tree's result among the columns' (no quantity's name)
@@ -71,6 +74,7 @@ def headers(model: Model) -> list[str]:
 
 def compute(scene: Scene) -> pd.DataFrame:
     """The Table as a DataFrame (columns exactly the Table headers; errors as NaN)."""
+    import pandas as pd  # only here: writing a workbook does not need it (~0.35 s to import)
     result = evaluate(scene)
     data = {}
     for header, name in zip(headers(result.model), result.model.names):
