@@ -14,9 +14,11 @@ import re
 from xml.etree.ElementTree import Element, ParseError, fromstring
 
 from workbook_gen.xlerror import ExcelError
+from workbook_gen.xlsx import scan
 from workbook_gen.xlsx.limits import Package
 from workbook_gen.xlsx.model import (MAX_COL, Cell, SharedFormula, Sheet, Value,
                                      column_letters)
+from workbook_gen.xlsx.scan import Unrecognised, attributes, xml_text
 
 log = logging.getLogger(__name__)
 
@@ -60,6 +62,20 @@ def read_sheet(pkg: Package, part: str, sheet: Sheet, strings: list[str], budget
     pending: list[Cell] = []
     arrays: list[Cell] = []
     for row in _rows(pkg, part, sheet):
+        if type(row) is tuple:  # scanned: (attributes, cells, the row's XML)
+            marks = len(pending), len(arrays), set(shared)
+            try:
+                row_no, count = _scanned_row(row, row_no, count, budget, sheet, strings,
+                                             pending, arrays)
+                n_rows += 1
+                if n_rows > MAX_ROW:
+                    raise pkg.error(where, f"row {row_no} beyond Excel's {MAX_ROW} rows")
+                continue
+            except Unrecognised:  # ElementTree reads it, and says what is wrong
+                del pending[marks[0]:], arrays[marks[1]:]
+                for index in set(shared) - marks[2]:
+                    del shared[index]
+                row = _parse_row(pkg, part, row[3], row[2])
         n_rows += 1
         r = row.get("r")
         row_no = int(r) if r and r.isdigit() else row_no + 1
@@ -133,6 +149,85 @@ def read_sheet(pkg: Package, part: str, sheet: Sheet, strings: list[str], budget
     return count
 
 
+def _scanned_row(row: tuple, row_no: int, count: int, budget: int, sheet: Sheet,
+                 strings: list[str], pending: list[Cell], arrays: list[Cell]) -> tuple[int, int]:
+    """Add the cells of one row the scanner recognised; ``(row number, cells read)``.
+    Anything unusual (an error the ElementTree path words, an entity) raises Unrecognised
+    before the row's cells are added, so that the row is read again by that path."""
+    attrs, found = row[0], row[1]
+    a = attributes(attrs) if attrs else {}
+    r = a.get("r")
+    row_no = int(r) if r and r.isdigit() else row_no + 1
+    if row_no > MAX_ROW or count + len(found) > budget:
+        raise Unrecognised
+    count += len(found)
+    cols, shared, out = _COLS, sheet.shared_formulas, []
+    try:
+        for whole, letters, digits, cattrs, fplain, fattrs, ftext, v, istr in found:
+            col = cols.get(letters) or _column(letters)
+            if (r_ := int(digits)) > MAX_ROW:
+                raise Unrecognised
+            if not cattrs or (i := cattrs.find(' t="')) < 0:
+                value = float(v) if v else None
+            else:
+                kind = cattrs[i + 4:cattrs.index('"', i + 4)]
+                if kind == "n":
+                    value = float(v) if v else None
+                elif kind == "s":
+                    value = strings[int(v)] if v else None
+                    if v and int(v) < 0:
+                        raise Unrecognised
+                elif kind == "inlineStr" and "<is>" in whole:
+                    value = unescape(xml_text(istr))
+                else:
+                    if not v and "<v>" not in whole:
+                        v = None
+                    value = _value(kind, xml_text(v) if v else v, None, strings)
+            if fplain:
+                if "&" in fplain or "\r" in fplain:
+                    fplain = xml_text(fplain)
+                cell = Cell(letters + digits, r_, col, value,
+                            fplain[1:] if fplain[0] == "=" else fplain, "normal")
+            elif fattrs:
+                cell = Cell(letters + digits, r_, col, value)
+                _formula_of(cell, attributes(fattrs), xml_text(ftext) or None, shared,
+                            pending, arrays)
+            elif "<f" in whole:  # <f></f> or <f/>: a formula cell without text
+                cell = Cell(letters + digits, r_, col, value, None, "normal")
+            elif value is None:
+                continue
+            else:
+                cell = Cell(letters + digits, r_, col, value)
+            out.append(cell)
+    except (ValueError, IndexError):
+        raise Unrecognised from None
+    if a.get("hidden") in ("1", "true"):
+        sheet.hidden_rows.add(row_no)
+    cells = sheet.cells
+    for cell in out:
+        cells[cell.ref] = cell
+    return row_no, count
+
+
+def _column(letters: str) -> int:
+    col = 0
+    for ch in letters:
+        col = col * 26 + ord(ch) - 64
+    if col > MAX_COL:
+        raise Unrecognised
+    _COLS[letters] = col
+    return col
+
+
+def _parse_row(pkg: Package, part: str, context: tuple[bytes, bytes], xml: str) -> Element:
+    """One row's XML, parsed by ElementTree inside the part's root start tag."""
+    head, close = context
+    try:
+        return fromstring(head + xml.encode("utf-8") + b"</row>" + close)[0]
+    except ParseError as exc:
+        raise pkg.error(part, f"broken XML: {exc}") from None
+
+
 _SHEET_DATA = re.compile(rb"<(?:([A-Za-z_][\w.-]*):)?sheetData\b[^>]*?(/?)>")
 _DIMENSION = re.compile(rb"<(?:[A-Za-z_][\w.-]*:)?dimension\b[^>]*?\bref=\"([^\"]*)\"")
 _ROOT_TAG = re.compile(rb"<(?!\?|!)((?:[A-Za-z_][\w.-]*:)?[A-Za-z_][\w.-]*)\b[^>]*>")
@@ -170,6 +265,7 @@ def _rows(pkg: Package, part: str, sheet: Sheet):
         yield from _slow_rows(pkg, part, sheet)
         return
     close_root = b"</" + root.group(1) + b">"
+    context = start_tag, close_root
     end_data = b"</" + prefix + b"sheetData>"
     row_end = b"</" + prefix + b"row>"
     buf = head[m.end():]
@@ -190,11 +286,22 @@ def _rows(pkg: Package, part: str, sheet: Sheet):
                 continue
             cut += len(row_end)
             batch, buf = buf[:cut], buf[cut:]
-        try:
-            wrapper = fromstring(start_tag + batch + close_root)
-        except ParseError as exc:
-            raise pkg.error(part, f"broken XML: {exc}") from None
-        yield from wrapper
+        scanned = None
+        if not prefix:
+            try:
+                scanned = scan.rows(batch)
+            except Unrecognised:
+                pass  # ElementTree reads the batch, and words what is wrong
+        if scanned is not None:
+            for row in scanned:
+                yield (_parse_row(pkg, part, context, row[2]) if row[0] is None
+                       else (*row, context))
+        else:
+            try:
+                wrapper = fromstring(start_tag + batch + close_root)
+            except ParseError as exc:
+                raise pkg.error(part, f"broken XML: {exc}") from None
+            yield from wrapper
         if done:
             for _ in chunks:  # the rest of the part still counts against the budget
                 pass
@@ -246,8 +353,14 @@ def _value(kind: str, v: str | None, inline: Element | None, strings: list[str])
 
 def _formula(cell: Cell, f: Element, shared: dict[int, SharedFormula], pending: list[Cell],
              arrays: list[Cell]) -> None:
+    _formula_of(cell, f.attrib, f.text or None, shared, pending, arrays)
+
+
+def _formula_of(cell: Cell, f: dict[str, str], text: str | None,
+                shared: dict[int, SharedFormula], pending: list[Cell],
+                arrays: list[Cell]) -> None:
+    """Record the formula of ``cell`` from its <f>'s attributes and text."""
     kind = f.get("t", "normal")
-    text = f.text or None
     if text is not None and text.startswith("="):
         text = text[1:]
     cell.formula, cell.formula_type = text, kind

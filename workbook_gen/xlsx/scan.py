@@ -1,0 +1,92 @@
+"""The regular-expression scanner of <sheetData> rows in the plain form programs write.
+
+``rows(text)`` cuts a batch of whole ``<row>`` elements (decoded, without a namespace
+prefix) into ``(row attributes, cells)``, each cell the groups of ``CELL``: no Python
+code runs per XML element, and no element object is made. Whatever it does not
+recognise to the last character (other elements, a prefix, unusual spellings, entities it
+does not know) it hands back as the row's XML text, for ElementTree to parse: the scanner
+only ever takes the common path, never guesses.
+
+Text is returned as XML defines it: line ends normalised to ``\\n`` and the five named
+and the numeric character references replaced (``xml_text``).
+"""
+
+from __future__ import annotations
+
+import re
+
+_ATTRS = r'((?: [A-Za-z_:][\w:.-]*="[^"<&\t\n\r]*")*)'
+# one <c>: whole, column letters, row digits, attributes after r, plain <f> text,
+# <f> attributes, their <f> text, <v> text, inline string <is><t> text
+CELL = re.compile(
+    r'(<c r="([A-Z]{1,3})([1-9][0-9]{0,6})"' + _ATTRS + r'(?:/>|>'
+    r'(?:<f>([^<]*)</f>|<f' + _ATTRS + r'(?:/>|>([^<]*)</f>))?'
+    r'(?:<v>([^<]*)</v>|<is><t(?: xml:space="preserve")?>([^<]*)</t></is>)?'
+    r'</c>))')
+_ROW_START = re.compile(r'\s*<row' + _ATTRS + r'\s*>')
+ATTR = re.compile(r' ([A-Za-z_:][\w:.-]*)="([^"]*)"')
+_ENTITY = re.compile(r"&(#[0-9]+|#x[0-9A-Fa-f]+|[A-Za-z]+);")
+_CONTROL = bytes(c for c in range(32) if c not in (9, 10, 13))  # not XML characters
+_NAMED = {"amp": "&", "lt": "<", "gt": ">", "quot": '"', "apos": "'"}
+
+
+class Unrecognised(Exception):
+    """Text the scanner does not take: the caller parses it with ElementTree."""
+
+
+def rows(data: bytes) -> list[tuple[str | None, list | tuple, str]]:
+    """``(attributes, cells, xml without </row>)`` for each row of ``data`` (UTF-8, whole
+    rows and nothing else); ``attributes`` is None for a row the scanner does not recognise
+    to the last character. Raises Unrecognised if ``data`` holds anything else, or characters XML
+    forbids (the parser's error to word)."""
+    if len(data.translate(None, _CONTROL)) != len(data) or b"]]>" in data \
+            or b"\xef\xbf\xbe" in data or b"\xef\xbf\xbf" in data:
+        raise Unrecognised
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        raise Unrecognised from None
+    pieces = text.split("</row>")
+    if pieces[-1].strip():
+        raise Unrecognised
+    out = []
+    match, cells_of = _ROW_START.match, CELL.findall
+    for piece in pieces[:-1]:
+        m = match(piece)
+        if m is None:
+            raise Unrecognised  # not a <row ...> start tag: a self-closed row, a prefix
+        content = piece[m.end():]
+        cells = cells_of(content)
+        if "<row" in content or sum(map(len, [c[0] for c in cells])) != len(content):
+            out.append((None, (), piece))
+        else:
+            out.append((m.group(1), cells, piece))
+    return out
+
+
+def xml_text(s: str) -> str:
+    """Character data as an XML parser returns it: line ends as ``\\n``, references
+    replaced. Raises Unrecognised for an entity XML does not predefine."""
+    if "\r" in s:
+        s = s.replace("\r\n", "\n").replace("\r", "\n")
+    if "&" in s:
+        s = _ENTITY.sub(_reference, s)
+    return s
+
+
+def _reference(m: re.Match) -> str:
+    name = m.group(1)
+    if name[0] != "#":
+        if name not in _NAMED:
+            raise Unrecognised
+        return _NAMED[name]
+    code = int(name[2:], 16) if name[1] == "x" else int(name[1:])
+    if not (code in (0x9, 0xA, 0xD) or 0x20 <= code <= 0xD7FF or 0xE000 <= code <= 0xFFFD
+            or 0x10000 <= code <= 0x10FFFF):
+        raise Unrecognised  # not an XML character: the parser's error, not ours
+    return chr(code)
+
+
+def attributes(attrs: str) -> dict[str, str]:
+    """The attributes matched by ``_ATTRS`` as a dict (values hold no ``&`` or ``<``)."""
+    return dict(ATTR.findall(attrs))
