@@ -144,7 +144,10 @@ def test_the_folder_key_of_the_variants_is_their_json(tmp_path):
     plans = [from_specs(["l_AB=normal:32:8", "l_BC=uniform:20:110"], ["l_AB", "l_BC"], [],
                         50, 1).variants,
              (Variant(1, 'a "quoted", label', (("l_AB", 1e-05),)), Variant(2, "é\n", ()),
-              Variant(3, "x1", (("l_AB", -0.0), ("l_BC", 1e16)))), ()]
+              Variant(3, "x1", (("l_AB", -0.0), ("l_BC", 1e16))),
+              Variant(4, "x2", (("l_AB", 0.0), ("l_BC", 1e16))),
+              Variant(5, "x3", (("l_AB", -0.0), ("l_BC", float("nan"))))),
+             from_specs(["l_AB=-1:1:0.5", "l_BC=1,2"], ["l_AB", "l_BC"]).variants, ()]
     for variants in plans:
         assert variants_json(variants) == json.dumps(
             [[v.label, [[k, repr(x)] for k, x in v.values]] for v in variants])

@@ -59,18 +59,21 @@ def _design(base: Scene, vary, design, sets, samples, seed) -> Design:
 def variants_json(variants: Sequence[Variant]) -> str:
     """``json.dumps([[label, [[name, repr(value)], ...]], ...])`` of the variants (the
     folder's key: same text), written directly: a float's repr needs no escaping, a
-    label of ASCII letters and digits none either (others go through json)."""
-    names: dict[str, str] = {}
+    label of ASCII letters and digits none either (others go through json). A grid's
+    values repeat: each (name, value) pair's text is made once."""
+    pairs: dict[tuple[str, float], str] = {}
     parts = []
     for v in variants:
         label = v.label
         label = f'"{label}"' if label.isascii() and label.isalnum() else json.dumps(label)
         cells = []
-        for k, x in v.values:
-            name = names.get(k)
-            if name is None:
-                name = names[k] = json.dumps(k)
-            cells.append(f'[{name}, "{x!r}"]')
+        for pair in v.values:
+            text = pairs.get(pair)
+            if text is None:
+                text = f'[{json.dumps(pair[0])}, "{pair[1]!r}"]'
+                if pair[1]:  # 0.0 and -0.0 are equal keys, and their texts differ
+                    pairs[pair] = text
+            cells.append(text)
         parts.append(f"[{label}, [{', '.join(cells)}]]")
     return f"[{', '.join(parts)}]"
 

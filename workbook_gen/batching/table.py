@@ -33,10 +33,13 @@ class Table:
                         + value_columns(self.model) + ["audit"])
         self.data = {name: [None] * size for name in self.columns}
         self.data["variant"] = [v.label for v in self.design.variants]
-        for name in self.design.names:
-            column = self.data[name]
-            for i, variant in enumerate(self.design.variants):
-                column[i] = dict(variant.values).get(name, self.defaults[name])
+        varied = {name: self.data[name] for name in self.design.names}
+        for name, column in varied.items():
+            column[:] = [self.defaults[name]] * size
+        for i, variant in enumerate(self.design.variants):
+            for name, value in variant.values:  # the last of a name given twice wins
+                if name in varied:
+                    varied[name][i] = value
         self._filled = [False] * size
         self._kinds: dict[str, str] = {}
         self._figures = text_figures(self.model)
