@@ -48,6 +48,9 @@ MATH = [
     "GCD(24,36)", "LCM(4,6)", "COMBIN(8,2)", "PERMUT(100,3)", "SINH(1)", "COSH(1)", "TANH(0.5)",
     "ASINH(1)", "ACOSH(1)", "ATANH(0.5)", "ATANH(1)", "SQRTPI(2)", "FACTDOUBLE(7)",
     f"SUM({NUM})", f"SUM({MIX})", 'SUM(1,"2",TRUE)', "MOD(-7,3)", "POWER(2,0.5)",
+    # Excel's rules for these are tested on Mac Excel's cells (test_excel_mac_cells.py)
+    "FACTDOUBLE(-1)", "FACTDOUBLE(-1.1)", "FACTDOUBLE(TRUE)", "MROUND(TRUE,0)", "SQRTPI(TRUE)",
+    'ARABIC("XIV")', 'ARABIC("IM")', 'ARABIC("MCMXCIV")',
 ]
 LOGICAL = [
     "XOR(TRUE,FALSE)", "XOR(TRUE,TRUE)", f"XOR({MIX})", 'IFS(1>2,"a",2>1,"b")', "IFS(1>2,1)",
@@ -68,7 +71,7 @@ LOOKUP = [
     "CHOOSE(2,\"a\",\"b\",\"c\")", "CHOOSE(4,1,2,3)", f"ROWS({TAB})", f"COLUMNS({TAB})",
     "ROW(Data!C7)", "COLUMN(Data!C7)", "COLUMN()", "ROW()", "ROWS(Data!A1:C4)", 'INDIRECT("Data!A3")', 'INDIRECT("Data!R4C1",FALSE)',
     'SUM(INDIRECT("Data!A1:A3"))', "SUM(OFFSET(Data!A1,1,0,3,1))", "OFFSET(Data!A1,2,1)",
-    "ADDRESS(2,3)", "ADDRESS(2,3,4)", 'ADDRESS(1,1,1,TRUE,"My Sheet")', "ADDRESS(5,28,2)",
+    "ADDRESS(2,3)", "ADDRESS(2,3,4)", 'ADDRESS(1,1,1,TRUE,"My Sheet")', 'ADDRESS(1,3,4,TRUE,"")', "ADDRESS(5,28,2)",
 ]
 STATS = [
     f"AVERAGE({NUM})", f"AVERAGE({MIX})", f"AVERAGEA({MIX})", f"COUNT({MIX})", f"COUNTA({MIX})",
@@ -211,7 +214,8 @@ CASES = _cell_rows(FAMILIES)
 # Functions newer than Excel 2007 are stored with the _xlfn. prefix (else #NAME?).
 FUTURE = ["AGGREGATE", "CEILING.MATH", "FLOOR.MATH", "XOR", "IFS", "SWITCH", "IFNA", "MAXIFS", "MINIFS",
           "STDEV.S", "STDEV.P", "VAR.S", "VAR.P", "RANK.AVG", "RANK.EQ", "CONCAT", "TEXTJOIN",
-          "UNICHAR", "UNICODE", "NUMBERVALUE", "ISOWEEKNUM", "DAYS", "XLOOKUP", "XMATCH"]
+          "UNICHAR", "UNICODE", "NUMBERVALUE", "ISOWEEKNUM", "DAYS", "XLOOKUP", "XMATCH",
+          "ARABIC"]
 _FUTURE = re.compile(r"(?<![A-Z.])(" + "|".join(re.escape(f) for f in FUTURE) + r")\(")
 
 

@@ -162,8 +162,9 @@ LO_DIFFERS: dict[str, tuple[object, str]] = {
     f"PERCENTRANK.EXC({NA},4)": (0.363, "Excel truncates to the significance (Microsoft: "
                                  "PERCENTRANK.EXC(..,5.43,1) is 0.3); LibreOffice rounds"),
     f"PERCENTRANK.EXC({NB},8)": (0.581, "as above"),
-    'IMSUM("1+i","2+j")': (E.NUM, "mixed suffixes: #NUM! in Excel (formulas test.xlsx "
-                                  "ENGINEERING!T51, IMSUB); LibreOffice mixes them"),
+    'IMSUM("1+i","2+j")': (E.VALUE, "mixed suffixes: #VALUE! in Excel's IMSUM (formulas "
+                                    "test.xlsx ENGINEERING!S52; IMSUB's is #NUM!, T51); "
+                                    "LibreOffice mixes them"),
     "BITAND(1.5,3)": (E.NUM, "Microsoft: a non-integer argument is #NUM!; LibreOffice "
                              "truncates"),
     'ARABIC("-CDXC")': (-490.0, "Microsoft: a leading minus sign gives a negative number"),

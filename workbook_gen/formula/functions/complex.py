@@ -1,7 +1,7 @@
 """Complex numbers as Excel writes them, text like "3+4i" or "-2.5j": COMPLEX and the IM*
 family. A complex argument is such text (suffix i or j, "i" alone is 1i) or a real
-number; unreadable text is #NUM!, a boolean #VALUE!, suffixes i and j mixed #NUM!; an empty
-cell is 0.
+number; unreadable text is #NUM!, a boolean #VALUE!, suffixes i and j mixed #NUM! (#VALUE!
+in IMSUM and IMPRODUCT); an empty cell is 0.
 Results are written with 15 significant digits (Excel's number-to-text); powers, roots
 and logarithms go through the polar form as Excel does."""
 
@@ -66,10 +66,13 @@ def write(z: complex, sfx: str = "i") -> str | ExcelError:
     return _part(re_) + ("+" if im > 0 else "") + coef + sfx
 
 
-def _suffix(*sfxs):
+def _suffix(*sfxs, mixed=ExcelError.NUM):
+    """The suffix of a result; ``mixed`` if "i" and "j" are mixed: #NUM! for the
+    two-argument functions (formulas test.xlsx ENGINEERING!T51, IMSUB), #VALUE! for
+    IMSUM and IMPRODUCT (S52, T44)."""
     got = {s for s in sfxs if s is not None}
-    if len(got) > 1:  # "i" and "j" mixed (formulas test.xlsx ENGINEERING!T51: #NUM!)
-        return ExcelError.NUM
+    if len(got) > 1:
+        return mixed
     return got.pop() if got else "i"
 
 
@@ -238,7 +241,7 @@ def _many(fn, start):
                     return got
                 acc = fn(acc, got[0])
                 sfxs.append(got[1])
-        s = _suffix(*sfxs)
+        s = _suffix(*sfxs, mixed=ExcelError.VALUE)
         return s if isinstance(s, ExcelError) else write(acc, s)
     return scalar
 

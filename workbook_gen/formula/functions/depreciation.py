@@ -17,9 +17,11 @@ from workbook_gen.formula.functions.registry import register
 from workbook_gen.xlerror import ExcelError
 
 
-def _safe(fn):
+def _safe(fn, booleans=True):
+    """``booleans=False``: an Analysis ToolPak function, which takes no boolean (#VALUE!;
+    formulas__test.xlsx FINANCIAL!Y13, CUMIPMT(TRUE,...))."""
     def wrapped(ctx, *vs):
-        xs = args_of(*vs)
+        xs = args_of(*vs, booleans=booleans)
         if isinstance(xs, ExcelError):
             return xs
         try:
@@ -165,8 +167,8 @@ def cumprinc(rate, nper, pv, start, end, typ):
     return total
 
 
-register("CUMIPMT", "finance", 6, 6)(_safe(cumipmt))
-register("CUMPRINC", "finance", 6, 6)(_safe(cumprinc))
+register("CUMIPMT", "finance", 6, 6)(_safe(cumipmt, booleans=False))
+register("CUMPRINC", "finance", 6, 6)(_safe(cumprinc, booleans=False))
 register("ISPMT", "finance", 4, 4)(_safe(lambda r, per, n, pv: pv * r * (per / n - 1)))
 
 

@@ -128,8 +128,21 @@ def _arabic(ctx, text):
     if len(t) > 255 or set(t) - set(_CHARS):
         return ExcelError.VALUE
     vals = [_VALUES[_CHARS.index(ch)] for ch in t]
-    total = sum(-v if i + 1 < len(vals) and v < vals[i + 1] else v for i, v in enumerate(vals))
-    return sign * total
+    if ctx.dialect == "libreoffice":  # a numeral before a larger next one is subtracted
+        total = sum(-v if i + 1 < len(vals) and v < vals[i + 1] else v
+                    for i, v in enumerate(vals))
+        return sign * total
+    # Excel: read from the right, a numeral smaller than the largest seen so far is
+    # subtracted (Mac Excel 16, formulas__test.xlsx 'MATH & TRIG'!T9: ARABIC("IIIIIIV") = -1,
+    # V9: ARABIC("IILmIIC") = 1046); the same as the pairwise rule on well-formed numerals
+    total, largest = 0, 0
+    for v in reversed(vals):
+        if v < largest:
+            total -= v
+        else:
+            total += v
+            largest = v
+    return sign * float(total)
 
 
 _DIGITS = "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ"

@@ -36,8 +36,12 @@ def _numeric(*xs):
     return next((x for x in xs if isinstance(x, ExcelError)), None)
 
 
-def _math1(name, fn, vector=None, **kw):
+def _math1(name, fn, vector=None, booleans=True, **kw):
+    """``booleans=False``: a function of Excel's Analysis ToolPak, which takes no boolean
+    argument (#VALUE!; formulas__test.xlsx 'MATH & TRIG'!Y70, SQRTPI(TRUE))."""
     def scalar(ctx, a):
+        if not booleans and isinstance(a, bool):
+            return ExcelError.VALUE
         x = c.to_number(a)
         return x if isinstance(x, ExcelError) else c.result(fn(x))
     register(name, "math", 1, 1, vector=vector, **kw)(scalar)
@@ -108,14 +112,30 @@ _math1("ACOSH", _domain(math.acosh, 1.0, math.inf))
 _math1("ATANH", _domain(math.atanh, -1.0, 1.0, open_lo=True))
 _math1("LN", _domain(math.log, 0.0, math.inf, open_lo=True))
 _math1("LOG10", _domain(math.log10, 0.0, math.inf, open_lo=True))
-_math1("SQRTPI", _domain(lambda x: math.sqrt(x * math.pi), 0.0, math.inf))
+_math1("SQRTPI", _domain(lambda x: math.sqrt(x * math.pi), 0.0, math.inf), booleans=False)
 _math1("INT", lambda x: float(math.floor(x)))
 _math1("EVEN", lambda x: math.copysign(2 * math.ceil(abs(x) / 2), x))
 _math1("ODD", lambda x: math.copysign(max(1, 2 * math.ceil((abs(x) + 1) / 2) - 1), x)
        if x != 0 else 1.0)
 _math1("FACT", lambda x: float(math.factorial(int(x))) if 0 <= x < 171 else ExcelError.NUM)
-_math1("FACTDOUBLE", lambda x: float(math.prod(range(int(x), 0, -2))) if 0 <= x < 301
-       else ExcelError.NUM)
+
+
+@register("FACTDOUBLE", "math", 1, 1)
+def _factdouble(ctx, a):
+    """n!! of TRUNC(x). Excel (an Analysis ToolPak function): no boolean; #NUM! below -1,
+    and -1 (or -1 < x < 0) gives the empty product 1 (Mac Excel 16, formulas__test.xlsx
+    'MATH & TRIG'!V31: FACTDOUBLE(-1) = 1, T31: FACTDOUBLE(-1.1) = #NUM!). LibreOffice
+    7.4: #VALUE! for any negative (measured: -1, -1.1, -2)."""
+    if isinstance(a, bool):
+        return ExcelError.VALUE
+    x = c.to_number(a)
+    if isinstance(x, ExcelError):
+        return x
+    if ctx.dialect == "libreoffice" and x < 0:
+        return ExcelError.VALUE
+    if x < -1 or x >= 301:
+        return ExcelError.NUM
+    return float(math.prod(range(int(x), 0, -2)))
 
 
 def _vector2(kernel):
@@ -192,6 +212,8 @@ def _multiple(x: float, m: float, mode) -> float:
 
 @register("MROUND", "math", 2, 2)
 def _mround(ctx, x, m):
+    if isinstance(x, bool) or isinstance(m, bool):  # Analysis ToolPak: no booleans
+        return ExcelError.VALUE                     # (formulas__test 'MATH & TRIG'!Y45)
     x, m = c.to_number(x), c.to_number(m)
     bad = _numeric(x, m)
     if bad is not None:

@@ -106,8 +106,11 @@ def _column_letters(col: int) -> str:
     return out
 
 
+_OMITTED = object()
+
+
 @register("ADDRESS", "lookup", 2, 5)
-def _address(ctx, row, col, absolute=1.0, a1=True, sheet=None):
+def _address(ctx, row, col, absolute=1.0, a1=True, sheet=_OMITTED):
     r, k, a = c.to_number(row), c.to_number(col), c.to_number(absolute)
     bad = next((x for x in (r, k, a) if isinstance(x, ExcelError)), None)
     if bad is not None:
@@ -123,10 +126,12 @@ def _address(ctx, row, col, absolute=1.0, a1=True, sheet=None):
         text = ("$" if col_abs else "") + _column_letters(k) + ("$" if row_abs else "") + str(r)
     else:
         text = (f"R{r}" if row_abs else f"R[{r}]") + (f"C{k}" if col_abs else f"C[{k}]")
-    if sheet is not None:
-        s = c.to_text(sheet)
+    if sheet is not _OMITTED:
+        s = "" if sheet is None else c.to_text(sheet)
         if isinstance(s, ExcelError):
             return s
+        if not s and ctx.dialect == "excel":  # Excel writes the empty sheet name's "!"
+            return f"!{text}"                 # (formulas__test.xlsx LOOKUP!S3)
         if s:
             quoted = s if re.fullmatch(r"(\[[^\]]+\])?[A-Za-z_][A-Za-z0-9_.]*", s) else (
                 "'" + s.replace("'", "''") + "'")
