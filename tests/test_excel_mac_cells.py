@@ -28,6 +28,14 @@ CELLS = {
     "ENGINEERING!S52": "IMSUM(D52:E52,F52)",
     "ENGINEERING!T44": "IMPRODUCT(F44,E44)",
     "ENGINEERING!T51": "IMSUB(E51,F51) = #NUM!",
+    # AND/OR/XOR: a text argument's #VALUE! gives way to a later error value
+    "LOGICAL!AP3": 'AND(TRUE,"0",#REF!) = #REF!',
+    "LOGICAL!AS3": 'AND(TRUE,"ciao",#REF!,"0") = #REF!',
+    "LOGICAL!AP21": 'OR(TRUE,"0",#REF!) = #REF!',
+    "LOGICAL!AP27": 'XOR(TRUE,"0",#REF!) = #REF!',
+    # ROW and COLUMN of an empty intersection: its #NULL!
+    "LOOKUP!AG13": "COLUMN(C12:E13 F12:H13) = #NULL!",
+    "LOOKUP!AG113": "ROW(C112:E113 F112:H113) = #NULL!",
 }
 
 

@@ -127,10 +127,13 @@ def values_a(args) -> list[float] | ExcelError:
     return out
 
 
-def logicals(args) -> list[bool] | ExcelError:
+def logicals(args, errors_first: bool = False) -> list[bool] | ExcelError:
     """Booleans for AND/OR/XOR: ranges skip text and empties, a direct text argument must
-    be TRUE or FALSE; no logical value at all is #VALUE!."""
+    be TRUE or FALSE; no logical value at all is #VALUE!. ``errors_first`` (Excel): a
+    text argument's #VALUE! gives way to an error value among the later arguments (Mac
+    Excel 16, formulas__test.xlsx LOGICAL!AS3: AND(TRUE,"ciao",#REF!,"0") is #REF!)."""
     out: list[bool] = []
+    bad_text = None
     for a in args:
         if isinstance(a, Range):
             fast = a.numbers()
@@ -145,8 +148,13 @@ def logicals(args) -> list[bool] | ExcelError:
             continue
         b = to_bool(a)
         if isinstance(b, ExcelError):
-            return b
+            if not (errors_first and isinstance(a, str)):
+                return b
+            bad_text = bad_text or b
+            continue
         out.append(b)
+    if bad_text is not None:
+        return bad_text
     return out if out else ExcelError.VALUE
 
 

@@ -75,19 +75,19 @@ def _andor_vector(name):
 
 @register("AND", "logical", 1, -1, "range", vector=_andor_vector("AND"))
 def _and(ctx, *args):
-    bs = c.logicals(args)
+    bs = c.logicals(args, ctx.dialect == "excel")
     return bs if isinstance(bs, ExcelError) else all(bs)
 
 
 @register("OR", "logical", 1, -1, "range", vector=_andor_vector("OR"))
 def _or(ctx, *args):
-    bs = c.logicals(args)
+    bs = c.logicals(args, ctx.dialect == "excel")
     return bs if isinstance(bs, ExcelError) else any(bs)
 
 
 @register("XOR", "logical", 1, -1, "range")
 def _xor(ctx, *args):
-    bs = c.logicals(args)
+    bs = c.logicals(args, ctx.dialect == "excel")
     return bs if isinstance(bs, ExcelError) else sum(bs) % 2 == 1
 
 

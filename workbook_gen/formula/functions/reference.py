@@ -18,6 +18,8 @@ def _position(ctx, v, axis: int):
         if ctx.cell is None:
             return ExcelError.VALUE
         return float(ctx.cell[1 + axis])
+    if isinstance(v, ExcelError) and ctx.dialect == "excel":  # e.g. an empty intersection's
+        return v                            # #NULL! (formulas__test.xlsx LOOKUP!AG13)
     if not isinstance(v, Range) or v.ref is None:
         return ExcelError.VALUE
     ref = v.ref
