@@ -36,6 +36,10 @@ CELLS = {
     # ROW and COLUMN of an empty intersection: its #NULL!
     "LOOKUP!AG13": "COLUMN(C12:E13 F12:H13) = #NULL!",
     "LOOKUP!AG113": "ROW(C112:E113 F112:H113) = #NULL!",
+    # Student's t far tails from the tail itself, and the density at 0 degrees of freedom
+    "STATISTICAL!X103": "T.DIST.2T(60,60) = 2.85e-55",
+    "STATISTICAL!X104": "T.DIST.RT(60,60) = 1.42e-55",
+    "STATISTICAL!R102": "T.DIST(0,0,FALSE) = #DIV/0!",
 }
 
 
@@ -48,3 +52,20 @@ def report(corpus_audits):
 def test_cell_agrees_with_mac_excel(report, cell):
     assert cell not in report.not_checked
     assert cell not in {m.cell for m in report.mismatches}
+
+
+@pytest.mark.parametrize("x, df", [(60.0, 60.0), (40.0, 3.0), (9.0, 200.0), (1e3, 1.0)])
+def test_t_tails_agree_with_the_integrated_density(x, df):
+    """T.DIST.RT and T.DIST.2T against mpmath's quadrature of Student's density from x to
+    infinity at 50 digits (an independent path: no incomplete beta function)."""
+    import mpmath
+
+    from workbook_gen.formula import DictResolver, evaluate, parse
+    with mpmath.workdps(50):
+        x_, n = mpmath.mpf(x), mpmath.mpf(df)
+        norm = mpmath.gamma((n + 1) / 2) / (mpmath.sqrt(n * mpmath.pi) * mpmath.gamma(n / 2))
+        tail = float(mpmath.quad(lambda t: norm * (1 + t * t / n) ** (-(n + 1) / 2),
+                                 [x_, 2 * x_, mpmath.inf]))
+    for formula, expected in ((f"T.DIST.RT({x},{df})", tail), (f"T.DIST.2T({x},{df})", 2 * tail)):
+        got = evaluate(parse("=" + formula), DictResolver({}), dialect="excel")
+        assert got == pytest.approx(expected, rel=1e-12), formula
