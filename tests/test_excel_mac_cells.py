@@ -40,6 +40,12 @@ CELLS = {
     "STATISTICAL!X103": "T.DIST.2T(60,60) = 2.85e-55",
     "STATISTICAL!X104": "T.DIST.RT(60,60) = 1.42e-55",
     "STATISTICAL!R102": "T.DIST(0,0,FALSE) = #DIV/0!",
+    # Z.TEST: x's error, then sigma's, before the array's; sigma 0 #NUM!; one number #DIV/0!
+    "STATISTICAL!U121": "Z.TEST({3.2,0.7},2,0) = #NUM!",
+    "STATISTICAL!V121": "Z.TEST({4,,text},0,2) = #DIV/0!",
+    "STATISTICAL!Y121": "Z.TEST({TRUE,#VALUE!},#N/A) = #N/A",
+    "STATISTICAL!AB121": "Z.TEST({#DIV/0!,#NAME?},3,#NAME?) = #NAME?",
+    "STATISTICAL!AE121": "Z.TEST({#NUM!,#REF!},x) = #NUM!",
 }
 
 

@@ -75,6 +75,8 @@ LOOKUP = [
     "ADDRESS(2,3)", "ADDRESS(2,3,4)", 'ADDRESS(1,1,1,TRUE,"My Sheet")', 'ADDRESS(1,3,4,TRUE,"")', "ADDRESS(5,28,2)",
 ]
 STATS = [
+    # Excel's Z.TEST rules are tested on Mac Excel's cells (test_excel_mac_cells.py)
+    "ZTEST({3.2,0.7},2,0)", "ZTEST({4},0,2)", "ZTEST({3.2,0.7},1/0,NA())",
     f"AVERAGE({NUM})", f"AVERAGE({MIX})", f"AVERAGEA({MIX})", f"COUNT({MIX})", f"COUNTA({MIX})",
     f"COUNTBLANK({MIX})", f"COUNT({NUM},\"x\",2)", f'COUNTIF({NUM},">=5")',
     f'COUNTIF({WRD},"a*")', f'COUNTIF({WRD},"<>pear")', f'COUNTIF({WRD},"pear")',

@@ -281,22 +281,25 @@ def _t_test(ctx, a1, a2, tails, kind):
 
 @register("Z.TEST", "stats", 2, 3, ("range", "scalar"), aliases=("ZTEST",))
 def _z_test(ctx, data, x, sigma=None):
-    xs = _nums(ctx, data)
-    if isinstance(xs, ExcelError):
-        return xs
+    """x's error, then sigma's, come before an error in the array; fewer than two numbers
+    are #DIV/0! even with sigma given; a given sigma of 0 is #NUM! (Mac Excel 16,
+    formulas__test.xlsx STATISTICAL!U121:AE121; LibreOffice 7.4 measured the same, but
+    #VALUE! for sigma 0)."""
     args = args_of(x) if sigma is None else args_of(x, sigma)
     if isinstance(args, ExcelError):
         return args
+    xs = _nums(ctx, data)
+    if isinstance(xs, ExcelError):
+        return xs
     if not xs:
         return ExcelError.NA
-    if sigma is None:
-        if len(xs) < 2:
-            return ExcelError.DIV0
-        s = math.sqrt(_var(xs))
-    else:
-        s = args[1]
-    if s <= 0:
-        return ExcelError.DIV0 if s == 0 else ExcelError.NUM
+    if len(xs) < 2:
+        return ExcelError.DIV0
+    s = math.sqrt(_var(xs)) if sigma is None else args[1]
+    if sigma is not None and s <= 0:
+        return ExcelError.VALUE if s == 0 and ctx.dialect == "libreoffice" else ExcelError.NUM
+    if s == 0:
+        return ExcelError.DIV0
     z = (_mean(xs) - args[0]) / (s / math.sqrt(len(xs)))
     with mpmath.workdps(DPS):
         return c.result(float(1 - mpmath.ncdf(z)))
