@@ -46,6 +46,12 @@ CELLS = {
     "STATISTICAL!Y121": "Z.TEST({TRUE,#VALUE!},#N/A) = #N/A",
     "STATISTICAL!AB121": "Z.TEST({#DIV/0!,#NAME?},3,#NAME?) = #NAME?",
     "STATISTICAL!AE121": "Z.TEST({#NUM!,#REF!},x) = #NUM!",
+    # HYPGEOM.DIST: zeros allowed; the cumulative form is 0 below the support, 1 above
+    "STATISTICAL!R54": "HYPGEOM.DIST(0,0,0,0,FALSE) = 1",
+    "STATISTICAL!W54": "HYPGEOM.DIST(0,0,4,4,TRUE) = 1",
+    "STATISTICAL!AG54": "HYPGEOM.DIST(0,2,3,3,TRUE) = 0",
+    "STATISTICAL!AI54": "HYPGEOM.DIST(5,3,2,30,TRUE) = 1",
+    "STATISTICAL!S54": "HYPGEOM.DIST(5,10,30,7,FALSE) = #NUM!",
 }
 
 

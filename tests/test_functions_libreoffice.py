@@ -77,6 +77,8 @@ LOOKUP = [
 STATS = [
     # Excel's Z.TEST rules are tested on Mac Excel's cells (test_excel_mac_cells.py)
     "ZTEST({3.2,0.7},2,0)", "ZTEST({4},0,2)", "ZTEST({3.2,0.7},1/0,NA())",
+    "HYPGEOM.DIST(0,0,0,0,FALSE)", "HYPGEOM.DIST(0,2,3,3,TRUE)", "HYPGEOM.DIST(0,2,3,3,FALSE)",
+    "HYPGEOM.DIST(3,3,2,30,TRUE)", "HYPGEOM.DIST(5,3,2,30,TRUE)",
     f"AVERAGE({NUM})", f"AVERAGE({MIX})", f"AVERAGEA({MIX})", f"COUNT({MIX})", f"COUNTA({MIX})",
     f"COUNTBLANK({MIX})", f"COUNT({NUM},\"x\",2)", f'COUNTIF({NUM},">=5")',
     f'COUNTIF({WRD},"a*")', f'COUNTIF({WRD},"<>pear")', f'COUNTIF({WRD},"pear")',
@@ -223,7 +225,7 @@ CASES = _cell_rows(FAMILIES)
 FUTURE = ["AGGREGATE", "CEILING.MATH", "FLOOR.MATH", "XOR", "IFS", "SWITCH", "IFNA", "MAXIFS", "MINIFS",
           "STDEV.S", "STDEV.P", "VAR.S", "VAR.P", "RANK.AVG", "RANK.EQ", "CONCAT", "TEXTJOIN",
           "UNICHAR", "UNICODE", "NUMBERVALUE", "ISOWEEKNUM", "DAYS", "XLOOKUP", "XMATCH",
-          "ARABIC"]
+          "ARABIC", "HYPGEOM.DIST"]
 _FUTURE = re.compile(r"(?<![A-Z.])(" + "|".join(re.escape(f) for f in FUTURE) + r")\(")
 
 

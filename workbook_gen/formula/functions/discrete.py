@@ -56,14 +56,23 @@ def negbinom(f, s, p, cum):
     return mpmath.fsum(pmf(i) for i in range(f + 1)) if cum else pmf(f)
 
 
-def hypgeom(k, n, big_k, big_n, cum):
+def hypgeom(k, n, big_k, big_n, cum, dialect="excel"):
+    """Counts truncated; zeros allowed (HYPGEOM.DIST(0,0,0,0,FALSE) = 1). Outside the
+    support the cumulative form is 0 below and 1 above it (Mac Excel 16, formulas__test.xlsx
+    STATISTICAL!AG54, AI54; LibreOffice 7.4 the same), the mass #NUM! (Microsoft's rule;
+    LibreOffice: 0). LibreOffice refuses k > n with #VALUE! (measured)."""
     k, n, big_k, big_n = (math.trunc(v) for v in (k, n, big_k, big_n))
-    if (k < 0 or k > min(n, big_k) or k < n - big_n + big_k or n <= 0 or n > big_n
-            or big_k <= 0 or big_k > big_n or big_n <= 0):
+    if k < 0 or n < 0 or big_k < 0 or big_n < 0 or n > big_n or big_k > big_n:
         return ExcelError.NUM
+    if dialect == "libreoffice" and k > n:
+        return ExcelError.VALUE
+    lo, hi = max(0, n - big_n + big_k), min(n, big_k)
+    if not lo <= k <= hi:
+        if cum:
+            return 0 if k < lo else 1
+        return 0 if dialect == "libreoffice" else ExcelError.NUM
     pmf = lambda i: (mpmath.binomial(big_k, i) * mpmath.binomial(big_n - big_k, n - i)
                      / mpmath.binomial(big_n, n))
-    lo = max(0, n - big_n + big_k)
     return mpmath.fsum(pmf(i) for i in range(lo, k + 1)) if cum else pmf(k)
 
 
@@ -81,6 +90,6 @@ register("BINOM.INV", "stats", 3, 3, aliases=("CRITBINOM",))(numeric(binom_inv))
 register("BINOM.DIST.RANGE", "stats", 3, 4)(numeric(binom_range))
 register("NEGBINOM.DIST", "stats", 4, 4)(with_flag(negbinom))
 register("NEGBINOMDIST", "stats", 3, 3)(numeric(lambda f, s, p: negbinom(f, s, p, False)))
-register("HYPGEOM.DIST", "stats", 5, 5)(with_flag(hypgeom))
+register("HYPGEOM.DIST", "stats", 5, 5)(with_flag(hypgeom, dialect=True))
 register("HYPGEOMDIST", "stats", 4, 4)(numeric(lambda k, n, bk, bn: hypgeom(k, n, bk, bn, False)))
 register("POISSON.DIST", "stats", 3, 3, aliases=("POISSON",))(with_flag(poisson))

@@ -55,8 +55,9 @@ def numeric(fn):
     return wrapped
 
 
-def with_flag(fn):
-    """As :func:`numeric` where the last argument is a boolean (cumulative, tails...)."""
+def with_flag(fn, dialect: bool = False):
+    """As :func:`numeric` where the last argument is a boolean (cumulative, tails...);
+    ``dialect``: ``fn`` also takes ``dialect=`` ("excel" or "libreoffice")."""
     def wrapped(ctx, *vs):
         *vals, last = vs
         b = flag(last)
@@ -67,7 +68,7 @@ def with_flag(fn):
             return xs
         with mpmath.workdps(DPS):
             try:
-                r = fn(*xs, b)
+                r = fn(*xs, b, dialect=ctx.dialect) if dialect else fn(*xs, b)
             except (ValueError, ZeroDivisionError, OverflowError):
                 return ExcelError.NUM
         return r if isinstance(r, ExcelError) else c.result(float(r))
