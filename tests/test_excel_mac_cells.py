@@ -52,6 +52,15 @@ CELLS = {
     "STATISTICAL!AG54": "HYPGEOM.DIST(0,2,3,3,TRUE) = 0",
     "STATISTICAL!AI54": "HYPGEOM.DIST(5,3,2,30,TRUE) = 1",
     "STATISTICAL!S54": "HYPGEOM.DIST(5,10,30,7,FALSE) = #NUM!",
+    # NUMBERVALUE: parentheses, percent signs inside and after them, separators
+    "TEXT!R27": 'NUMBERVALUE("(2.500,27)",",",".") = -2500.27',
+    "TEXT!S27": 'NUMBERVALUE("(2,500.27)",",",".") = #VALUE! (group after decimal)',
+    "TEXT!U27": 'NUMBERVALUE("(2,500.27%)%",".",",.,") = -0.250027',
+    "TEXT!V27": 'NUMBERVALUE("(,25,,0,0.27E + 6%)%",".",",.,") = -250027',
+    "TEXT!W28": 'NUMBERVALUE("(2500,27E+6%)%",",") = -250027',
+    "TEXT!V28": 'NUMBERVALUE("(2,500.27%)%",",") = #VALUE!',
+    "TEXT!AB28": 'NUMBERVALUE("1",<empty cell>) = #VALUE!',
+    "TEXT!R28": 'NUMBERVALUE("(-2500.27E+2%)%",".",",.,") = #VALUE!',
 }
 
 

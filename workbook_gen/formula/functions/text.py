@@ -302,17 +302,45 @@ def _fixed(ctx, v, decimals=2.0, no_commas=False):
 
 
 @register("NUMBERVALUE", "text", 1, 3)
-def _numbervalue(ctx, v, dec=".", group=","):
+def _numbervalue(ctx, v, dec=".", group=_ABSENT):
+    """Spaces ignored; the separators' first characters; a separator given as an empty
+    cell is #VALUE!; the group separator after the decimal one, the decimal one twice, or
+    the two the same, is #VALUE! (Microsoft); without a group separator, "," unless the decimal one is ","
+    ("." then); a number in parentheses is negative, with percent signs inside and after
+    them (Mac Excel 16, formulas__test.xlsx TEXT!R27:W28: "(2.500,27)" with "," and "."
+    is -2500.27, "(2,500.27%)%" -0.250027, "(2500,27E+6%)%" with "," -250027)."""
+    excel = ctx.dialect == "excel"
+    if excel and (dec is None or group is None):
+        return ExcelError.VALUE
+    if group is _ABSENT:
+        group = "." if excel and isinstance(dec, str) and dec[:1] == "," else ","
     ts = _texts(v, dec, group)
     if isinstance(ts, ExcelError):
         return ts
     t, d, g = ts
     t = "".join(t.split())
+    if excel and d and g:
+        if d[0] == g[0]:
+            return ExcelError.VALUE  # formulas__test.xlsx TEXT!T27
+        first = t.find(d[0])
+        if first >= 0 and (t.find(d[0], first + 1) >= 0 or g[0] in t[first + 1:]):
+            return ExcelError.VALUE
     if g:
         t = t.replace(g[0], "")
     if d and d[0] != ".":
         t = t.replace(d[0], ".")
+    if ctx.dialect == "excel" and t.rstrip("%").startswith("(") and t.rstrip("%").endswith(")"):
+        outer = len(t) - len(t.rstrip("%"))
+        inner = t.rstrip("%")[1:-1]
+        percent = outer + len(inner) - len(inner.rstrip("%"))
+        inner = inner.rstrip("%")
+        if not _PLAIN_NUMBER.fullmatch(inner):
+            return ExcelError.VALUE
+        return c.result(-float(inner) / 100.0 ** percent)
     return c.text_to_number(t) if t else 0.0
+
+
+_PLAIN_NUMBER = re.compile(r"(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
 
 
 @register("UNICHAR", "text", 1, 1)
