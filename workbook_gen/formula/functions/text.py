@@ -305,10 +305,11 @@ def _fixed(ctx, v, decimals=2.0, no_commas=False):
 def _numbervalue(ctx, v, dec=".", group=_ABSENT):
     """Spaces ignored; the separators' first characters; a separator given as an empty
     cell is #VALUE!; the group separator after the decimal one, the decimal one twice, or
-    the two the same, is #VALUE! (Microsoft); without a group separator, "," unless the decimal one is ","
-    ("." then); a number in parentheses is negative, with percent signs inside and after
-    them (Mac Excel 16, formulas__test.xlsx TEXT!R27:W28: "(2.500,27)" with "," and "."
-    is -2500.27, "(2,500.27%)%" -0.250027, "(2500,27E+6%)%" with "," -250027)."""
+    the two the same, is #VALUE! (Microsoft); without a group separator, "," unless the
+    decimal one is "," ("." then); a number in parentheses is negative, with percent signs
+    inside and after them (Mac Excel 16, formulas__test.xlsx TEXT!R27:W28: "(2.500,27)"
+    with "," and "." is -2500.27, "(2,500.27%)%" -0.250027, "(2500,27E+6%)%" with ","
+    -250027)."""
     excel = ctx.dialect == "excel"
     if excel and (dec is None or group is None):
         return ExcelError.VALUE
@@ -329,7 +330,7 @@ def _numbervalue(ctx, v, dec=".", group=_ABSENT):
         t = t.replace(g[0], "")
     if d and d[0] != ".":
         t = t.replace(d[0], ".")
-    if ctx.dialect == "excel" and t.rstrip("%").startswith("(") and t.rstrip("%").endswith(")"):
+    if excel and t.rstrip("%").startswith("(") and t.rstrip("%").endswith(")"):
         outer = len(t) - len(t.rstrip("%"))
         inner = t.rstrip("%")[1:-1]
         percent = outer + len(inner) - len(inner.rstrip("%"))
