@@ -1,32 +1,27 @@
 """The <sheetData> of a worksheet part: its rows and cells, cached values and formula text.
 
-``read_sheet`` fills a Sheet from its part: rows come in batches of whole rows (``_rows``),
-each read by the regular-expression scanner of :mod:`scan` when it is in the plain form
-that spreadsheet programs write, else parsed by ElementTree (``_et_rows``); the cell limit,
-Excel's row and column bounds and the shared and array formula bookkeeping are the same
-either way.
+``read_sheet`` fills a Sheet from its part's rows (:mod:`sheetrows`): a row the
+regular-expression scanner of :mod:`scan` read (``_scanned_row``), else an ElementTree
+element; the cell limit, Excel's row and column bounds and the shared and array formula
+bookkeeping are the same either way.
 """
 
 from __future__ import annotations
 
 import logging
 import re
-from xml.etree.ElementTree import Element, ParseError, fromstring
+from xml.etree.ElementTree import Element
 
 from workbook_gen.xlerror import ExcelError
-from workbook_gen.xlsx import scan
 from workbook_gen.xlsx.limits import Package
 from workbook_gen.xlsx.model import (MAX_COL, Cell, SharedFormula, Sheet, Value,
                                      column_letters)
 from workbook_gen.xlsx.scan import Unrecognised, attributes, xml_text
+from workbook_gen.xlsx.sheetrows import _LOCAL, _parse_row, _rows
 
 log = logging.getLogger(__name__)
 
 MAX_ROW = 1_048_576
-_MAIN_NS = ("http://schemas.openxmlformats.org/spreadsheetml/2006/main",
-            "http://purl.oclc.org/ooxml/spreadsheetml/main")  # transitional, strict
-_LOCAL = {f"{{{ns}}}{name}": name for ns in _MAIN_NS
-          for name in ("row", "c", "v", "f", "is", "t", "r", "si", "dimension")}
 _REF = re.compile(r"([A-Za-z]{1,3})([0-9]{1,7})")
 _ESCAPE = re.compile(r"_x([0-9A-Fa-f]{4})_")
 _UPPER = "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
@@ -217,109 +212,6 @@ def _column(letters: str) -> int:
         raise Unrecognised
     _COLS[letters] = col
     return col
-
-
-def _parse_row(pkg: Package, part: str, context: tuple[bytes, bytes], xml: str) -> Element:
-    """One row's XML, parsed by ElementTree inside the part's root start tag."""
-    head, close = context
-    try:
-        return fromstring(head + xml.encode("utf-8") + b"</row>" + close)[0]
-    except ParseError as exc:
-        raise pkg.error(part, f"broken XML: {exc}") from None
-
-
-_SHEET_DATA = re.compile(rb"<(?:([A-Za-z_][\w.-]*):)?sheetData\b[^>]*?(/?)>")
-_DIMENSION = re.compile(rb"<(?:[A-Za-z_][\w.-]*:)?dimension\b[^>]*?\bref=\"([^\"]*)\"")
-_ROOT_TAG = re.compile(rb"<(?!\?|!)((?:[A-Za-z_][\w.-]*:)?[A-Za-z_][\w.-]*)\b[^>]*>")
-_BATCH = 1 << 20
-
-
-def _rows(pkg: Package, part: str, sheet: Sheet):
-    """The <row> elements of a worksheet part, in order.
-
-    Fast path: the part's bytes are cut after a ``</row>`` about every megabyte and each
-    batch of rows is parsed whole (in C) inside a copy of the root's start tag, so that
-    no Python code runs per XML element. The prolog is checked first (no DOCTYPE); a part
-    that is not plain UTF-8 or that this cutting cannot handle is read element by element.
-    """
-    chunks = pkg._chunks(part)
-    head = b""
-    for chunk in chunks:
-        head += chunk
-        if _SHEET_DATA.search(head) or len(head) > 4 * _BATCH:
-            break
-    ok = not head.startswith((b"\xff\xfe", b"\xfe\xff")) and head[:2].find(b"\0") < 0
-    m = _SHEET_DATA.search(head) if ok else None
-    root = _ROOT_TAG.search(head) if m else None
-    if m is None or root is None or b"<![CDATA[" in head or not _safe(pkg, part, head):
-        yield from _slow_rows(pkg, part, sheet)
-        return
-    dim = _DIMENSION.search(head, 0, m.start())
-    if dim is not None:
-        sheet.dimension = dim.group(1).decode("utf-8", "replace")
-    if m.group(2):  # <sheetData/>
-        return
-    prefix = m.group(1) + b":" if m.group(1) else b""
-    start_tag = head[root.start():root.end()]
-    if start_tag.endswith(b"/>"):
-        yield from _slow_rows(pkg, part, sheet)
-        return
-    close_root = b"</" + root.group(1) + b">"
-    context = start_tag, close_root
-    end_data = b"</" + prefix + b"sheetData>"
-    row_end = b"</" + prefix + b"row>"
-    buf = head[m.end():]
-    done = False
-    while True:
-        stop = buf.find(end_data)
-        if stop >= 0:
-            batch, buf, done = buf[:stop], b"", True
-        else:
-            cut = buf.rfind(row_end) if len(buf) >= _BATCH else -1
-            if cut < 0:
-                chunk = next(chunks, None)
-                if chunk is None:
-                    raise pkg.error(part, "broken XML: the sheet data does not end")
-                if b"<![CDATA[" in chunk:
-                    raise pkg.error(part, "CDATA in sheet data is not read")
-                buf += chunk
-                continue
-            cut += len(row_end)
-            batch, buf = buf[:cut], buf[cut:]
-        scanned = None
-        if not prefix:
-            try:
-                scanned = scan.rows(batch)
-            except Unrecognised:
-                pass  # ElementTree reads the batch, and words what is wrong
-        if scanned is not None:
-            for row in scanned:
-                yield (_parse_row(pkg, part, context, row[2]) if row[0] is None
-                       else (*row, context))
-        else:
-            try:
-                wrapper = fromstring(start_tag + batch + close_root)
-            except ParseError as exc:
-                raise pkg.error(part, f"broken XML: {exc}") from None
-            yield from wrapper
-        if done:
-            for _ in chunks:  # the rest of the part still counts against the budget
-                pass
-            return
-
-
-def _safe(pkg: Package, part: str, head: bytes) -> bool:
-    from workbook_gen.xlsx.limits import _prolog_is_safe
-    return _prolog_is_safe(head, part, pkg, final=True)
-
-
-def _slow_rows(pkg: Package, part: str, sheet: Sheet):
-    for el in pkg.iter_xml(part):
-        tag = _LOCAL.get(el.tag)
-        if tag == "row":
-            yield el
-        elif tag == "dimension":
-            sheet.dimension = el.get("ref")
 
 
 def _value(kind: str, v: str | None, inline: Element | None, strings: list[str]) -> Value:
