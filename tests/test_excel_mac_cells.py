@@ -61,6 +61,11 @@ CELLS = {
     "TEXT!V28": 'NUMBERVALUE("(2,500.27%)%",",") = #VALUE!',
     "TEXT!AB28": 'NUMBERVALUE("1",<empty cell>) = #VALUE!',
     "TEXT!R28": 'NUMBERVALUE("(-2500.27E+2%)%",".",",.,") = #VALUE!',
+    # LARGE and SMALL: k below 1 #NUM!; LARGE rounds a fractional k up, SMALL truncates
+    "STATISTICAL!AJ57": "LARGE({0.1,-10,0.9,2.2,-0.1},0.9) = #NUM!",
+    "STATISTICAL!AK57": "LARGE({0.1,-10,0.9,2.2,-0.1},2.2) = 0.1",
+    "STATISTICAL!AJ95": "SMALL({0,-10,0.9,2.2,-0.1},0.9) = #NUM!",
+    "STATISTICAL!AK95": "SMALL({0,-10,0.9,2.2,-0.1},2.2) = -0.1",
 }
 
 

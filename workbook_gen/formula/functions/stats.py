@@ -281,8 +281,14 @@ def _kth(ctx, area, kth, largest: bool):
     xs = c.numbers([area], ctx)  # a direct argument converts: LARGE("2.3",1) is 2.3
     if isinstance(xs, ExcelError):
         return xs
-    kk = math.ceil(kk)
-    if not 1 <= kk <= len(xs):
+    # k below 1 is #NUM!; a fractional k is truncated, except that Excel's LARGE takes
+    # SMALL(n + 1 - k) truncated, i.e. k rounded up (Mac Excel 16, formulas__test.xlsx
+    # STATISTICAL!AG57:AK57 and AG95:AK95: LARGE(..,2.2) is the 3rd, SMALL(..,2.2) the 2nd,
+    # LARGE(..,0.9) #NUM!; LibreOffice 7.4 truncates both, measured)
+    if kk < 1:
+        return ExcelError.NUM
+    kk = math.ceil(kk) if largest and ctx.dialect == "excel" else math.trunc(kk)
+    if kk > len(xs):
         return ExcelError.NUM
     return sorted(xs, reverse=largest)[kk - 1]
 
