@@ -66,6 +66,9 @@ CELLS = {
     "STATISTICAL!AK57": "LARGE({0.1,-10,0.9,2.2,-0.1},2.2) = 0.1",
     "STATISTICAL!AJ95": "SMALL({0,-10,0.9,2.2,-0.1},0.9) = #NUM!",
     "STATISTICAL!AK95": "SMALL({0,-10,0.9,2.2,-0.1},2.2) = -0.1",
+    # FREQUENCY with bins of empty cells: one bin at 0
+    "STATISTICAL!W43": "FREQUENCY({1,2,3,0,-1},<empty cell>) = {2;3}",
+    "EXTRA!J50": "FREQUENCY({2;3;4;},<4 empty cells>) = {0;3}",
 }
 
 

@@ -81,6 +81,7 @@ STATS = [
     "HYPGEOM.DIST(3,3,2,30,TRUE)", "HYPGEOM.DIST(5,3,2,30,TRUE)",
     "LARGE({0.1,-10,0.9,2.2,-0.1},2.2)", "SMALL({0.1,-10,0.9,2.2,-0.1},2.2)",
     "LARGE({0.1,-10,0.9,2.2,-0.1},5.5)", "SMALL({0.1,-10,0.9,2.2,-0.1},0.9)",
+    f"FREQUENCY({NUM},Data!$Z$1:$Z$2)", f"FREQUENCY({NUM},Data!$Z$1)",
     f"AVERAGE({NUM})", f"AVERAGE({MIX})", f"AVERAGEA({MIX})", f"COUNT({MIX})", f"COUNTA({MIX})",
     f"COUNTBLANK({MIX})", f"COUNT({NUM},\"x\",2)", f'COUNTIF({NUM},">=5")',
     f'COUNTIF({WRD},"a*")', f'COUNTIF({WRD},"<>pear")', f'COUNTIF({WRD},"pear")',

@@ -94,6 +94,12 @@ def _frequency(ctx, data, bins):
     for v in (xs, bs):
         if isinstance(v, ExcelError):
             return v
+    if not bs and any(v is None for v in c.flat(c.as_area(bins))):
+        # bins of empty cells only: one bin at 0 in Excel (Mac Excel 16, formulas__test.xlsx
+        # STATISTICAL!W43, EXTRA!J50); #VALUE! in LibreOffice 7.4 (measured)
+        if ctx.dialect == "libreoffice":
+            return ExcelError.VALUE
+        bs = [0.0]
     if not bs:
         return Range.array_of([[float(len(xs))]])
     order = sorted(range(len(bs)), key=lambda i: bs[i])
