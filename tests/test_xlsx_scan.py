@@ -9,6 +9,7 @@ from __future__ import annotations
 import pytest
 
 from test_xlsx_reader import MAIN, _package
+from workbook_gen.auditor.inputs import read_inputs
 from workbook_gen.errors import WorkbookReadError
 from workbook_gen.xlsx import read_workbook, scan, sheetdata
 from workbook_gen.xlsx.model import Cell
@@ -41,6 +42,18 @@ SHEETS = {
                                       '</c></row><row r="2"><c><v>7</v></c><c r="C2" '
                                       't="inlineStr"><is><r><t>ri</t></r><r><t>ch</t></r></is>'
                                       '</c></row><row><c r="A3"><v>3</v></c></row>',
+    "plain cells in every spelling": '<row r="1"><c r="A1" s="3"/><c r="B1" t="e"><f>=1/0</f>'
+                                     '<v>#DIV/0!</v></c><c r="C1" t="b"><v>0</v></c>'
+                                     '<c r="D1" t="s"><v>0</v></c><c r="E1" t="n"><f aca='
+                                     '"false">=A1&amp;"&#10;"</f></c><c r="F1" t="str"><f>'
+                                     'T("")</f></c><c r="G1" s="2"><f>"=x"</f><v>0</v></c>'
+                                     '</row><row r="2" hidden="true"><c r="A2"><v>2</v></c>'
+                                     '</row><row r="3"><c r="A3" t="str"><v>_x0007_&lt;</v>'
+                                     '</c><c r="B3" t="e"><v>#N/A</v></c></row>',
+    "repeated refs": '<row r="1"><c r="A1"><v>1</v></c><c r="A1"><f>2+2</f><v>4</v></c>'
+                     '<c r="B1"><f>A1</f><v>4</v></c></row><row r="2"><c r="A2"><v>5</v></c>'
+                     '</row><row r="1"><c r="A1" t="inlineStr"><is><t>x</t></is></c></row>'
+                     '<row r="3"><c r="A3"><v>1</v></c><c r="A2"><f>A3</f><v>1</v></c></row>',
     "row and cell numbers": '<row r="5"><c r="A5"><v>1</v></c><c r="XFD5"><v>2</v></c></row>'
                             '<row><c r="B6"><v>3</v></c></row>',
 }
@@ -94,6 +107,33 @@ def test_scanner_reads_what_elementtree_reads(tmp_path, monkeypatch, body):
     parsed, none = _read(path, monkeypatch, scanner=False)
     assert scanned == parsed and not none
     assert used, "no row went through the scanner"
+
+
+@pytest.mark.parametrize("body", SHEETS.values(), ids=SHEETS.keys())
+def test_audit_inputs_of_plain_columns_are_those_of_cells(tmp_path, monkeypatch, body):
+    """The audit takes the scanner's plain cells as columns (Sheet.parts): the formulas,
+    cached values and constants it reads are those of the Cell objects ElementTree makes,
+    in the same order."""
+    path = _package(tmp_path / "s.xlsx", {"S": body}, shared_strings=STRINGS)
+
+    def inputs():
+        got = read_inputs(path)
+        return [list(d.items()) for d in (got.formulas, got.cached, got.constants)]
+
+    scanned = inputs()
+    with monkeypatch.context() as m:
+        m.setattr(scan, "rows", _refuse)
+        parsed = inputs()
+    assert scanned == parsed
+
+
+def test_plain_cells_stay_columns_until_asked_for(tmp_path):
+    body = '<row r="1"><c r="A1" s="1"><v>1</v></c><c r="B1"><f>A1*2</f><v>2</v></c></row>'
+    sheet = read_workbook(_package(tmp_path / "s.xlsx", {"S": body})).sheet("S")
+    assert sheet.chunks and not sheet._cells and sheet.max_row == 1 and sheet.max_col == 2
+    assert [c.ref for c in sheet.row_cells(1)] == ["A1", "B1"] and sheet.chunks
+    assert sheet.cells["B1"] == Cell("B1", 1, 2, 2.0, "A1*2", "normal")
+    assert not sheet.chunks
 
 
 @pytest.mark.parametrize("body", UNSCANNED.values(), ids=UNSCANNED.keys())

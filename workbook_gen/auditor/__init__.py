@@ -215,8 +215,8 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
     t = time.perf_counter()
     semantics = dialect_of(inputs.book.application)  # the engine that saved the file
     clock = Clock(inputs.cached, last_saved(path), _agree, inputs.book.date1904)
-    # the aggregates' local evaluation and the reference check's formula trees need
-    # nothing of the full evaluation: on the other core
+    # the aggregates' local evaluation needs nothing of the full evaluation: on the
+    # other core
     aside = Forked(_beside_evaluation, inputs, semantics, clock)
     try:
         evaluation = evaluate_cells(inputs.formulas, inputs.constants, inputs.book.defined_names,
@@ -234,7 +234,7 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
     skipped = evaluation.not_checked
 
     values, constants = evaluation.values, inputs.constants
-    local, trees = aside.result()
+    local = aside.result()
     timings["evaluate_all"] = time.perf_counter() - t
     # "parse": cutting the columns into runs equal in R1C1 form (the formula text analysis);
     # "evaluate": ordering, vectorised and cell-by-cell evaluation (both passes)
@@ -250,6 +250,9 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
                                                                *rect)
 
     # the reference model's check on the other core while this one compares and finds
+    trees = noise_trees(inputs.book, evaluation.runs,
+                        lambda k: k in inputs.formulas or k in inputs.broken
+                        or k in inputs.array_master)
     aside = Forked(_timed, check_mechanics, inputs.book, value_of, evaluation.store.column_values,
                    trees)
     try:
@@ -299,10 +302,9 @@ class _Local:
 
 
 def _beside_evaluation(inputs: AuditInputs, dialect: str, clock: Clock):
-    """(the aggregates' local evaluation, ``noise_trees``), both compact to pickle."""
+    """The aggregates' local evaluation, compact to pickle."""
     local = _local_evaluation(inputs, dialect=dialect, saved=clock)
-    return (_Local(dict(local.values), dict(local.operands_scale), local.seconds),
-            noise_trees(inputs.book))
+    return _Local(dict(local.values), dict(local.operands_scale), local.seconds)
 
 
 def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, timings):

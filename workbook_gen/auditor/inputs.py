@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from itertools import compress, repeat
 from pathlib import Path
 
 from xlsxwriter.utility import xl_rowcol_to_cell
@@ -114,7 +115,8 @@ def read_inputs(path: str | Path) -> AuditInputs:
     formulas, cached, constants = inputs.formulas, inputs.cached, inputs.constants
     for sheet in book.sheets:
         name = sheet.name
-        for cell in sheet.cells.values():
+        cells, chunks = sheet.parts()
+        for cell in cells:
             kind = cell.formula_type
             if kind is None and not cell.array_master:  # the common cases first, as below
                 constants[(name, cell.row, cell.col)] = cell.value
@@ -147,4 +149,22 @@ def read_inputs(path: str | Path) -> AuditInputs:
                     continue
             inputs.formulas[key] = text
             inputs.cached[key] = cell.value
+        for _, rows, cols, values, texts in chunks:  # plain cells: whole columns at once
+            _plain_cells(inputs, list(zip(repeat(name), rows, cols)), values, texts)
     return inputs
+
+
+def _plain_cells(inputs: AuditInputs, keys: list[Key], values: list, texts: list) -> None:
+    """Constants and formulas of the plain kind (text, no array or shared formula)."""
+    is_formula = [t is not None for t in texts]
+    if all(is_formula):
+        inputs.formulas.update(zip(keys, texts))
+        inputs.cached.update(zip(keys, values))
+    elif not any(is_formula):
+        inputs.constants.update(zip(keys, values))
+    else:
+        formula_keys = list(compress(keys, is_formula))
+        inputs.formulas.update(zip(formula_keys, compress(texts, is_formula)))
+        inputs.cached.update(zip(formula_keys, compress(values, is_formula)))
+        is_constant = [not f for f in is_formula]
+        inputs.constants.update(zip(compress(keys, is_constant), compress(values, is_constant)))

@@ -17,7 +17,7 @@ from xlsxwriter.utility import xl_cell_to_rowcol, xl_rowcol_to_cell
 
 from .. import reference
 from ..reference.newton import NOISE
-from .noise import ColumnNoise, column_trees
+from .noise import INPUT, ColumnNoise, column_trees
 
 REFERENCE_TOLERANCE = 1e-9  # of the column's magnitude, or of its rounding noise (noise.py)
 # An angle's magnitude is at least a radian: a rod 1e20 long at 4e-17 deg to the slide is
@@ -74,7 +74,7 @@ def _column(column_of, sheet: str, col: int, rows: range):
 
 def _row(sheet, row: int) -> list:
     """``sheet.row(row)``, without indexing every row of the sheet."""
-    return sorted((c for c in sheet.cells.values() if c.row == row), key=lambda c: c.col)
+    return sheet.row_cells(row)
 
 
 def _sheet(book, name: str):
@@ -105,13 +105,32 @@ def _ours(book) -> tuple[str, str, dict] | None:
     return mechanism, generator, about
 
 
-def noise_trees(book) -> dict | None:
+def noise_trees(book, runs=(), has_formula=None) -> dict | None:
     """The formula trees of the Table's columns, read from their text alone (no value):
-    ``check_mechanics``'s ``trees``, computed ahead (e.g. while the evaluator runs)."""
+    ``check_mechanics``'s ``trees``, computed ahead.
+
+    ``runs``: the evaluator's runs (a column's rows equal in R1C1 form, one tree each): a
+    column that is one run over the data rows has that run's tree, a column without a
+    run or formula (``has_formula(key)``) is an input; other columns are read from their
+    text (column_tree)."""
     if _ours(book) is None:
         return None
     table = _sheet(book, "Table")
-    return column_trees(table, range(2, table.max_row + 1))
+    rows = range(2, table.max_row + 1)
+    of_column: dict[int, list] = {}
+    for run in runs:
+        if run.sheet == table.name:
+            of_column.setdefault(run.col, []).append(run)
+    out = {}
+    for col in range(1, table.max_col + 1):
+        mine = of_column.get(col, [])
+        if len(mine) == 1 and (mine[0].first, mine[0].last) == (rows.start, rows.stop - 1):
+            out[col] = mine[0].node
+        elif has_formula and not mine and not has_formula((table.name, rows.start, col)):
+            out[col] = INPUT
+        else:
+            out.update((c, t) for c, t in column_trees(table, rows, [col]).items())
+    return out
 
 
 def check_mechanics(book, value_of, column_of, trees: dict | None = None

@@ -78,11 +78,11 @@ def column_tree(sheet, rows: range, col: int):
     return trees[0]
 
 
-def column_trees(sheet, rows: range) -> dict:
-    """column_tree of every column of the sheet, None where it has none (ahead of
-    ColumnNoise, e.g. in another process)."""
+def column_trees(sheet, rows: range, cols=None) -> dict:
+    """column_tree of every column of the sheet (or of ``cols``), None where it has none
+    (ahead of ColumnNoise, e.g. in another process)."""
     out = {}
-    for col in range(1, sheet.max_col + 1):
+    for col in range(1, sheet.max_col + 1) if cols is None else cols:
         try:
             out[col] = column_tree(sheet, rows, col)
         except (_Unsupported, WorkbookGenError, ArithmeticError, ValueError, TypeError):

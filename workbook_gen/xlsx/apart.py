@@ -3,8 +3,8 @@
 A worksheet's cells cost per-cell Python work (tens of thousands of cells a second), and
 the two big sheets of a large workbook are independent: on a machine with two cores the
 child reads about half of the sheet bytes. It sends its cells back as columns (one list
-per ``Cell`` field: cheap to pickle), from which the parent builds the same ``Cell``
-objects, in the same document order, as reading the sheets itself would.
+per ``Cell`` field, and the plain cells as the reader keeps them, in columns: cheap to
+pickle), from which the parent builds the same sheets as reading them itself would.
 
 The outcome is always that of reading every sheet here in order: whenever anything goes
 wrong in either process (a bad part, the cell limit, a dead child), the sheets are emptied
@@ -72,16 +72,18 @@ def read_apart(pkg: Package, sheet_parts: list[tuple[Sheet, str]], strings: list
         _empty(sheet_parts, pkg, inflated)
         return False
     pkg.inflated += their_inflated
-    for (sheet, _), (_, dimension, shared, columns) in zip(theirs, results):
+    for (sheet, _), (_, dimension, shared, hidden, columns, chunks) in zip(theirs, results):
         sheet.cells = dict(zip(columns[0], map(Cell, *columns)))
-        sheet.dimension, sheet.shared_formulas = dimension, shared
+        sheet.chunks = chunks
+        sheet.dimension, sheet.shared_formulas, sheet.hidden_rows = dimension, shared, hidden
     return True
 
 
 def _read_columns(path: str, max_uncompressed: int, max_ratio: float, inflated: int,
                   jobs: list[tuple[str, int, str, str]], strings: list[str], max_cells: int):
     """In the child: read the sheets, return (bytes inflated, [(cells read, dimension,
-    shared formulas, one list per Cell field)])."""
+    shared formulas, hidden rows, one list per Cell field of the Cell objects, the plain
+    cells' chunks)])."""
     fields = attrgetter(*Cell.__slots__)
     out, count = [], 0
     with Package(path, max_uncompressed=max_uncompressed, max_ratio=max_ratio) as pkg:
@@ -90,9 +92,10 @@ def _read_columns(path: str, max_uncompressed: int, max_ratio: float, inflated: 
             sheet = Sheet(name, index, state)
             n = read_sheet(pkg, part, sheet, strings, max_cells - count, max_cells)
             count += n
-            columns = [list(c) for c in zip(*map(fields, sheet.cells.values()))]
-            out.append((n, sheet.dimension, sheet.shared_formulas,
-                        columns or [[] for _ in Cell.__slots__]))
+            cells, chunks = sheet.parts()
+            columns = [list(c) for c in zip(*map(fields, cells))]
+            out.append((n, sheet.dimension, sheet.shared_formulas, sheet.hidden_rows,
+                        columns or [[] for _ in Cell.__slots__], chunks))
         return pkg.inflated - inflated, out
 
 

@@ -10,6 +10,8 @@ from workbook_gen.xlerror import ExcelError
 MAX_COL = 16_384
 
 Value = float | str | bool | ExcelError | None
+# plain cells as columns: refs, rows, columns, cached values, formula texts (None: constant)
+Chunk = tuple[list[str], list[int], list[int], list[Value], list["str | None"]]
 
 
 @dataclass(slots=True)
@@ -70,6 +72,56 @@ class Sheet:
     tables: list[TableDef] = field(default_factory=list)
     hidden_rows: set[int] = field(default_factory=set)  # <row hidden="1">: hidden or filtered
     _rows: dict[int, list[Cell]] | None = field(default=None, repr=False)
+    _cells: dict[str, Cell] = field(default_factory=dict, repr=False)
+    # Cells of the plain kind (a constant, or a formula with its text), as the scanner read
+    # them: columns ``(refs, rows, cols, values, formulas)`` that follow ``_cells`` in
+    # document order. The audit takes them as they are (``parts``); ``cells`` turns them
+    # into Cell objects on first use.
+    chunks: list[Chunk] = field(default_factory=list, repr=False)
+
+    @property
+    def cells(self) -> dict[str, Cell]:
+        if self.chunks:
+            self._materialize()
+        return self._cells
+
+    @cells.setter
+    def cells(self, value: dict[str, Cell]) -> None:
+        self._cells, self.chunks, self._rows = value, [], None
+
+    def _materialize(self) -> None:
+        cells = self._cells
+        for refs, rows, cols, values, formulas in self.chunks:
+            kinds = [None if f is None else "normal" for f in formulas]
+            cells.update(zip(refs, map(Cell, refs, rows, cols, values, formulas, kinds)))
+        self.chunks = []
+
+    def chunk(self) -> Chunk:
+        """The open chunk the scanner appends plain cells to."""
+        if not self.chunks:
+            self.chunks.append(([], [], [], [], []))
+        return self.chunks[-1]
+
+    def parts(self) -> tuple[list[Cell], list[Chunk]]:
+        """``(cells, chunks)``: the sheet's cells as Cell objects, then, after them in
+        document order, the plain ones as columns; every ref once (a sheet that repeats a
+        ref is made all Cell objects, the last one kept, as ``cells`` does)."""
+        if self.chunks:
+            seen = set(self._cells)
+            for chunk in self.chunks:
+                seen.update(chunk[0])
+            if len(seen) != len(self._cells) + sum(len(c[0]) for c in self.chunks):
+                self._materialize()
+        return list(self._cells.values()), self.chunks
+
+    def row_cells(self, row: int) -> list[Cell]:
+        """The cells of one row by column, without making Cell objects of the others."""
+        out = [c for c in self._cells.values() if c.row == row]
+        for refs, rows, cols, values, formulas in self.chunks:
+            out += [Cell(refs[i], row, cols[i], values[i], formulas[i],
+                         None if formulas[i] is None else "normal")
+                    for i, r in enumerate(rows) if r == row]
+        return sorted(out, key=lambda c: c.col)
 
     def __getitem__(self, ref: str) -> Cell:
         return self.cells[ref.replace("$", "").upper()]
@@ -90,11 +142,13 @@ class Sheet:
 
     @property
     def max_row(self) -> int:
-        return max((c.row for c in self.cells.values()), default=0)
+        return max([max((c.row for c in self._cells.values()), default=0),
+                    *(max(c[1], default=0) for c in self.chunks)])
 
     @property
     def max_col(self) -> int:
-        return max((c.col for c in self.cells.values()), default=0)
+        return max([max((c.col for c in self._cells.values()), default=0),
+                    *(max(c[2], default=0) for c in self.chunks)])
 
     def formula_cells(self) -> Iterator[Cell]:
         return (c for c in self.cells.values() if c.has_formula)

@@ -23,6 +23,13 @@ CELL = re.compile(
     r'(?:<f>([^<]*)</f>|<f' + _ATTRS + r'(?:/>|>([^<]*)</f>))?'
     r'(?:<v>([^<]*)</v>|<is><t(?: xml:space="preserve")?>([^<]*)</t></is>)?'
     r'</c>))')
+# the plain cell most programs write most of the time: a style, a common type, a formula
+# with its text (LibreOffice's aca="false" is the default), a non-empty value; groups:
+# column letters, row digits, type, <f> text, <v> text
+_PLAIN = (r'<c r="([A-Z]{1,3})([1-9][0-9]{0,6})"(?: s="[0-9]{1,9}")?(?: t="(n|s|str|b|e)")?'
+          r'(?:/>|>(?:<f(?: aca="false")?>([^<]+)</f>)?(?:<v>([^<]+)</v>)?</c>)')
+PLAIN = re.compile(_PLAIN)
+_PLAIN_ROW = re.compile("(?:" + re.sub(r"\((?!\?)", "(?:", _PLAIN) + ")*")
 _ROW_START = re.compile(r'\s*<row' + _ATTRS + r'\s*>')
 ATTR = re.compile(r' ([A-Za-z_:][\w:.-]*)="([^"]*)"')
 _ENTITY = re.compile(r"&(#[0-9]+|#x[0-9A-Fa-f]+|[A-Za-z]+);")
@@ -34,11 +41,12 @@ class Unrecognised(Exception):
     """Text the scanner does not take: the caller parses it with ElementTree."""
 
 
-def rows(data: bytes) -> list[tuple[str | None, list | tuple, str]]:
-    """``(attributes, cells, xml without </row>)`` for each row of ``data`` (UTF-8, whole
-    rows and nothing else); ``attributes`` is None for a row the scanner does not recognise
-    to the last character. Raises Unrecognised if ``data`` holds anything else, or characters XML
-    forbids (the parser's error to word)."""
+def rows(data: bytes) -> list[tuple[str | None, list | tuple, str, bool]]:
+    """``(attributes, cells, xml without </row>, plain)`` for each row of ``data`` (UTF-8,
+    whole rows and nothing else); ``attributes`` is None for a row the scanner does not
+    recognise to the last character. A plain row's cells are all of the ``PLAIN`` kind, as
+    its groups; another row's cells are the groups of ``CELL``. Raises Unrecognised if
+    ``data`` holds anything else, or characters XML forbids (the parser's error to word)."""
     if len(data.translate(None, _CONTROL)) != len(data) or b"]]>" in data \
             or b"\xef\xbf\xbe" in data or b"\xef\xbf\xbf" in data:
         raise Unrecognised
@@ -51,16 +59,20 @@ def rows(data: bytes) -> list[tuple[str | None, list | tuple, str]]:
         raise Unrecognised
     out = []
     match, cells_of = _ROW_START.match, CELL.findall
+    plain, plain_cells = _PLAIN_ROW.fullmatch, PLAIN.findall
     for piece in pieces[:-1]:
         m = match(piece)
         if m is None:
             raise Unrecognised  # not a <row ...> start tag: a self-closed row, a prefix
         content = piece[m.end():]
+        if plain(content):
+            out.append((m.group(1), plain_cells(content), piece, True))
+            continue
         cells = cells_of(content)
         if "<row" in content or sum(map(len, [c[0] for c in cells])) != len(content):
-            out.append((None, (), piece))
+            out.append((None, (), piece, False))
         else:
-            out.append((m.group(1), cells, piece))
+            out.append((m.group(1), cells, piece, False))
     return out
 
 

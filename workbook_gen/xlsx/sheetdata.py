@@ -51,7 +51,7 @@ def unescape(text: str | None) -> str | None:
 def read_sheet(pkg: Package, part: str, sheet: Sheet, strings: list[str], budget: int,
                 max_cells: int) -> int:
     """Fill ``sheet.cells`` from ``part``; returns the number of <c> elements read."""
-    local, cells, shared, cols = _LOCAL, sheet.cells, sheet.shared_formulas, _COLS
+    local, shared, cols = _LOCAL, sheet.shared_formulas, _COLS
     where = f"{part} ({sheet.name})"
     count = row_no = n_rows = 0
     pending: list[Cell] = []
@@ -70,8 +70,9 @@ def read_sheet(pkg: Package, part: str, sheet: Sheet, strings: list[str], budget
                 del pending[marks[0]:], arrays[marks[1]:]
                 for index in set(shared) - marks[2]:
                     del shared[index]
-                row = _parse_row(pkg, part, row[3], row[2])
+                row = _parse_row(pkg, part, row[4], row[2])
         n_rows += 1
+        cells = sheet.cells  # (the plain cells before this row become Cell objects first)
         r = row.get("r")
         row_no = int(r) if r and r.isdigit() else row_no + 1
         if row_no > MAX_ROW or n_rows > MAX_ROW:
@@ -140,7 +141,8 @@ def read_sheet(pkg: Package, part: str, sheet: Sheet, strings: list[str], budget
             raise pkg.error(where, f"cell {cell.ref}: shared formula si={cell.shared_index} "
                                    "has no master")
         cell.shared_master = shared[cell.shared_index].master
-    _mark_arrays(sheet, arrays)
+    if arrays:
+        _mark_arrays(sheet, arrays)
     return count
 
 
@@ -149,6 +151,8 @@ def _scanned_row(row: tuple, row_no: int, count: int, budget: int, sheet: Sheet,
     """Add the cells of one row the scanner recognised; ``(row number, cells read)``.
     Anything unusual (an error the ElementTree path words, an entity) raises Unrecognised
     before the row's cells are added, so that the row is read again by that path."""
+    if row[3]:
+        return _plain_row(row, row_no, count, budget, sheet, strings)
     attrs, found = row[0], row[1]
     a = attributes(attrs) if attrs else {}
     r = a.get("r")
@@ -202,6 +206,58 @@ def _scanned_row(row: tuple, row_no: int, count: int, budget: int, sheet: Sheet,
     for cell in out:
         cells[cell.ref] = cell
     return row_no, count
+
+
+def _plain_row(row: tuple, row_no: int, count: int, budget: int, sheet: Sheet,
+               strings: list[str]) -> tuple[int, int]:
+    """_scanned_row for a row of plain cells (scan.PLAIN): appended to the sheet's open
+    chunk as columns, a few list operations per row rather than Python code per cell."""
+    attrs, found = row[0], row[1]
+    a = attributes(attrs) if attrs else {}
+    r = a.get("r")
+    row_no = int(r) if r and r.isdigit() else row_no + 1
+    if row_no > MAX_ROW or count + len(found) > budget:
+        raise Unrecognised
+    if found:
+        letters, digits, kinds, texts, vs = zip(*found)
+        cols = list(map(_COLS.get, letters))
+        if None in cols:
+            cols = [c or _column(x) for c, x in zip(cols, letters)]
+        rows = list(map(int, digits))
+        if max(rows) > MAX_ROW:
+            raise Unrecognised
+        try:
+            typed = [i for i, k in enumerate(kinds) if k and k != "n"] if any(kinds) else ()
+            typed_vs: list[str] = []
+            if typed:  # numbers at C speed, then the few typed cells one by one
+                vs, typed_vs = list(vs), [vs[i] for i in typed]
+                for i in typed:
+                    vs[i] = "0"
+            values = [float(v) if v else None for v in vs] if "" in vs else list(map(float, vs))
+            for i, v in zip(typed, typed_vs):
+                values[i] = _value(kinds[i], xml_text(v) if v else None, None, strings)
+        except (ValueError, IndexError):
+            raise Unrecognised from None
+        joined = "\0".join(texts)  # (XML text never holds a NUL)
+        if "&" in joined or "\r" in joined:
+            joined = xml_text(joined)
+            texts = joined.split("\0")
+        if joined[:1] == "=" or "\0=" in joined:
+            texts = [f[1:] if f[:1] == "=" else f for f in texts]
+        formulas = [f or None for f in texts] if "" in texts else list(texts)
+        refs = list(map(str.__add__, letters, digits))
+        if None in values:  # a cell with neither a value nor a formula is not kept
+            keep = [v is not None or f is not None for v, f in zip(values, formulas)]
+            if not all(keep):
+                refs, rows, cols, values, formulas = (
+                    [x for x, k in zip(column, keep) if k]
+                    for column in (refs, rows, cols, values, formulas))
+        chunk = sheet.chunk()
+        for column, new in zip(chunk, (refs, rows, cols, values, formulas)):
+            column.extend(new)
+    if a.get("hidden") in ("1", "true"):
+        sheet.hidden_rows.add(row_no)
+    return row_no, count + len(found)
 
 
 def _column(letters: str) -> int:

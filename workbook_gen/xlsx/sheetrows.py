@@ -2,7 +2,7 @@
 
 The part's bytes are cut into batches of whole rows (about a megabyte each); a batch in
 the plain form spreadsheet programs write is read by the regular-expression scanner of
-:mod:`scan` (rows as ``(attributes, cells, xml, context)``), any other by ElementTree
+:mod:`scan` (rows as ``(attributes, cells, xml, plain, context)``), any other by ElementTree
 (rows as elements), which words every error; a part this cutting cannot handle is read
 element by element.
 """
