@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import gc
 import time
+from itertools import compress
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -22,6 +23,7 @@ from xlsxwriter.utility import xl_col_to_name, xl_rowcol_to_cell
 
 from ..errors import FormulaSyntaxError, WorkbookGenError, WorkbookReadError
 from ..evaluator import evaluate_cells
+from ..evaluator.grouping import column_groups
 from ..evaluator.store import value_scale
 from ..evaluator.volatile import Clock
 from ..formula import ast, parse
@@ -316,43 +318,41 @@ def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, t
     columns: dict[tuple[str, int], ColumnStats] = {}
     mismatches, explained, checked = [], 0, 0
     max_abs = max_rel = 0.0
-    # per column: the cells to check, and those whose cached value is a number that
-    # the evaluator computed as a whole column (compared as arrays below)
-    by_column: dict[tuple[str, int], tuple[list, list, list]] = {}
+    # the cells to check, by column; those whose cached value is a number that the
+    # evaluator computed as a whole column are compared as arrays (``fast``)
     evaluated, aggregates = values.keyset, set(local.values)
-    for key, value in inputs.cached.items():
-        if key in skipped or key not in evaluated:
-            continue
-        lists = by_column.get((key[0], key[2]))
-        if lists is None:
-            lists = by_column[(key[0], key[2])] = ([], [], [])
-        lists[0].append(key)
-        if type(value) is float and key not in aggregates:
-            lists[1].append(key)
-            lists[2].append(value)
+    keys, cached_values = list(inputs.cached), list(inputs.cached.values())
+    if skipped or not all(map(evaluated.__contains__, keys)):
+        keep = [k not in skipped and k in evaluated for k in keys]
+        keys, cached_values = list(compress(keys, keep)), list(compress(cached_values, keep))
+    groups, all_rows = column_groups(keys)
+    fast_all = np.array([type(v) is float for v in cached_values], bool)
+    if aggregates:
+        fast_all[[i for i, k in enumerate(keys) if k in aggregates]] = False
+    done = np.zeros(len(keys), bool)
     store = evaluation.store
-    for (sheet, col), (keys, fast, numbers) in by_column.items():
+    for sheet, col, idx in groups:
         stats = columns[(sheet, col)] = ColumnStats(sheet, xl_col_to_name(col - 1))
-        if fast:
+        fast = idx[fast_all[idx]]
+        if len(fast):
             column = store.cols[(sheet, col)]
-            rows = np.array([k[1] for k in fast])
-            cached = np.array(numbers)
+            rows = all_rows[fast]
+            cached = np.array([cached_values[i] for i in fast.tolist()], float)
             plain = ~column.irr[rows] & (column.err[rows] == 0)
             if not plain.all():
-                fast = [k for k, p in zip(fast, plain) if p]
-                rows, cached = rows[plain], cached[plain]
+                fast, rows, cached = fast[plain], rows[plain], cached[plain]
+            done[fast] = True
             agree, diff, rel = compare_numbers(cached, column.val[rows], column.scale[rows])
-            stats.add_many(lambda i: inputs.ref(fast[i]), agree, rel)
+            stats.add_many(lambda i: inputs.ref(keys[fast[i]]), agree, rel)
             if agree.any():
                 max_abs = max(max_abs, float(diff[agree].max()))
                 max_rel = max(max_rel, float(rel[agree].max()))
             checked += len(fast)
             for i in np.flatnonzero(~agree):
-                k = fast[i]
+                k = keys[fast[i]]
                 mismatches.append(Mismatch(_cell_name(k), inputs.text_of(k), inputs.cached[k],
                                            float(column.val[rows[i]]), float(diff[i])))
-        done = set(fast) if len(fast) < len(keys) else None  # None: all compared above
-        for key in (k for k in keys if k not in done) if done is not None else ():
+        for key in map(keys.__getitem__, idx[~done[idx]].tolist()):
             cached = inputs.cached[key]
             source = local if key in local.values else evaluation
             recomputed = source.values[key]

@@ -146,12 +146,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     store.charset = book.charset
     store.formula_texts, store.array_formulas = formulas, arrays or {}
     store.put_constants(constants)
-    for sheet, row, col in formulas:  # store.note, inline: one call less per formula
-        e = store.extent.get(sheet) or store.extent.setdefault(sheet, [0, 0])
-        if row > e[0]:
-            e[0] = row
-        if col > e[1]:
-            e[1] = col
+    _note_extents(store, formulas)
     name_table = Names(dict(names), book.local_names,
                        prepare=lambda node: resolve(node, book, "", 0, 0))
     keys = formulas
@@ -246,6 +241,21 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
             result.groups.scalar_cells += 1
     result.external.sort()
     return result
+
+
+def _note_extents(store: Store, formulas) -> None:
+    """store.note of every formula cell, a sheet at a time (numpy, not a call per cell)."""
+    if not formulas:
+        return
+    sheets, rows, cols = zip(*formulas)
+    names = list(dict.fromkeys(sheets))
+    rows, cols = np.fromiter(rows, np.int64, len(rows)), np.fromiter(cols, np.int64, len(cols))
+    if len(names) > 1:
+        index = {name: i for i, name in enumerate(names)}
+        ids = np.fromiter(map(index.__getitem__, sheets), np.int64, len(sheets))
+    for i, name in enumerate(names):
+        mine = slice(None) if len(names) == 1 else ids == i
+        store.note(name, int(rows[mine].max()), int(cols[mine].max()))
 
 
 def _runs(formulas, vectorize: bool) -> tuple[list[Run], dict]:

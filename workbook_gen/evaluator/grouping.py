@@ -13,6 +13,10 @@ only less grouped.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from itertools import repeat
+from operator import itemgetter
+
+import numpy as np
 
 from workbook_gen.errors import FormulaSyntaxError, WorkbookReadError
 from workbook_gen.formula import ast
@@ -81,15 +85,15 @@ def template(text: str) -> tuple[str, list[int], list[str]] | None:
 COST_CELL, COST_PARSED, BUDGET = 44e-6, 5e-4, 60.0
 
 
-def find_runs(column: list[tuple[int, str]], sheet: str, col: int,
+def find_runs(rows: list[int], texts: list[str], sheet: str, col: int,
               syntax_errors: dict, allowed: list[int] | None = None) -> list[Run]:
-    """Cut one column's formulas (sorted by row) into runs; formulas that do not parse
-    go to ``syntax_errors[(sheet, row, col)]`` and into no run. ``allowed[0]``: how many
-    more formulas may be parsed (WorkbookReadError beyond)."""
+    """Cut one column's formulas (``texts`` at ``rows``, sorted) into runs; formulas that
+    do not parse go to ``syntax_errors[(sheet, row, col)]`` and into no run.
+    ``allowed[0]``: how many more formulas may be parsed (WorkbookReadError beyond)."""
     runs = []
-    i = 0
-    while i < len(column):
-        row, text = column[i]
+    i, n = 0, len(texts)
+    while i < n:
+        row, text = rows[i], texts[i]
         if allowed is not None:
             allowed[0] -= 1
             if allowed[0] < 0:
@@ -104,26 +108,44 @@ def find_runs(column: list[tuple[int, str]], sheet: str, col: int,
             i += 1
             continue
         j = i + 1
-        shape = template(text) if j < len(column) and column[j][0] == row + 1 else None
+        shape = template(text) if j < n and rows[j] == row + 1 else None
         if shape is not None:
-            fmt, rows = shape[0].format, shape[1]
-            n = len(column)
-            if len(rows) == 1:  # the usual case: references to the cell's own row
-                r0, first, between = rows[0] - i, row - i, shape[2]
-                while j < n:
-                    r, t = column[j]
-                    if r != first + j or t != str(r0 + j).join(between):
-                        break
-                    j += 1
-            else:
-                while j < n and column[j][0] == row + (j - i):
-                    dr = j - i
-                    if column[j][1] != fmt(*[r + dr for r in rows]):
-                        break
-                    j += 1
+            j = _run_end(rows, texts, i, shape)
         runs.append(Run(sheet, col, row, row + (j - i) - 1, node))
         i = j
     return runs
+
+
+def _run_end(rows: list[int], texts: list[str], i: int, shape) -> int:
+    """The index after the last row of the run starting at ``i`` whose text is ``shape``
+    (a ``template``) filled: the expected texts are made and compared a block at a time
+    (C loops), blocks growing fourfold so that a run of one costs no more than a few."""
+    fmt, fields, between = shape
+    n, row = len(texts), rows[i]
+    j, step = i + 1, 8
+    while j < n:
+        end = min(n, j + step)
+        consecutive = range(row + j - i, row + end - i)
+        got_rows = rows[j:end]
+        broken = got_rows != list(consecutive)
+        if broken:
+            end = j + next(k for k, (a, b) in enumerate(zip(got_rows, consecutive)) if a != b)
+            if end == j:
+                return j
+        if len(fields) == 1:
+            expected = list(map(str.join, map(str, range(fields[0] + j - i, fields[0] + end - i)),
+                                repeat(between)))
+        elif fields:
+            expected = list(map(fmt.format, *[range(f + j - i, f + end - i) for f in fields]))
+        else:  # no relative row: the same text all along
+            expected = [fmt.format()] * (end - j)
+        got = texts[j:end]
+        if got != expected:
+            return j + next(k for k, (a, b) in enumerate(zip(got, expected)) if a != b)
+        if broken:
+            return end
+        j, step = end, step * 4
+    return j
 
 
 def group_formulas(formulas, budget: float | None = None) -> tuple[list[Run], dict]:
@@ -131,15 +153,44 @@ def group_formulas(formulas, budget: float | None = None) -> tuple[list[Run], di
     ``budget``: seconds of CPU the audit may cost (default: BUDGET)."""
     budget = BUDGET if budget is None else budget
     allowed = [int((budget - COST_CELL * len(formulas)) / COST_PARSED)]
-    columns: dict[tuple[str, int], list[tuple[int, str]]] = {}
-    for (sheet, row, col), text in formulas.items():
-        cells = columns.get((sheet, col))
-        if cells is None:
-            cells = columns[(sheet, col)] = []
-        cells.append((row, text))
     runs: list[Run] = []
     errors: dict = {}
-    for (sheet, col), cells in columns.items():
-        cells.sort()
-        runs.extend(find_runs(cells, sheet, col, errors, allowed))
+    for sheet, col, rows, texts in _columns(formulas):
+        runs.extend(find_runs(rows, texts, sheet, col, errors, allowed))
     return runs, errors
+
+
+def _columns(formulas) -> list[tuple[str, int, list[int], list[str]]]:
+    """``(sheet, col, rows, texts)`` of each column of ``formulas``, rows ascending, the
+    columns in the order of their first formula in ``formulas``."""
+    keys, texts = list(formulas), list(formulas.values())
+    groups, rows = column_groups(keys)
+    out = []
+    for sheet, col, idx in groups:
+        col_rows = rows[idx]
+        if len(idx) > 1 and not (np.diff(col_rows) > 0).all():
+            idx = idx[np.argsort(col_rows, kind="stable")]
+            col_rows = rows[idx]
+        pick = idx.tolist()
+        out.append((sheet, col, col_rows.tolist(),
+                    [texts[pick[0]]] if len(pick) == 1 else list(itemgetter(*pick)(texts))))
+    return out
+
+
+def column_groups(keys: list[tuple[str, int, int]]
+                  ) -> tuple[list[tuple[str, int, np.ndarray]], np.ndarray]:
+    """``([(sheet, col, indexes)], rows)``: the indexes into ``keys`` of each column's cells
+    in the order of ``keys``, the columns in the order of their first cell, and the row of
+    every key (numpy sorts them: no Python code per cell but a few C loops)."""
+    if not keys:
+        return [], np.zeros(0, np.int64)
+    sheets, rows, cols = zip(*keys)
+    n = len(keys)
+    index = {name: i for i, name in enumerate(dict.fromkeys(sheets))}
+    key = np.fromiter(map(index.__getitem__, sheets), np.int64, n) * (1 << 15)
+    key += np.fromiter(cols, np.int64, n)
+    order = np.argsort(key, kind="stable")
+    groups = np.split(order, np.flatnonzero(np.diff(key[order])) + 1)
+    groups.sort(key=lambda g: g[0])
+    return ([(sheets[g[0]], cols[g[0]], g) for g in groups],
+            np.fromiter(rows, np.int64, n))
