@@ -23,6 +23,7 @@ from xlsxwriter.utility import xl_col_to_name, xl_rowcol_to_cell
 
 from ..errors import FormulaSyntaxError, WorkbookGenError, WorkbookReadError
 from ..evaluator import evaluate_cells
+from ..evaluator.engine import formula_runs
 from ..evaluator.grouping import column_groups
 from ..evaluator.store import value_scale
 from ..evaluator.volatile import Clock
@@ -211,7 +212,7 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
     step = progress or (lambda label: None)
     started = time.perf_counter()
     timings: dict[str, float] = {}
-    inputs = read_inputs(path)
+    inputs = read_inputs(path, group=vectorize)
     timings["read"] = time.perf_counter() - started
     step("read")
     t = time.perf_counter()
@@ -219,13 +220,13 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
     clock = Clock(inputs.cached, last_saved(path), _agree, inputs.book.date1904)
     # the aggregates' local evaluation needs nothing of the full evaluation: on the
     # other core
-    aside = Forked(_beside_evaluation, inputs, semantics, clock)
+    aside = Forked(_beside_evaluation, inputs, semantics, clock, vectorize)
     try:
         evaluation = evaluate_cells(inputs.formulas, inputs.constants, inputs.book.defined_names,
                                     vectorize=vectorize, uncheckable=inputs.uncheckable(),
                                     dialect=semantics, book=inputs.book_info(),
                                     arrays=inputs.arrays, saved=clock,
-                                    iterate=inputs.book.iterate)
+                                    iterate=inputs.book.iterate, grouped=inputs.grouped)
     except WorkbookReadError as exc:  # the evaluator's refusal (cost), named by file
         aside.cancel()
         raise WorkbookReadError(f"{path}: {exc}") from None
@@ -236,12 +237,12 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
     skipped = evaluation.not_checked
 
     values, constants = evaluation.values, inputs.constants
-    local = aside.result()
+    local, findings_seen = aside.result()
     timings["evaluate_all"] = time.perf_counter() - t
     # "parse": cutting the columns into runs equal in R1C1 form (the formula text analysis);
     # "evaluate": ordering, vectorised and cell-by-cell evaluation (both passes)
     phases = [evaluation.seconds, local.seconds]
-    timings["parse"] = sum(p.get("grouping", 0.0) for p in phases)
+    timings["parse"] = inputs.grouping_seconds + sum(p.get("grouping", 0.0) for p in phases)
     timings["evaluate"] = sum(p.get(k, 0.0) for p in phases for k in ("graph", "vector", "scalar"))
     step("evaluate")
 
@@ -262,9 +263,8 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
             inputs, evaluation, local, semantics, value_of, timings)
         step("compare")
         findings = check_structure(inputs, evaluation, _cell_name)
-        t = time.perf_counter()
-        findings += find_findings(inputs, evaluation.runs, _cell_name)
-        timings["findings"] = time.perf_counter() - t
+        findings += findings_seen[0]
+        timings["findings"] = findings_seen[1]  # its own time, spent alongside
         mechanics, timings["reference"] = aside.result()  # its own time, spent alongside
     except BaseException:
         aside.cancel()
@@ -303,10 +303,15 @@ class _Local:
     seconds: dict
 
 
-def _beside_evaluation(inputs: AuditInputs, dialect: str, clock: Clock):
-    """The aggregates' local evaluation, compact to pickle."""
+def _beside_evaluation(inputs: AuditInputs, dialect: str, clock: Clock, vectorize: bool):
+    """(the aggregates' local evaluation, (the findings, seconds they took)): neither
+    needs the full evaluation; compact to pickle."""
     local = _local_evaluation(inputs, dialect=dialect, saved=clock)
-    return _Local(dict(local.values), dict(local.operands_scale), local.seconds)
+    t = time.perf_counter()
+    runs, _ = formula_runs(inputs.formulas, vectorize, inputs.book_info(), inputs.grouped)
+    findings = find_findings(inputs, runs, _cell_name)
+    return (_Local(dict(local.values), dict(local.operands_scale), local.seconds),
+            (findings, time.perf_counter() - t))
 
 
 def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, timings):

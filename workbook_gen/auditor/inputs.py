@@ -3,13 +3,15 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from itertools import compress, repeat
+import time
+from itertools import compress, islice, repeat
 from pathlib import Path
 
 from xlsxwriter.utility import xl_rowcol_to_cell
 
 from ..errors import FormulaSyntaxError, WorkbookReadError
 from ..evaluator import expand_shared
+from ..evaluator.grouping import Grouped
 from ..xlsx import read_workbook
 from ..xlsx.model import Workbook
 
@@ -28,6 +30,8 @@ class AuditInputs:
     arrays: dict[Key, tuple[str, tuple[int, int]]] = field(default_factory=dict)
     _names: dict[str, Key] | None = None
     array_master: dict[Key, Key] = field(default_factory=dict)  # array cell -> its master
+    grouped: Grouped | None = None  # the formulas' runs, when read_inputs grouped them
+    grouping_seconds: float = 0.0
 
     def uncheckable(self) -> dict[Key, str]:
         """Formula cells not handed to the evaluator, with the reason (cells an array
@@ -107,51 +111,75 @@ def _array(inputs: AuditInputs, sheet, cell, key: Key) -> None:
             inputs.array_master[(sheet.name, r, c)] = key
 
 
-def read_inputs(path: str | Path) -> AuditInputs:
+def read_inputs(path: str | Path, group: bool = False) -> AuditInputs:
+    """The formulas, cached values and constants of the workbook at ``path``; with
+    ``group``, also the formulas' runs (``inputs.grouped``), each sheet's grouped as soon
+    as it is read (while the other core still reads a large workbook's other sheets)."""
     if not Path(path).is_file():
         raise WorkbookReadError(f"{path}: no such file")
-    book = read_workbook(path)
-    inputs = AuditInputs(book)
-    formulas, cached, constants = inputs.formulas, inputs.cached, inputs.constants
-    for sheet in book.sheets:
-        name = sheet.name
-        cells, chunks = sheet.parts()
-        for cell in cells:
-            kind = cell.formula_type
-            if kind is None and not cell.array_master:  # the common cases first, as below
-                constants[(name, cell.row, cell.col)] = cell.value
-                continue
-            if kind == "normal" and cell.formula is not None and cell.array_master is None:
-                key = (name, cell.row, cell.col)
-                formulas[key] = cell.formula
-                cached[key] = cell.value
-                continue
-            key = (name, cell.row, cell.col)
-            if cell.is_array or (cell.array_master and cell.formula is None):
-                inputs.array_cells.append(key)
-                inputs.constants[key] = cell.value
-                inputs.cached[key] = cell.value
-                if cell.is_array:
-                    _array(inputs, sheet, cell, key)
-                continue
-            source = sheet.formula_source(cell) if cell.has_formula else None
-            if source is None:
-                inputs.constants[key] = cell.value
-                continue
-            text, origin = source
-            if origin != cell.ref:
-                master = sheet[origin]
-                try:
-                    text = expand_shared(text, master.row, master.col, cell.row, cell.col)
-                except FormulaSyntaxError as exc:
-                    inputs.broken[key] = str(exc)
-                    inputs.constants[key] = cell.value
-                    continue
-            inputs.formulas[key] = text
-            inputs.cached[key] = cell.value
-        for _, rows, cols, values, texts in chunks:  # plain cells: whole columns at once
-            _plain_cells(inputs, list(zip(repeat(name), rows, cols)), values, texts)
+    inputs = AuditInputs(None)  # type: ignore[arg-type]  (the book once read)
+    taken: set[str] = set()
+    if group:
+        inputs.grouped = Grouped()
+
+    def take(sheet) -> None:  # each sheet once, in order
+        if sheet.name in taken:  # read again after a failed read on two cores
+            return
+        taken.add(sheet.name)
+        before = len(inputs.formulas)
+        _sheet_inputs(inputs, sheet)
+        if group:
+            t = time.perf_counter()
+            inputs.grouped.add(list(islice(inputs.formulas, before, None)),
+                               list(islice(inputs.formulas.values(), before, None)))
+            inputs.grouping_seconds += time.perf_counter() - t
+
+    inputs.book = read_workbook(path, ready=take)
+    for sheet in inputs.book.sheets:
+        take(sheet)
     return inputs
+
+
+def _sheet_inputs(inputs: AuditInputs, sheet) -> None:
+    """Add one sheet's formulas, cached values and constants to ``inputs``."""
+    formulas, cached, constants = inputs.formulas, inputs.cached, inputs.constants
+    name = sheet.name
+    cells, chunks = sheet.parts()
+    for cell in cells:
+        kind = cell.formula_type
+        if kind is None and not cell.array_master:  # the common cases first, as below
+            constants[(name, cell.row, cell.col)] = cell.value
+            continue
+        if kind == "normal" and cell.formula is not None and cell.array_master is None:
+            key = (name, cell.row, cell.col)
+            formulas[key] = cell.formula
+            cached[key] = cell.value
+            continue
+        key = (name, cell.row, cell.col)
+        if cell.is_array or (cell.array_master and cell.formula is None):
+            inputs.array_cells.append(key)
+            inputs.constants[key] = cell.value
+            inputs.cached[key] = cell.value
+            if cell.is_array:
+                _array(inputs, sheet, cell, key)
+            continue
+        source = sheet.formula_source(cell) if cell.has_formula else None
+        if source is None:
+            inputs.constants[key] = cell.value
+            continue
+        text, origin = source
+        if origin != cell.ref:
+            master = sheet[origin]
+            try:
+                text = expand_shared(text, master.row, master.col, cell.row, cell.col)
+            except FormulaSyntaxError as exc:
+                inputs.broken[key] = str(exc)
+                inputs.constants[key] = cell.value
+                continue
+        inputs.formulas[key] = text
+        inputs.cached[key] = cell.value
+    for rows, cols, values, texts in chunks:  # plain cells: whole columns at once
+        _plain_cells(inputs, list(zip(repeat(name), rows, cols)), values, texts)
 
 
 def _plain_cells(inputs: AuditInputs, keys: list[Key], values: list, texts: list) -> None:

@@ -43,7 +43,7 @@ from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.evaluator import cycles, graph, volatile as vol
 from workbook_gen.evaluator.book import BookInfo, resolve
 from workbook_gen.evaluator.taint import Taint
-from workbook_gen.evaluator.grouping import Run, group_formulas
+from workbook_gen.evaluator.grouping import Grouped, Run, group_formulas
 from workbook_gen.evaluator.store import Names, SheetResolver, Store, value_scale
 from workbook_gen.evaluator.units import Unit, evaluate_unit, rects, shapes_of, singles
 from workbook_gen.evaluator.vector import NotVectorizable, compile_block
@@ -125,7 +125,8 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
                    uncheckable: Mapping[Cell, str] | None = None,
                    dialect: str = "excel", book: BookInfo | None = None,
                    arrays: Mapping[Cell, tuple[str, tuple[int, int]]] | None = None,
-                   saved: vol.Clock | None = None, iterate: bool = False) -> Evaluation:
+                   saved: vol.Clock | None = None, iterate: bool = False,
+                   grouped: Grouped | None = None) -> Evaluation:
     """Recompute every formula (texts without '=') of a workbook; see the module doc.
 
     ``uncheckable``: cells among ``constants`` that are formulas the caller could not
@@ -134,7 +135,8 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     formulas, ``{master cell: (text, (last row, last col))}``; the values of every cell
     they fill are in ``values``. ``saved``: check volatile cells by contract (see above).
     ``iterate``: the workbook enables iterative calculation (cells on a circular reference
-    are then not checked)."""
+    are then not checked). ``grouped``: the runs of exactly ``formulas``, grouped
+    already (with ``vectorize``)."""
     if dialect not in fx.registry.DIALECTS:
         raise ValueError(f"unknown dialect {dialect!r}")
     book = book or BookInfo()
@@ -163,10 +165,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
         _source(result, taint, cell, cell, reason)
 
     clock = time.perf_counter()
-    runs, errors = _runs(formulas, vectorize)
-    if book.tables:
-        runs = [dataclasses.replace(r, node=resolve(r.node, book, r.sheet, r.first, r.col))
-                for r in runs]
+    runs, errors = formula_runs(formulas, vectorize, book, grouped)
     result.runs = runs
     for cell, message in errors.items():
         if _EXTERNAL.search(formulas[cell]):
@@ -241,6 +240,20 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
             result.groups.scalar_cells += 1
     result.external.sort()
     return result
+
+
+def formula_runs(formulas, vectorize: bool, book: BookInfo,
+                 grouped: Grouped | None = None) -> tuple[list[Run], dict]:
+    """The runs evaluate_cells evaluates (its ``runs``), and the syntax errors."""
+    if grouped is not None and vectorize:
+        grouped.check(len(formulas))
+        runs, errors = list(grouped.runs), dict(grouped.errors)
+    else:
+        runs, errors = _runs(formulas, vectorize)
+    if book.tables:
+        runs = [dataclasses.replace(r, node=resolve(r.node, book, r.sheet, r.first, r.col))
+                for r in runs]
+    return runs, errors
 
 
 def _note_extents(store: Store, formulas) -> None:

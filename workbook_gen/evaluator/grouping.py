@@ -12,7 +12,7 @@ only less grouped.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from itertools import repeat
 from operator import itemgetter
 
@@ -83,6 +83,9 @@ def template(text: str) -> tuple[str, list[int], list[str]] | None:
 # (100,000 formulas that each differ from the cell above: 53 s). A workbook whose cost
 # exceeds the budget is refused while it is being grouped, before the long part.
 COST_CELL, COST_PARSED, BUDGET = 44e-6, 5e-4, 60.0
+_TOO_MANY = ("too many formulas that differ from the cell above them (each is parsed and "
+             f"evaluated on its own, about {COST_PARSED * 1e3:g} ms each): the audit would "
+             f"take over {BUDGET:g} s of CPU")
 
 
 def find_runs(rows: list[int], texts: list[str], sheet: str, col: int,
@@ -97,10 +100,7 @@ def find_runs(rows: list[int], texts: list[str], sheet: str, col: int,
         if allowed is not None:
             allowed[0] -= 1
             if allowed[0] < 0:
-                raise WorkbookReadError(
-                    "too many formulas that differ from the cell above them (each is parsed "
-                    f"and evaluated on its own, about {COST_PARSED * 1e3:g} ms each): the "
-                    f"audit would take over {BUDGET:g} s of CPU")
+                raise WorkbookReadError(_TOO_MANY)
         try:
             node = parse(text)
         except FormulaSyntaxError as exc:
@@ -151,19 +151,46 @@ def _run_end(rows: list[int], texts: list[str], i: int, shape) -> int:
 def group_formulas(formulas, budget: float | None = None) -> tuple[list[Run], dict]:
     """Runs of every column of ``formulas`` {(sheet, row, col): text}, and syntax errors.
     ``budget``: seconds of CPU the audit may cost (default: BUDGET)."""
-    budget = BUDGET if budget is None else budget
-    allowed = [int((budget - COST_CELL * len(formulas)) / COST_PARSED)]
-    runs: list[Run] = []
-    errors: dict = {}
-    for sheet, col, rows, texts in _columns(formulas):
-        runs.extend(find_runs(rows, texts, sheet, col, errors, allowed))
-    return runs, errors
+    grouped = Grouped()
+    grouped.add(list(formulas), list(formulas.values()), budget)
+    grouped.check(len(formulas), budget)
+    return grouped.runs, grouped.errors
 
 
-def _columns(formulas) -> list[tuple[str, int, list[int], list[str]]]:
-    """``(sheet, col, rows, texts)`` of each column of ``formulas``, rows ascending, the
-    columns in the order of their first formula in ``formulas``."""
-    keys, texts = list(formulas), list(formulas.values())
+@dataclass
+class Grouped:
+    """Runs and syntax errors of formulas grouped a part at a time (each part a sheet, or
+    several, whole: their columns are those of the whole), and the formulas parsed."""
+
+    runs: list[Run] = field(default_factory=list)
+    errors: dict = field(default_factory=dict)
+    parsed: int = 0
+    formulas: int = 0
+
+    def add(self, keys: list, texts: list[str], budget: float | None = None) -> None:
+        """Group the formulas ``texts`` of cells ``keys`` (sheet, row, col)."""
+        self.formulas += len(keys)
+        allowed = [allowance(self.formulas, budget) - self.parsed]
+        before = allowed[0]
+        for sheet, col, rows, col_texts in _columns(keys, texts):
+            self.runs.extend(find_runs(rows, col_texts, sheet, col, self.errors, allowed))
+        self.parsed += before - allowed[0]
+
+    def check(self, total: int, budget: float | None = None) -> None:
+        """Refuse, as find_runs does, when the whole workbook (``total`` formulas) allows
+        fewer parsed formulas than its parts parsed."""
+        if self.parsed > allowance(total, budget):
+            raise WorkbookReadError(_TOO_MANY)
+
+
+def allowance(formulas: int, budget: float | None = None) -> int:
+    """How many formulas may be parsed on their own in a workbook of ``formulas``."""
+    return int(((BUDGET if budget is None else budget) - COST_CELL * formulas) / COST_PARSED)
+
+
+def _columns(keys: list, texts: list[str]) -> list[tuple[str, int, list[int], list[str]]]:
+    """``(sheet, col, rows, texts)`` of each column of the formulas ``texts`` of cells
+    ``keys``, rows ascending, the columns in the order of their first formula."""
     groups, rows = column_groups(keys)
     out = []
     for sheet, col, idx in groups:

@@ -45,8 +45,10 @@ def split(pkg: Package, sheet_parts: list[tuple[Sheet, str]]) -> list[int]:
 
 
 def read_apart(pkg: Package, sheet_parts: list[tuple[Sheet, str]], strings: list[str],
-               max_cells: int) -> bool:
-    """Fill the sheets' cells, the child reading a share of them; False: nothing read."""
+               max_cells: int, ready=lambda sheet: None) -> bool:
+    """Fill the sheets' cells, the child reading a share of them; False: nothing read.
+    ``ready(sheet)``: see read_workbook (the sheets before the child's first, while it
+    reads; the others once it is done)."""
     child = split(pkg, sheet_parts)
     if not child:
         return False
@@ -59,6 +61,8 @@ def read_apart(pkg: Package, sheet_parts: list[tuple[Sheet, str]], strings: list
         count = 0
         for sheet, part in mine:
             count += read_sheet(pkg, part, sheet, strings, max_cells - count, max_cells)
+        for sheet, _ in sheet_parts[:child[0]]:
+            ready(sheet)
         their_inflated, results = job.result()
     except Exception:
         job.cancel()
@@ -76,6 +80,8 @@ def read_apart(pkg: Package, sheet_parts: list[tuple[Sheet, str]], strings: list
         sheet.cells = dict(zip(columns[0], map(Cell, *columns)))
         sheet.chunks = chunks
         sheet.dimension, sheet.shared_formulas, sheet.hidden_rows = dimension, shared, hidden
+    for sheet, _ in sheet_parts[child[0]:]:
+        ready(sheet)
     return True
 
 

@@ -5,13 +5,15 @@ from __future__ import annotations
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from workbook_gen.xlerror import ExcelError
 
 MAX_COL = 16_384
 
 Value = float | str | bool | ExcelError | None
-# plain cells as columns: refs, rows, columns, cached values, formula texts (None: constant)
-Chunk = tuple[list[str], list[int], list[int], list[Value], list["str | None"]]
+# plain cells as columns: rows, columns, cached values, formula texts (None: constant)
+Chunk = tuple[list[int], list[int], list[Value], list["str | None"]]
 
 
 @dataclass(slots=True)
@@ -74,7 +76,7 @@ class Sheet:
     _rows: dict[int, list[Cell]] | None = field(default=None, repr=False)
     _cells: dict[str, Cell] = field(default_factory=dict, repr=False)
     # Cells of the plain kind (a constant, or a formula with its text), as the scanner read
-    # them: columns ``(refs, rows, cols, values, formulas)`` that follow ``_cells`` in
+    # them: columns ``(rows, cols, values, formulas)`` that follow ``_cells`` in
     # document order. The audit takes them as they are (``parts``); ``cells`` turns them
     # into Cell objects on first use.
     chunks: list[Chunk] = field(default_factory=list, repr=False)
@@ -91,7 +93,9 @@ class Sheet:
 
     def _materialize(self) -> None:
         cells = self._cells
-        for refs, rows, cols, values, formulas in self.chunks:
+        for rows, cols, values, formulas in self.chunks:
+            letters = {c: column_letters(c) for c in set(cols)}
+            refs = list(map(str.__add__, map(letters.__getitem__, cols), map(str, rows)))
             kinds = [None if f is None else "normal" for f in formulas]
             cells.update(zip(refs, map(Cell, refs, rows, cols, values, formulas, kinds)))
         self.chunks = []
@@ -99,7 +103,7 @@ class Sheet:
     def chunk(self) -> Chunk:
         """The open chunk the scanner appends plain cells to."""
         if not self.chunks:
-            self.chunks.append(([], [], [], [], []))
+            self.chunks.append(([], [], [], []))
         return self.chunks[-1]
 
     def parts(self) -> tuple[list[Cell], list[Chunk]]:
@@ -107,19 +111,22 @@ class Sheet:
         document order, the plain ones as columns; every ref once (a sheet that repeats a
         ref is made all Cell objects, the last one kept, as ``cells`` does)."""
         if self.chunks:
-            seen = set(self._cells)
+            rows = [c.row for c in self._cells.values()]
+            cols = [c.col for c in self._cells.values()]
             for chunk in self.chunks:
-                seen.update(chunk[0])
-            if len(seen) != len(self._cells) + sum(len(c[0]) for c in self.chunks):
+                rows += chunk[0]
+                cols += chunk[1]
+            at = np.array(rows, np.int64) * (MAX_COL + 1) + np.array(cols, np.int64)
+            if len(np.unique(at)) != len(at):
                 self._materialize()
         return list(self._cells.values()), self.chunks
 
     def row_cells(self, row: int) -> list[Cell]:
         """The cells of one row by column, without making Cell objects of the others."""
         out = [c for c in self._cells.values() if c.row == row]
-        for refs, rows, cols, values, formulas in self.chunks:
-            out += [Cell(refs[i], row, cols[i], values[i], formulas[i],
-                         None if formulas[i] is None else "normal")
+        for rows, cols, values, formulas in self.chunks:
+            out += [Cell(f"{column_letters(cols[i])}{row}", row, cols[i], values[i],
+                         formulas[i], None if formulas[i] is None else "normal")
                     for i, r in enumerate(rows) if r == row]
         return sorted(out, key=lambda c: c.col)
 
@@ -143,12 +150,12 @@ class Sheet:
     @property
     def max_row(self) -> int:
         return max([max((c.row for c in self._cells.values()), default=0),
-                    *(max(c[1], default=0) for c in self.chunks)])
+                    *(max(c[0], default=0) for c in self.chunks)])
 
     @property
     def max_col(self) -> int:
         return max([max((c.col for c in self._cells.values()), default=0),
-                    *(max(c[2], default=0) for c in self.chunks)])
+                    *(max(c[1], default=0) for c in self.chunks)])
 
     def formula_cells(self) -> Iterator[Cell]:
         return (c for c in self.cells.values() if c.has_formula)

@@ -223,9 +223,12 @@ def _plain_row(row: tuple, row_no: int, count: int, budget: int, sheet: Sheet,
         cols = list(map(_COLS.get, letters))
         if None in cols:
             cols = [c or _column(x) for c, x in zip(cols, letters)]
-        rows = list(map(int, digits))
-        if max(rows) > MAX_ROW:
-            raise Unrecognised
+        if r and digits.count(r) == len(digits):  # every cell in the row's own row
+            rows = [row_no] * len(digits)
+        else:
+            rows = list(map(int, digits))
+            if max(rows) > MAX_ROW:
+                raise Unrecognised
         try:
             typed = [i for i, k in enumerate(kinds) if k and k != "n"] if any(kinds) else ()
             typed_vs: list[str] = []
@@ -245,15 +248,13 @@ def _plain_row(row: tuple, row_no: int, count: int, budget: int, sheet: Sheet,
         if joined[:1] == "=" or "\0=" in joined:
             texts = [f[1:] if f[:1] == "=" else f for f in texts]
         formulas = [f or None for f in texts] if "" in texts else list(texts)
-        refs = list(map(str.__add__, letters, digits))
         if None in values:  # a cell with neither a value nor a formula is not kept
             keep = [v is not None or f is not None for v, f in zip(values, formulas)]
             if not all(keep):
-                refs, rows, cols, values, formulas = (
-                    [x for x, k in zip(column, keep) if k]
-                    for column in (refs, rows, cols, values, formulas))
+                rows, cols, values, formulas = ([x for x, k in zip(column, keep) if k]
+                                                for column in (rows, cols, values, formulas))
         chunk = sheet.chunk()
-        for column, new in zip(chunk, (refs, rows, cols, values, formulas)):
+        for column, new in zip(chunk, (rows, cols, values, formulas)):
             column.extend(new)
     if a.get("hidden") in ("1", "true"):
         sheet.hidden_rows.add(row_no)
