@@ -130,8 +130,11 @@ def read_inputs(path: str | Path, group: bool = False) -> AuditInputs:
         _sheet_inputs(inputs, sheet)
         if group:
             t = time.perf_counter()
-            inputs.grouped.add(list(islice(inputs.formulas, before, None)),
-                               list(islice(inputs.formulas.values(), before, None)))
+            try:
+                inputs.grouped.add(list(islice(inputs.formulas, before, None)),
+                                   list(islice(inputs.formulas.values(), before, None)))
+            except WorkbookReadError as exc:  # the cost refused, named by file
+                raise WorkbookReadError(f"{path}: {exc}") from None
             inputs.grouping_seconds += time.perf_counter() - t
 
     inputs.book = read_workbook(path, ready=take)

@@ -61,8 +61,20 @@ def read_apart(pkg: Package, sheet_parts: list[tuple[Sheet, str]], strings: list
         count = 0
         for sheet, part in mine:
             count += read_sheet(pkg, part, sheet, strings, max_cells - count, max_cells)
-        for sheet, _ in sheet_parts[:child[0]]:
+    except Exception:
+        job.cancel()
+        _empty(sheet_parts, pkg, inflated)
+        return False
+    except BaseException:
+        job.cancel()
+        raise
+    try:
+        for sheet, _ in sheet_parts[:child[0]]:  # (its own failure, not the file's)
             ready(sheet)
+    except BaseException:
+        job.cancel()
+        raise
+    try:
         their_inflated, results = job.result()
     except Exception:
         job.cancel()
