@@ -126,28 +126,46 @@ def read_inputs(path: str | Path, group: bool = False) -> AuditInputs:
         if sheet.name in taken:  # read again after a failed read on two cores
             return
         taken.add(sheet.name)
-        before = len(inputs.formulas)
         _sheet_inputs(inputs, sheet)
         if group:
-            t = time.perf_counter()
-            try:
-                inputs.grouped.add(list(islice(inputs.formulas, before, None)),
-                                   list(islice(inputs.formulas.values(), before, None)))
-            except WorkbookReadError as exc:  # the cost refused, named by file
-                raise WorkbookReadError(f"{path}: {exc}") from None
-            inputs.grouping_seconds += time.perf_counter() - t
+            part, seconds = sheet.prepared
+            if isinstance(part, str):  # the cost refused, named by file
+                raise WorkbookReadError(f"{path}: {part}")
+            inputs.grouped.merge(part)
+            inputs.grouping_seconds += seconds
 
-    inputs.book = read_workbook(path, ready=take)
+    inputs.book = read_workbook(path, ready=take, prepare=_grouped if group else None)
     for sheet in inputs.book.sheets:
         take(sheet)
     return inputs
 
 
-def _sheet_inputs(inputs: AuditInputs, sheet) -> None:
+def _grouped(sheet) -> tuple[Grouped | str, float]:
+    """(the runs of one sheet's formulas, or why they were refused; seconds spent), in the
+    process that read the sheet."""
+    t = time.perf_counter()
+    cells, chunks = sheet.parts()
+    mine = AuditInputs(None)  # type: ignore[arg-type]
+    _sheet_inputs(mine, sheet, cells, [])
+    keys, texts = list(mine.formulas), list(mine.formulas.values())
+    for rows, cols, _, formulas in chunks:
+        is_formula = [t is not None for t in formulas]
+        keys += compress(zip(repeat(sheet.name), rows, cols), is_formula)
+        texts += compress(formulas, is_formula)
+    grouped = Grouped()
+    try:
+        grouped.add(keys, texts)
+    except WorkbookReadError as exc:
+        return str(exc), time.perf_counter() - t
+    return grouped, time.perf_counter() - t
+
+
+def _sheet_inputs(inputs: AuditInputs, sheet, cells=None, chunks=None) -> None:
     """Add one sheet's formulas, cached values and constants to ``inputs``."""
     formulas, cached, constants = inputs.formulas, inputs.cached, inputs.constants
     name = sheet.name
-    cells, chunks = sheet.parts()
+    if cells is None:
+        cells, chunks = sheet.parts()
     for cell in cells:
         kind = cell.formula_type
         if kind is None and not cell.array_master:  # the common cases first, as below

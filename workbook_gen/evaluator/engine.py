@@ -148,7 +148,6 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     store.charset = book.charset
     store.formula_texts, store.array_formulas = formulas, arrays or {}
     store.put_constants(constants)
-    _note_extents(store, formulas)
     name_table = Names(dict(names), book.local_names,
                        prepare=lambda node: resolve(node, book, "", 0, 0))
     keys = formulas
@@ -166,6 +165,10 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
 
     clock = time.perf_counter()
     runs, errors = formula_runs(formulas, vectorize, book, grouped)
+    for run in runs:  # store.note of every formula cell (a run's last is its lowest)
+        store.note(run.sheet, run.last, run.col)
+    for sheet, row, col in errors:
+        store.note(sheet, row, col)
     result.runs = runs
     for cell, message in errors.items():
         if _EXTERNAL.search(formulas[cell]):
@@ -254,21 +257,6 @@ def formula_runs(formulas, vectorize: bool, book: BookInfo,
         runs = [dataclasses.replace(r, node=resolve(r.node, book, r.sheet, r.first, r.col))
                 for r in runs]
     return runs, errors
-
-
-def _note_extents(store: Store, formulas) -> None:
-    """store.note of every formula cell, a sheet at a time (numpy, not a call per cell)."""
-    if not formulas:
-        return
-    sheets, rows, cols = zip(*formulas)
-    names = list(dict.fromkeys(sheets))
-    rows, cols = np.fromiter(rows, np.int64, len(rows)), np.fromiter(cols, np.int64, len(cols))
-    if len(names) > 1:
-        index = {name: i for i, name in enumerate(names)}
-        ids = np.fromiter(map(index.__getitem__, sheets), np.int64, len(sheets))
-    for i, name in enumerate(names):
-        mine = slice(None) if len(names) == 1 else ids == i
-        store.note(name, int(rows[mine].max()), int(cols[mine].max()))
 
 
 def _runs(formulas, vectorize: bool) -> tuple[list[Run], dict]:

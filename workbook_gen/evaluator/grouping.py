@@ -176,6 +176,13 @@ class Grouped:
             self.runs.extend(find_runs(rows, col_texts, sheet, col, self.errors, allowed))
         self.parsed += before - allowed[0]
 
+    def merge(self, part: "Grouped") -> None:
+        """Add the runs of the next part, grouped on its own."""
+        self.runs += part.runs
+        self.errors.update(part.errors)
+        self.parsed += part.parsed
+        self.formulas += part.formulas
+
     def check(self, total: int, budget: float | None = None) -> None:
         """Refuse, as find_runs does, when the whole workbook (``total`` formulas) allows
         fewer parsed formulas than its parts parsed."""

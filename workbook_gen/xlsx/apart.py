@@ -45,10 +45,11 @@ def split(pkg: Package, sheet_parts: list[tuple[Sheet, str]]) -> list[int]:
 
 
 def read_apart(pkg: Package, sheet_parts: list[tuple[Sheet, str]], strings: list[str],
-               max_cells: int, ready=lambda sheet: None) -> bool:
+               max_cells: int, ready=lambda sheet: None,
+               prepare=lambda sheet: None) -> bool:
     """Fill the sheets' cells, the child reading a share of them; False: nothing read.
-    ``ready(sheet)``: see read_workbook (the sheets before the child's first, while it
-    reads; the others once it is done)."""
+    ``ready(sheet)``, ``prepare(sheet)``: see read_workbook (``ready`` with the sheets
+    before the child's first while it reads, the others once it is done)."""
     child = split(pkg, sheet_parts)
     if not child:
         return False
@@ -56,7 +57,8 @@ def read_apart(pkg: Package, sheet_parts: list[tuple[Sheet, str]], strings: list
     mine = [sp for i, sp in enumerate(sheet_parts) if i not in child]
     inflated = pkg.inflated
     job = Forked(_read_columns, pkg.path, pkg.max_uncompressed, pkg.max_ratio, inflated,
-                 [(s.name, s.index, s.state, part) for s, part in theirs], strings, max_cells)
+                 [(s.name, s.index, s.state, part) for s, part in theirs], strings, max_cells,
+                 prepare)
     try:
         count = 0
         for sheet, part in mine:
@@ -69,7 +71,9 @@ def read_apart(pkg: Package, sheet_parts: list[tuple[Sheet, str]], strings: list
         job.cancel()
         raise
     try:
-        for sheet, _ in sheet_parts[:child[0]]:  # (its own failure, not the file's)
+        for sheet, _ in mine:  # (its own failures, not the file's)
+            sheet.prepared = prepare(sheet)
+        for sheet, _ in sheet_parts[:child[0]]:
             ready(sheet)
     except BaseException:
         job.cancel()
@@ -88,9 +92,10 @@ def read_apart(pkg: Package, sheet_parts: list[tuple[Sheet, str]], strings: list
         _empty(sheet_parts, pkg, inflated)
         return False
     pkg.inflated += their_inflated
-    for (sheet, _), (_, dimension, shared, hidden, columns, chunks) in zip(theirs, results):
+    for (sheet, _), (_, dimension, shared, hidden, columns, chunks, prepared) in zip(
+            theirs, results):
         sheet.cells = dict(zip(columns[0], map(Cell, *columns)))
-        sheet.chunks = chunks
+        sheet.chunks, sheet.prepared = chunks, prepared
         sheet.dimension, sheet.shared_formulas, sheet.hidden_rows = dimension, shared, hidden
     for sheet, _ in sheet_parts[child[0]:]:
         ready(sheet)
@@ -98,10 +103,11 @@ def read_apart(pkg: Package, sheet_parts: list[tuple[Sheet, str]], strings: list
 
 
 def _read_columns(path: str, max_uncompressed: int, max_ratio: float, inflated: int,
-                  jobs: list[tuple[str, int, str, str]], strings: list[str], max_cells: int):
+                  jobs: list[tuple[str, int, str, str]], strings: list[str], max_cells: int,
+                  prepare):
     """In the child: read the sheets, return (bytes inflated, [(cells read, dimension,
     shared formulas, hidden rows, one list per Cell field of the Cell objects, the plain
-    cells' chunks)])."""
+    cells' chunks, what ``prepare`` made of the sheet)])."""
     fields = attrgetter(*Cell.__slots__)
     out, count = [], 0
     with Package(path, max_uncompressed=max_uncompressed, max_ratio=max_ratio) as pkg:
@@ -110,10 +116,11 @@ def _read_columns(path: str, max_uncompressed: int, max_ratio: float, inflated: 
             sheet = Sheet(name, index, state)
             n = read_sheet(pkg, part, sheet, strings, max_cells - count, max_cells)
             count += n
+            prepared = prepare(sheet)
             cells, chunks = sheet.parts()
             columns = [list(c) for c in zip(*map(fields, cells))]
             out.append((n, sheet.dimension, sheet.shared_formulas, sheet.hidden_rows,
-                        columns or [[] for _ in Cell.__slots__], chunks))
+                        columns or [[] for _ in Cell.__slots__], chunks, prepared))
         return pkg.inflated - inflated, out
 
 

@@ -80,6 +80,8 @@ class Sheet:
     # document order. The audit takes them as they are (``parts``); ``cells`` turns them
     # into Cell objects on first use.
     chunks: list[Chunk] = field(default_factory=list, repr=False)
+    prepared: object = field(default=None, repr=False)  # read_workbook's prepare(sheet)
+    _unique: bool = field(default=False, repr=False)  # chunks checked to repeat no cell
 
     @property
     def cells(self) -> dict[str, Cell]:
@@ -104,30 +106,35 @@ class Sheet:
         """The open chunk the scanner appends plain cells to."""
         if not self.chunks:
             self.chunks.append(([], [], [], []))
+        self._unique = False
         return self.chunks[-1]
 
     def parts(self) -> tuple[list[Cell], list[Chunk]]:
         """``(cells, chunks)``: the sheet's cells as Cell objects, then, after them in
         document order, the plain ones as columns; every ref once (a sheet that repeats a
         ref is made all Cell objects, the last one kept, as ``cells`` does)."""
-        if self.chunks:
+        if self.chunks and not self._unique:
             rows = [c.row for c in self._cells.values()]
             cols = [c.col for c in self._cells.values()]
             for chunk in self.chunks:
                 rows += chunk[0]
                 cols += chunk[1]
             at = np.array(rows, np.int64) * (MAX_COL + 1) + np.array(cols, np.int64)
-            if len(np.unique(at)) != len(at):
-                self._materialize()
+            if not (np.diff(at) > 0).all() and len(np.unique(at)) != len(at):
+                self._materialize()  # (in document order, each cell after the one before)
+            self._unique = True
         return list(self._cells.values()), self.chunks
 
     def row_cells(self, row: int) -> list[Cell]:
         """The cells of one row by column, without making Cell objects of the others."""
         out = [c for c in self._cells.values() if c.row == row]
         for rows, cols, values, formulas in self.chunks:
-            out += [Cell(f"{column_letters(cols[i])}{row}", row, cols[i], values[i],
-                         formulas[i], None if formulas[i] is None else "normal")
-                    for i, r in enumerate(rows) if r == row]
+            at, left = -1, rows.count(row)
+            while left:  # (rows.index and count are C loops)
+                at = rows.index(row, at + 1)
+                left -= 1
+                out.append(Cell(f"{column_letters(cols[at])}{row}", row, cols[at], values[at],
+                                formulas[at], None if formulas[at] is None else "normal"))
         return sorted(out, key=lambda c: c.col)
 
     def __getitem__(self, ref: str) -> Cell:

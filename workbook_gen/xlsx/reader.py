@@ -37,13 +37,15 @@ MISSING_PART = "missing"  # other_sheets kind of a sheet listed without a part
 
 def read_workbook(path: str | Path, *, max_cells: int = MAX_CELLS,
                   max_uncompressed: int = MAX_UNCOMPRESSED,
-                  max_ratio: float = MAX_RATIO, ready=None) -> Workbook:
+                  max_ratio: float = MAX_RATIO, ready=None, prepare=None) -> Workbook:
     """Read every worksheet's cells, the defined names and external links of ``path``.
 
     ``ready(sheet)`` is called with each worksheet, in order, as soon as it and the
     worksheets before it are read (while a large workbook's other sheets are still read
     on the other core); a sheet read again after a failed read on two cores is given
-    again.
+    again. ``prepare(sheet)`` is called in the process that read the sheet (a forked child
+    for a share of a large workbook), right after; what it returns (to be pickled) is
+    ``sheet.prepared``.
 
     Raises WorkbookReadError (one line, naming the file and the part) for a file that
     is not a zip, lacks xl/workbook.xml, has broken or hostile XML, a part whose
@@ -53,13 +55,17 @@ def read_workbook(path: str | Path, *, max_cells: int = MAX_CELLS,
     gc.disable()  # cells hold no cycles; a collector rescanning them doubles the time
     try:
         return _read(Package(path, max_uncompressed=max_uncompressed, max_ratio=max_ratio),
-                     str(path), max_cells, ready or (lambda sheet: None))
+                     str(path), max_cells, ready or _nothing, prepare or _nothing)
     finally:
         if paused:
             gc.enable()
 
 
-def _read(pkg: Package, path: str, max_cells: int, ready) -> Workbook:
+def _nothing(sheet: Sheet) -> None:
+    return None
+
+
+def _read(pkg: Package, path: str, max_cells: int, ready, prepare) -> Workbook:
     with pkg:
         wb_part = _workbook_part(pkg)
         rels = _relationships(pkg, wb_part)
@@ -96,7 +102,7 @@ def _read(pkg: Package, path: str, max_cells: int, ready) -> Workbook:
                         and not p.startswith("external:")), None)
         book.application = _application(pkg)
         strings = _shared_strings(pkg, sst_part, max_cells) if sst_part else []
-        if read_apart(pkg, sheet_parts, strings, max_cells, ready):  # the big sheets on two cores
+        if read_apart(pkg, sheet_parts, strings, max_cells, ready, prepare):  # on two cores
             for sheet, part in sheet_parts:
                 _read_tables(pkg, part, sheet)
             return book
@@ -104,6 +110,7 @@ def _read(pkg: Package, path: str, max_cells: int, ready) -> Workbook:
         for sheet, part in sheet_parts:
             budget -= read_sheet(pkg, part, sheet, strings, budget, max_cells)
             _read_tables(pkg, part, sheet)
+            sheet.prepared = prepare(sheet)
             ready(sheet)
         return book
 

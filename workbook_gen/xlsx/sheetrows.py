@@ -64,11 +64,13 @@ def _rows(pkg: Package, part: str, sheet: Sheet):
     row_end = b"</" + prefix + b"row>"
     buf = head[m.end():]
     done = False
+    clean = 0  # the bytes of buf already searched for end_data (without finding it)
     while True:
-        stop = buf.find(end_data)
+        stop = buf.find(end_data, max(0, clean - len(end_data) + 1))
         if stop >= 0:
             batch, buf, done = buf[:stop], b"", True
         else:
+            clean = len(buf)
             cut = buf.rfind(row_end) if len(buf) >= _BATCH else -1
             if cut < 0:
                 chunk = next(chunks, None)
@@ -80,6 +82,7 @@ def _rows(pkg: Package, part: str, sheet: Sheet):
                 continue
             cut += len(row_end)
             batch, buf = buf[:cut], buf[cut:]
+            clean -= cut
         scanned = None
         if not prefix:
             try:
