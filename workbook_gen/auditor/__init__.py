@@ -24,7 +24,7 @@ from xlsxwriter.utility import xl_col_to_name, xl_rowcol_to_cell
 from ..errors import FormulaSyntaxError, WorkbookGenError, WorkbookReadError
 from ..evaluator import evaluate_cells
 from ..evaluator.engine import formula_runs
-from ..evaluator.grouping import column_groups
+from ..evaluator.keys import column_groups
 from ..evaluator.store import value_scale
 from ..evaluator.volatile import Clock
 from ..formula import ast, parse
@@ -181,13 +181,28 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: st
             if k in given:
                 del cached[k]
     else:
-        cached = {k: v for k, v in inputs.constants.items() if (k[0], k[2]) in read}
-        cached.update((k, given[k]) for k in given if (k[0], k[2]) in read and k not in keys)
+        cached = _in_columns(inputs.constants, read)
+        cached.update(_in_columns(given, read, keys))
     if saved is not None:  # volatile cells settle on the values ``given``
         saved = Clock(given, saved.saved, saved.agree, saved.date1904)
     return evaluate_cells({k: inputs.formulas[k] for k in keys}, cached, names,
                           dialect=dialect, book=inputs.book_info(), saved=saved,
                           iterate=inputs.book.iterate)
+
+
+def _in_columns(cells: dict, columns: set[tuple[str, int]], leave=()) -> dict:
+    """The items of ``cells`` {(sheet, row, col): value} in ``columns`` (sheet, col), in
+    their order by column, but for the keys in ``leave``."""
+    keys, values = list(cells), list(cells.values())
+    out: dict = {}
+    groups, _ = column_groups(keys)
+    for sheet, col, idx in groups:
+        if (sheet, col) in columns:
+            pick = idx.tolist()
+            out.update(zip(map(keys.__getitem__, pick), map(values.__getitem__, pick)))
+    for key in leave:
+        out.pop(key, None)
+    return out
 
 
 def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True,

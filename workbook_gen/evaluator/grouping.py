@@ -19,6 +19,7 @@ from operator import itemgetter
 import numpy as np
 
 from workbook_gen.errors import FormulaSyntaxError, WorkbookReadError
+from workbook_gen.evaluator.keys import column_groups
 from workbook_gen.formula import ast
 from workbook_gen.formula import tokenizer as tk
 from workbook_gen.formula.parser import parse
@@ -209,22 +210,3 @@ def _columns(keys: list, texts: list[str]) -> list[tuple[str, int, list[int], li
         out.append((sheet, col, col_rows.tolist(),
                     [texts[pick[0]]] if len(pick) == 1 else list(itemgetter(*pick)(texts))))
     return out
-
-
-def column_groups(keys: list[tuple[str, int, int]]
-                  ) -> tuple[list[tuple[str, int, np.ndarray]], np.ndarray]:
-    """``([(sheet, col, indexes)], rows)``: the indexes into ``keys`` of each column's cells
-    in the order of ``keys``, the columns in the order of their first cell, and the row of
-    every key (numpy sorts them: no Python code per cell but a few C loops)."""
-    if not keys:
-        return [], np.zeros(0, np.int64)
-    sheets, rows, cols = zip(*keys)
-    n = len(keys)
-    index = {name: i for i, name in enumerate(dict.fromkeys(sheets))}
-    key = np.fromiter(map(index.__getitem__, sheets), np.int64, n) * (1 << 15)
-    key += np.fromiter(cols, np.int64, n)
-    order = np.argsort(key, kind="stable")
-    groups = np.split(order, np.flatnonzero(np.diff(key[order])) + 1)
-    groups.sort(key=lambda g: g[0])
-    return ([(sheets[g[0]], cols[g[0]], g) for g in groups],
-            np.fromiter(rows, np.int64, n))

@@ -13,10 +13,12 @@ import math
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass
+from operator import itemgetter
 
 import numpy as np
 
 from workbook_gen.errors import FormulaSyntaxError
+from workbook_gen.evaluator.keys import column_groups
 from workbook_gen.formula import ast
 from workbook_gen.formula.parser import parse
 from workbook_gen.formula.values import Range
@@ -153,15 +155,14 @@ class Store:
 
     def put_constants(self, constants) -> None:
         """Every constant cell {(sheet, row, col): value}, a column at a time."""
-        columns: dict[tuple[str, int], tuple[list, list]] = {}
-        for (sheet, row, col), value in constants.items():
-            lists = columns.get((sheet, col))
-            if lists is None:
-                lists = columns[(sheet, col)] = ([], [])
-            lists[0].append(row)
-            lists[1].append(value)
-        for (sheet, col), (row_list, values) in columns.items():
-            rows = np.array(row_list)
+        keys, all_values = list(constants), list(constants.values())
+        groups, all_rows = column_groups(keys)
+        for sheet, col, idx in groups:  # (a column's keys in the order of ``constants``)
+            rows = all_rows[idx]
+            pick = idx.tolist()
+            values = [all_values[pick[0]]] if len(pick) == 1 else list(
+                itemgetter(*pick)(all_values))
+            row_list = rows.tolist()
             self.note(sheet, int(rows.max()), col)
             c = self._column(sheet, col, int(rows.max()))
             plain = np.array([type(v) is float for v in values], bool)
