@@ -23,7 +23,6 @@ from xlsxwriter.utility import xl_col_to_name, xl_rowcol_to_cell
 
 from ..errors import FormulaSyntaxError, WorkbookGenError, WorkbookReadError
 from ..evaluator import evaluate_cells
-from ..evaluator.engine import formula_runs
 from ..evaluator.keys import column_groups
 from ..evaluator.store import value_scale
 from ..evaluator.volatile import Clock
@@ -235,7 +234,7 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
     clock = Clock(inputs.cached, last_saved(path), _agree, inputs.book.date1904)
     # the aggregates' local evaluation needs nothing of the full evaluation: on the
     # other core
-    aside = Forked(_beside_evaluation, inputs, semantics, clock, vectorize)
+    aside = Forked(_beside_evaluation, inputs, semantics, clock)
     try:
         evaluation = evaluate_cells(inputs.formulas, inputs.constants, inputs.book.defined_names,
                                     vectorize=vectorize, uncheckable=inputs.uncheckable(),
@@ -252,7 +251,7 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
     skipped = evaluation.not_checked
 
     values, constants = evaluation.values, inputs.constants
-    local, findings_seen = aside.result()
+    local = aside.result()
     timings["evaluate_all"] = time.perf_counter() - t
     # "parse": cutting the columns into runs equal in R1C1 form (the formula text analysis);
     # "evaluate": ordering, vectorised and cell-by-cell evaluation (both passes)
@@ -267,20 +266,20 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
     value_of.clip = lambda sheet, *rect: evaluation.store.clip(evaluation.store.sheet(sheet),
                                                                *rect)
 
-    # the reference model's check on the other core while this one compares and finds
+    # the reference model's check on the other core while this one compares,
     trees = noise_trees(inputs.book, evaluation.runs,
                         lambda k: k in inputs.formulas or k in inputs.broken
                         or k in inputs.array_master)
-    aside = Forked(_timed, check_mechanics, inputs.book, value_of, evaluation.store.column_values,
-                   trees)
+    # and the findings (their times their own, spent alongside)
+    aside = Forked(_beside_compare, inputs, evaluation.runs, value_of,
+                   evaluation.store.column_values, trees)
     try:
         mismatches, columns, checked, explained, max_abs, max_rel = _compare(
             inputs, evaluation, local, semantics, value_of, timings)
         step("compare")
         findings = check_structure(inputs, evaluation, _cell_name)
-        findings += findings_seen[0]
-        timings["findings"] = findings_seen[1]  # its own time, spent alongside
-        mechanics, timings["reference"] = aside.result()  # its own time, spent alongside
+        (mechanics, timings["reference"]), (seen, timings["findings"]) = aside.result()
+        findings += seen
     except BaseException:
         aside.cancel()
         raise
@@ -318,15 +317,18 @@ class _Local:
     seconds: dict
 
 
-def _beside_evaluation(inputs: AuditInputs, dialect: str, clock: Clock, vectorize: bool):
-    """(the aggregates' local evaluation, (the findings, seconds they took)): neither
-    needs the full evaluation; compact to pickle."""
+def _beside_evaluation(inputs: AuditInputs, dialect: str, clock: Clock):
+    """The aggregates' local evaluation (it needs nothing of the full evaluation),
+    compact to pickle."""
     local = _local_evaluation(inputs, dialect=dialect, saved=clock)
-    t = time.perf_counter()
-    runs, _ = formula_runs(inputs.formulas, vectorize, inputs.book_info(), inputs.grouped)
-    findings = find_findings(inputs, runs, _cell_name)
-    return (_Local(dict(local.values), dict(local.operands_scale), local.seconds),
-            (findings, time.perf_counter() - t))
+    return _Local(dict(local.values), dict(local.operands_scale), local.seconds)
+
+
+def _beside_compare(inputs: AuditInputs, runs, value_of, column_of, trees):
+    """((the reference check, seconds), (the findings, seconds)), while the cells are
+    compared."""
+    return (_timed(check_mechanics, inputs.book, value_of, column_of, trees),
+            _timed(find_findings, inputs, runs, _cell_name))
 
 
 def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, timings):
