@@ -15,7 +15,8 @@ from __future__ import annotations
 
 import gc
 import time
-from itertools import compress
+from itertools import compress, repeat
+from operator import contains
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -156,7 +157,7 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: st
     range cell is checked against its cached value on its own; the aggregate is
     checked against what it makes of those cached values (or of ``seen``: the
     values another engine computed)."""
-    keys = {k for k, text in inputs.formulas.items() if ":" in text}
+    keys = set(compress(inputs.formulas, map(contains, inputs.formulas.values(), repeat(":"))))
     names = inputs.book.defined_names
     read: set[tuple[str, int]] = set()  # the (sheet, column) pairs those formulas read
     local_names = any(s.defined_names for s in inputs.book.sheets)

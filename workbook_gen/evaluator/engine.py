@@ -36,6 +36,7 @@ import re
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from operator import itemgetter
 
 import numpy as np
 
@@ -140,7 +141,8 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     if dialect not in fx.registry.DIALECTS:
         raise ValueError(f"unknown dialect {dialect!r}")
     book = book or BookInfo()
-    sheets = {k[0] for k in formulas} | {k[0] for k in constants} | set(book.sheets)
+    sheets = set(map(itemgetter(0), formulas)) | set(map(itemgetter(0), constants))
+    sheets |= set(book.sheets)
     sheets |= set(book.unreadable)
     store = Store(sheets, book.sheets)
     store.unreadable = {s.lower() for s in book.unreadable}

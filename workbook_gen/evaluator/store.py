@@ -165,8 +165,9 @@ class Store:
             row_list = rows.tolist()
             self.note(sheet, int(rows.max()), col)
             c = self._column(sheet, col, int(rows.max()))
-            plain = np.array([type(v) is float for v in values], bool)
-            everyone = plain.all()
+            everyone = set(map(type, values)) == {float}  # (a C loop: the usual case)
+            plain = np.ones(len(values), bool) if everyone else np.array(
+                [type(v) is float for v in values], bool)
             numbers = np.array(values if everyone else [v for v, p in zip(values, plain) if p],
                                dtype=float)
             # + 0.0: a cell never holds -0 in Excel (a file may say "-0")

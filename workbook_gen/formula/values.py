@@ -7,6 +7,8 @@ errors are returned.
 
 from __future__ import annotations
 
+from itertools import chain
+
 import math
 import re
 from dataclasses import dataclass, field
@@ -71,8 +73,9 @@ class Range:
         """All values as a flat list when every one is a plain number, else None
         (the fast path of MIN, MAX, SUM and MATCH over a column of results)."""
         if self._numbers is False:
-            flat = [v for row in self.rows for v in row]
-            numbers = flat if len([v for v in flat if type(v) is float]) == len(flat) else None
+            flat = list(chain.from_iterable(self.rows))
+            kinds = set(map(type, flat))  # (C loops: MAX of a 100,000-row column)
+            numbers = flat if kinds == {float} or not flat else None
             object.__setattr__(self, "_numbers", numbers)
         return self._numbers
 
