@@ -12,6 +12,8 @@ from pathlib import Path
 import pytest
 import xlsxwriter
 
+from workbook_gen import audit
+from workbook_gen.auditor.inputs import read_inputs
 from workbook_gen.errors import WorkbookReadError
 from workbook_gen.forked import Forked, can_fork
 from workbook_gen.xlsx import apart, read_workbook
@@ -35,6 +37,7 @@ def book(tmp_path_factory) -> Path:
             ws.write_boolean(r, 3, r % 2 == 0)
             ws.write_formula(r, 4, "=1/0", None, "#DIV/0!")
         ws.write_array_formula("F2:F4", "{=A2:A4*2}", None, 0)
+        ws.set_row(5, None, None, {"hidden": True})
     wb.close()
     return path
 
@@ -47,7 +50,7 @@ def _read(path: Path, serial: bool, monkeypatch, **limits):
         return "error: " + str(exc)
     cells = [(s.name, ref, repr(c), type(c.value)) for s in wb.sheets
              for ref, c in s.cells.items()]
-    return repr(wb), cells
+    return repr(wb), cells, [sorted(s.hidden_rows) for s in wb.sheets]
 
 
 def test_forked_runs_in_a_child_and_hands_back_results_and_errors():
@@ -79,3 +82,23 @@ def test_cell_limit_names_the_same_sheet(max_cells, book, monkeypatch):
     ours = _read(book, False, monkeypatch, max_cells=max_cells)
     assert ours == _read(book, True, monkeypatch, max_cells=max_cells)
     assert isinstance(ours, str) and "max_cells" in ours
+
+
+@pytest.mark.parametrize("name", ["book", *CORPUS_FILES])
+def test_audit_of_two_processes_is_that_of_one(name, book, monkeypatch):
+    """The audit's inputs (read, and grouped into runs by the process that read each
+    sheet), and its whole report, are the same read on two cores or on one."""
+    path = book if name == "book" else CORPUS / name
+    monkeypatch.setattr(apart, "MIN_SHARE", 0)
+
+    def audited(serial: bool):
+        monkeypatch.setenv("WORKBOOK_GEN_SERIAL", "1" if serial else "0")
+        got = read_inputs(path, group=True)
+        report = audit(path).to_json()
+        for key in ("seconds", "timings"):
+            report.pop(key, None)
+        return ([list(d.items()) for d in (got.formulas, got.cached, got.constants,
+                                           got.broken)],
+                got.grouped.runs, got.grouped.errors, got.grouped.parsed, report)
+
+    assert audited(False) == audited(True)
