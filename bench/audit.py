@@ -3,7 +3,7 @@
 For the workbook generated at 10, 1 and 0.1 degree steps (37, 361, 3601 rows), in one
 run: our audit (best of REPEAT; total and its evaluate phase), LibreOffice headless
 recalculating the file (one run, start-up included), ``formualizer`` (a Rust engine:
-``load_workbook(path).evaluate_all()``, load and evaluate; one run), the ``formulas``
+``load_workbook(path).evaluate_all()``, load and evaluate; best of REPEAT), the ``formulas``
 package (load + compile, calculate; one run), ``pycel`` in its own virtual environment (Table and Checks
 formula cells; one run) and plain numpy evaluating the closed form (best of 5). Prints
 absolute times and ratios against our audit. A peer that fails or times out is reported
@@ -199,10 +199,12 @@ def measure(step: float, tmp: Path, args, prev: dict) -> dict:
     except WorkbookGenError as exc:
         row["lo"] = Peer(status="failed", note=str(exc))
 
-    if args.formualizer_ok:
-        row["formualizer"] = run_peer(
-            "formualizer", [sys.executable, __file__, "--formualizer-runner", str(path)], cells,
-            ("load", "evaluate"), args.timeout, prev.get("formualizer"), cells)
+    if args.formualizer_ok:  # best of REPEAT, as our audit (a few seconds each)
+        runs = [run_peer("formualizer", [sys.executable, __file__, "--formualizer-runner",
+                                         str(path)], cells, ("load", "evaluate"), args.timeout,
+                         prev.get("formualizer"), cells) for _ in range(args.repeat)]
+        finished = [p for p in runs if p.status == "ok"]
+        row["formualizer"] = min(finished, key=lambda p: p.total) if finished else runs[0]
     else:
         row["formualizer"] = Peer(status="failed", note=args.formualizer_why)
 
