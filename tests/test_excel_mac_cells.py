@@ -9,6 +9,22 @@ import pytest
 
 CORPUS = "formulas__test.xlsx"
 CELLS = {
+    # IRR: an error among the cash flows is #VALUE!
+    "FINANCIAL!Z26": "IRR({-7,2,-1,4,-3;7,2,-1,4,#N/A}) = #VALUE!",
+    "FINANCIAL!AB26": "IRR({...,#DIV/0!}) = #VALUE!",
+    "FINANCIAL!AF26": "IRR({...,#REF!}) = #VALUE!",
+    "FINANCIAL!Z27": "IRR(C27:K27), #N/A in the range = #VALUE!",
+    # XIRR, XNPV: the guess's error, then the dates', then the values'; a boolean guess,
+    # rate or cash flow #VALUE!; pairs of empty cells and pairs with text left out
+    "FINANCIAL!S54": "XIRR(C56,$C$55:$G$55,$C$54:$G$54): the guess range's #VALUE!",
+    "FINANCIAL!U54": "XIRR({-10,#N/A,1,2,7},{3,#REF!,7,4,9}) = #REF!",
+    "FINANCIAL!V54": "XIRR({-10,#N/A,1,2,7},{3,#VALUE!,7,4,9},#REF!) = #REF!",
+    "FINANCIAL!Y54": "XIRR($C$55:$G$55,$C$54:$G$54,TRUE) = #VALUE!",
+    "FINANCIAL!Y55": "XIRR($C$55:$G$55,$C$54:$G$54,J56) (TRUE) = #VALUE!",
+    "FINANCIAL!Z56": "XNPV(J56,$C$55:$G$55,$C$54:$G$54) (TRUE) = #VALUE!",
+    "FINANCIAL!AD54": "XIRR($C$55:H$55,$C$54:H$54), H empty = 0.59931975",
+    "FINANCIAL!AE54": "XIRR($C$55:I$55,$C$54:I$54), I55 text = 0.59931975",
+    "FINANCIAL!AF54": "XIRR($C$55:J$55,$C$54:J$54), J55 TRUE = #VALUE!",
     # an Analysis ToolPak function takes no boolean: #VALUE!
     "'MATH & TRIG'!Y31": "FACTDOUBLE(TRUE)",
     "'MATH & TRIG'!Y45": "MROUND(TRUE,0)",

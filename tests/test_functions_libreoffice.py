@@ -154,6 +154,11 @@ FINANCE = [
     "RATE(12,-1000,10000)", "IPMT(0.1/12,1,36,8000)", "PPMT(0.1/12,1,24,2000)",
     "IPMT(0.1,3,3,8000)", "XNPV(0.09,Data!$I$1:$I$5,Data!$J$1:$J$5)",
     "XIRR(Data!$I$1:$I$5,Data!$J$1:$J$5)", "SLN(30000,7500,10)", "DDB(2400,300,10,1)",
+    # a text pair and an empty pair left out, a boolean taken as 1 (Excel: #VALUE!, on Mac
+    # Excel's cells in test_excel_mac_cells.py), the values' error first, IRR's error
+    "XIRR(Data!$I$1:$I$7,Data!$J$1:$J$7)", "XNPV(0.09,Data!$I$1:$I$7,Data!$J$1:$J$7)",
+    "XIRR(Data!$I$1:$I$8,Data!$J$1:$J$8)", "XIRR({-10,#N/A,1},{3,#REF!,7})",
+    "IRR(Data!$D$1:$D$2)",
     "DDB(2400,300,10,2)", "EFFECT(0.0525,4)", "NOMINAL(0.053543,4)",
 ]
 ENG = [
@@ -260,6 +265,7 @@ def _write_book(path):
                                    [39448, 39508, 39751, 39859, 39904]), start=1):
         data.cell(r, 9, v)
         data.cell(r, 10, d)
+    data["I6"], data["J6"], data["I8"], data["J8"] = "1", 39950, True, 39960
     sheet = book.create_sheet("Cases")
     for r, (family, formula) in enumerate(CASES, start=1):
         sheet.cell(r, 1, family)

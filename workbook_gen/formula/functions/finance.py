@@ -172,6 +172,8 @@ def _npv(ctx, rate, *args):
 def _irr(ctx, values, guess=0.1):
     xs = c.numbers([c.as_area(values)], ctx)
     g = c.to_number(guess)
+    if isinstance(xs, ExcelError) and _excel(ctx):
+        return ExcelError.VALUE  # Excel: an error among the cash flows (Mac Excel's Z26:AF27)
     for x in (xs, g):
         if isinstance(x, ExcelError):
             return x
@@ -181,22 +183,45 @@ def _irr(ctx, values, guess=0.1):
     return ExcelError.NUM if r is None else c.result(r)
 
 
-def _flows(values, dates):
+def _excel(ctx) -> bool:
+    return ctx is None or ctx.dialect != "libreoffice"
+
+
+def _flows(values, dates, excel: bool = True):
+    """(cash flows, their dates) of XNPV and XIRR, or the error.
+
+    Pairs of empty cells and pairs holding text are left out. Excel (Mac Excel's
+    formulas__test.xlsx, FINANCIAL row 54) checks the dates' errors before the values' and
+    refuses a boolean with #VALUE!; LibreOffice (measured, 7.4) checks the values first and
+    takes a boolean as its number."""
     vs = [v for v in c.flat(values)]
     ds = [d for d in c.flat(dates)]
-    for v in vs + ds:
+    for v in (ds + vs if excel else vs + ds):
         if isinstance(v, ExcelError):
             return v
     if len(vs) != len(ds) or not vs:
         return ExcelError.NUM
+    pairs = [(v, d) for v, d in zip(vs, ds) if (v is not None or d is not None)
+             and not isinstance(v, str) and not isinstance(d, str)]
+    if excel and any(isinstance(x, bool) for pair in pairs for x in pair):
+        return ExcelError.VALUE
+    if not pairs:
+        return ExcelError.NUM
     try:
-        vs = [float(c.to_number(v)) for v in vs]
-        ds = [math.floor(float(c.to_number(d))) for d in ds]
+        vs = [float(c.to_number(v)) for v, _ in pairs]
+        ds = [math.floor(float(c.to_number(d))) for _, d in pairs]
     except TypeError:
         return ExcelError.VALUE
     if any(d < ds[0] for d in ds):
         return ExcelError.NUM
     return vs, ds
+
+
+def _rate_argument(x, excel: bool):
+    """XNPV's rate, XIRR's guess: Excel refuses a boolean (#VALUE!, FINANCIAL!Y54, Z56)."""
+    if excel and isinstance(x, bool):
+        return ExcelError.VALUE
+    return c.to_number(x)
 
 
 def _xnpv(r, vs, ds):
@@ -205,8 +230,8 @@ def _xnpv(r, vs, ds):
 
 @register("XNPV", "finance", 3, 3, ("scalar", "range", "range"))
 def _xnpv_fn(ctx, rate, values, dates):
-    r = c.to_number(rate)
-    flows = _flows(values, dates)
+    r = _rate_argument(rate, _excel(ctx))
+    flows = _flows(values, dates, _excel(ctx))
     for x in (r, flows):
         if isinstance(x, ExcelError):
             return x
@@ -215,9 +240,10 @@ def _xnpv_fn(ctx, rate, values, dates):
 
 @register("XIRR", "finance", 2, 3, ("range", "range", "scalar"))
 def _xirr(ctx, values, dates, guess=0.1):
-    flows = _flows(values, dates)
-    g = c.to_number(guess)
-    for x in (flows, g):
+    excel = _excel(ctx)
+    flows = _flows(values, dates, excel)
+    g = _rate_argument(guess, excel)
+    for x in ((g, flows) if excel else (flows, g)):  # Excel: the guess's error first
         if isinstance(x, ExcelError):
             return x
     r = _solve(lambda r: _xnpv(r, *flows), g)
