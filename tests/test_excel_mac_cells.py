@@ -9,6 +9,8 @@ import pytest
 
 CORPUS = "formulas__test.xlsx"
 CELLS = {
+    # INDEX: an error as area_num is the result
+    "LOOKUP!AB54": "INDEX({2,3,4,5},1,1,N54) (#NAME?) = #NAME?",
     # IRR: an error among the cash flows is #VALUE!
     "FINANCIAL!Z26": "IRR({-7,2,-1,4,-3;7,2,-1,4,#N/A}) = #VALUE!",
     "FINANCIAL!AB26": "IRR({...,#DIV/0!}) = #VALUE!",

@@ -230,7 +230,8 @@ def _sub(area: Range, r1: int, c1: int, r2: int, c2: int) -> Range:
 def _index(ctx, area, row, col=None, part=1.0):
     area = c.as_area(area)
     r, k = c.to_number(row), (c.to_number(col) if col is not None else None)
-    bad = next((x for x in (r, k) if isinstance(x, ExcelError)), None)
+    # an error as area_num is INDEX's error (Mac Excel's LOOKUP!AB54)
+    bad = next((x for x in (r, k, part) if isinstance(x, ExcelError)), None)
     if bad is not None:
         return bad
     nrows, ncols = area.shape
