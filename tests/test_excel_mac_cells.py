@@ -9,6 +9,11 @@ import pytest
 
 CORPUS = "formulas__test.xlsx"
 CELLS = {
+    # SUMPRODUCT of arrays of different sizes: an error in them before #VALUE!
+    "'MATH & TRIG'!AE75": "SUMPRODUCT(P75:Q75,H75:I75,I75:K75) = #NUM!",
+    "'MATH & TRIG'!AF75": "SUMPRODUCT(Q75:R75,I75:K75,K75:L75) = #REF!",
+    # PROB: an empty cell as upper_limit is 0
+    "STATISTICAL!Z86": "PROB({1,2,3,4,5},{0.1,0.2,0.3,0.3,0.1},1,H86) = 0",
     # INDEX: an error as area_num is the result
     "LOOKUP!AB54": "INDEX({2,3,4,5},1,1,N54) (#NAME?) = #NAME?",
     # IRR: an error among the cash flows is #VALUE!

@@ -75,6 +75,8 @@ LOOKUP = [
     "ADDRESS(2,3)", "ADDRESS(2,3,4)", 'ADDRESS(1,1,1,TRUE,"My Sheet")', 'ADDRESS(1,3,4,TRUE,"")', "ADDRESS(5,28,2)",
 ]
 STATS = [
+    # arrays of different sizes, one with an error; PROB's upper limit an empty cell
+    "SUMPRODUCT(Data!$D$1:$D$2,Data!$A$1:$A$3)", "PROB({1,2,3},{0.2,0.3,0.5},1,Data!$K$1)",
     # Excel's Z.TEST rules are tested on Mac Excel's cells (test_excel_mac_cells.py)
     "ZTEST({3.2,0.7},2,0)", "ZTEST({4},0,2)", "ZTEST({3.2,0.7},1/0,NA())",
     "HYPGEOM.DIST(0,0,0,0,FALSE)", "HYPGEOM.DIST(0,2,3,3,TRUE)", "HYPGEOM.DIST(0,2,3,3,FALSE)",

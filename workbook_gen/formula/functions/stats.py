@@ -255,8 +255,13 @@ _xifs("MINIFS", min, 0.0)
 def _sumproduct(ctx, *args):
     areas = [c.as_area(a) for a in args]
     shape = areas[0].shape
-    if any(a.shape != shape for a in areas):
-        return ExcelError.VALUE
+    if any(a.shape != shape for a in areas):  # Excel: an error in the arrays first (Mac
+        # Excel's 'MATH & TRIG'!AE75:AF75: the first array's #NUM!, #REF!); LibreOffice
+        # (7.4, measured): #VALUE!
+        if ctx is not None and ctx.dialect == "libreoffice":
+            return ExcelError.VALUE
+        return next((v for a in areas for v in a.flat() if isinstance(v, ExcelError)),
+                    ExcelError.VALUE)
     columns = [list(a.flat()) for a in areas]
     lo = ctx.dialect == "libreoffice"  # a boolean is a number there
     if shape == (1, 1) and not lo and any(isinstance(v, (str, bool)) for (v,) in columns):

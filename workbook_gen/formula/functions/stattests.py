@@ -159,12 +159,20 @@ def _permutationa(ctx, n, k):
     return ExcelError.NUM if n < 0 or k < 0 else c.result(float(n) ** k)
 
 
+_ABSENT = object()  # an argument not given (an empty cell given is 0)
+
+
 @register("PROB", "stats", 3, 4, ("range", "range", "scalar"))
-def _prob(ctx, xr, pr, lower, upper=None):
+def _prob(ctx, xr, pr, lower, upper=_ABSENT):
     a, b = c.flat(c.as_area(xr)), c.flat(c.as_area(pr))
     if len(a) != len(b):
         return ExcelError.NA
-    bounds = args_of(lower, lower if upper is None else upper)
+    # upper_limit left out: the probability of lower_limit; an empty cell is 0 in Excel
+    # (Mac Excel's STATISTICAL!Z86: PROB({1,2,3,4,5},{...},1,<empty>) = 0), left out in
+    # LibreOffice (7.4, measured)
+    if upper is _ABSENT or (upper is None and ctx is not None and ctx.dialect == "libreoffice"):
+        upper = lower
+    bounds = args_of(lower, upper)
     if isinstance(bounds, ExcelError):
         return bounds
     lo, hi = bounds
