@@ -100,7 +100,9 @@ def as_num(v, n: int) -> Num | None:
         return v
     if isinstance(v, Const):
         return _full(v.value, n)
-    kinds = {type(x) for x in v.items}
+    kinds = set(map(type, v.items))
+    if kinds == {float}:  # (C loops: the usual block)
+        return Num(np.array(v.items, float), np.zeros(len(v.items), np.uint8), False)
     kinds.discard(ExcelError)
     if kinds <= {float, int} or kinds == {bool}:
         boolean = kinds == {bool}
@@ -139,14 +141,16 @@ def binary(op: str, a, b, n: int, dialect: str = "excel"):
                 return Num(*k.arith(op, x.val, x.err, y.val, y.err))
             return _compare(op, x, y, n)
     if isinstance(a, Const) or isinstance(b, Const):  # one side varies: memoise on it
-        memo: dict = {}
-        out = []
-        for p, q in zip(items(a, n), items(b, n)):
-            key = (type(p), p, type(q), q)
-            if key not in memo:
-                memo[key] = apply(op, p, q)
-            out.append(memo[key])
-        return _obj(out)
+        left = isinstance(a, Const)
+        varying = items(b, n) if left else items(a, n)
+        const = (a if left else b).value
+        keys = list(zip(map(type, varying), varying))  # (1, 1.0 and TRUE apart)
+        try:
+            memo = {key: apply(op, const, key[1]) if left else apply(op, key[1], const)
+                    for key in set(keys)}
+        except TypeError:  # an unhashable value: one by one
+            return _obj([apply(op, p, q) for p, q in zip(items(a, n), items(b, n))])
+        return _obj(list(map(memo.__getitem__, keys)))
     return _obj([apply(op, p, q) for p, q in zip(items(a, n), items(b, n))])
 
 

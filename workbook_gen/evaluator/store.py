@@ -194,13 +194,14 @@ class Store:
         codes = np.array([v.code if isinstance(v, ExcelError) else 0 for v in items], np.uint8)
         c.val[sl] = np.array([v if type(v) is float else np.nan for v in items])
         c.err[sl] = codes
-        c.irr[sl] = ~plain & (codes == 0)
+        irr = ~plain & (codes == 0)
+        c.irr[sl] = irr
         c.scale[sl] = scale
-        for i, v in enumerate(items):
-            if plain[i] or codes[i]:
-                c.objs.pop(first + i, None)
-            else:
-                c.objs[first + i] = v
+        objs = c.objs
+        for r in [r for r in objs if first <= r < first + n] if objs else ():
+            del objs[r]
+        for i in np.flatnonzero(irr).tolist():  # the rows holding text, booleans, nothing
+            objs[first + i] = items[i]
 
     def get(self, sheet: str, row: int, col: int):
         c = self.cols.get((sheet, col))
