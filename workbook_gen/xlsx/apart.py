@@ -59,17 +59,14 @@ def read_apart(pkg: Package, sheet_parts: list[tuple[Sheet, str]], strings: list
     job = Forked(_read_columns, pkg.path, pkg.max_uncompressed, pkg.max_ratio, inflated,
                  [(s.name, s.index, s.state, part) for s, part in theirs], strings, max_cells,
                  prepare)
-    try:
-        count = 0
-        for sheet, part in mine:
-            count += read_sheet(pkg, part, sheet, strings, max_cells - count, max_cells)
-    except Exception:
+
+    def undo() -> None:
         job.cancel()
         _empty(sheet_parts, pkg, inflated)
+
+    count = _guarded(job, undo, _read_mine, pkg, mine, strings, max_cells)
+    if count is _FAILED:
         return False
-    except BaseException:
-        job.cancel()
-        raise
     try:
         for sheet, _ in mine:  # (its own failures, not the file's)
             sheet.prepared = prepare(sheet)
@@ -78,15 +75,10 @@ def read_apart(pkg: Package, sheet_parts: list[tuple[Sheet, str]], strings: list
     except BaseException:
         job.cancel()
         raise
-    try:
-        their_inflated, results = job.result()
-    except Exception:
-        job.cancel()
-        _empty(sheet_parts, pkg, inflated)
+    outcome = _guarded(job, undo, job.result)
+    if outcome is _FAILED:
         return False
-    except BaseException:
-        job.cancel()
-        raise
+    their_inflated, results = outcome
     count += sum(n for n, *_ in results)
     if count > max_cells:  # read in order, the limit would have stopped it: say where
         _empty(sheet_parts, pkg, inflated)
@@ -100,6 +92,30 @@ def read_apart(pkg: Package, sheet_parts: list[tuple[Sheet, str]], strings: list
     for sheet, _ in sheet_parts[child[0]:]:
         ready(sheet)
     return True
+
+
+_FAILED = object()
+
+
+def _guarded(job: Forked, undo, fn, *args):
+    """``fn(*args)``; a failure (an Exception) undoes the reading and gives _FAILED, anything
+    else (an interrupt) stops the child and goes on."""
+    try:
+        return fn(*args)
+    except Exception:
+        undo()
+        return _FAILED
+    except BaseException:
+        job.cancel()
+        raise
+
+
+def _read_mine(pkg: Package, mine: list[tuple[Sheet, str]], strings: list[str],
+               max_cells: int) -> int:
+    count = 0
+    for sheet, part in mine:
+        count += read_sheet(pkg, part, sheet, strings, max_cells - count, max_cells)
+    return count
 
 
 def _read_columns(path: str, max_uncompressed: int, max_ratio: float, inflated: int,

@@ -153,12 +153,8 @@ def _scanned_row(row: tuple, row_no: int, count: int, budget: int, sheet: Sheet,
     before the row's cells are added, so that the row is read again by that path."""
     if row[3]:
         return _plain_row(row, row_no, count, budget, sheet, strings)
-    attrs, found = row[0], row[1]
-    a = attributes(attrs) if attrs else {}
-    r = a.get("r")
-    row_no = int(r) if r and r.isdigit() else row_no + 1
-    if row_no > MAX_ROW or count + len(found) > budget:
-        raise Unrecognised
+    found = row[1]
+    a, _, row_no = _row_start(row, row_no, count, budget)
     count += len(found)
     cols, shared, out = _COLS, sheet.shared_formulas, []
     try:
@@ -208,16 +204,23 @@ def _scanned_row(row: tuple, row_no: int, count: int, budget: int, sheet: Sheet,
     return row_no, count
 
 
+def _row_start(row: tuple, row_no: int, count: int, budget: int) -> tuple[dict, str, int]:
+    """(attributes, its r, row number) of a scanned row; Unrecognised beyond Excel's rows or
+    the cell budget (the ElementTree path words those errors)."""
+    a = attributes(row[0]) if row[0] else {}
+    r = a.get("r")
+    row_no = int(r) if r and r.isdigit() else row_no + 1
+    if row_no > MAX_ROW or count + len(row[1]) > budget:
+        raise Unrecognised
+    return a, r, row_no
+
+
 def _plain_row(row: tuple, row_no: int, count: int, budget: int, sheet: Sheet,
                strings: list[str]) -> tuple[int, int]:
     """_scanned_row for a row of plain cells (scan.PLAIN): appended to the sheet's open
     chunk as columns, a few list operations per row rather than Python code per cell."""
-    attrs, found = row[0], row[1]
-    a = attributes(attrs) if attrs else {}
-    r = a.get("r")
-    row_no = int(r) if r and r.isdigit() else row_no + 1
-    if row_no > MAX_ROW or count + len(found) > budget:
-        raise Unrecognised
+    found = row[1]
+    a, r, row_no = _row_start(row, row_no, count, budget)
     if found:
         letters, digits, kinds, texts, vs = zip(*found)
         cols = list(map(_COLS.get, letters))
