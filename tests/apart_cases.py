@@ -85,20 +85,46 @@ def test_cell_limit_names_the_same_sheet(max_cells, book, monkeypatch):
 
 
 @pytest.mark.parametrize("name", ["book", *CORPUS_FILES])
-def test_audit_of_two_processes_is_that_of_one(name, book, monkeypatch):
-    """The audit's inputs (read, and grouped into runs by the process that read each
-    sheet), and its whole report, are the same read on two cores or on one."""
+def test_audit_inputs_of_two_processes_are_those_of_one(name, book, monkeypatch):
+    """The audit's inputs, read and grouped into runs by the process that read each
+    sheet, are the same on two cores as on one."""
     path = book if name == "book" else CORPUS / name
     monkeypatch.setattr(apart, "MIN_SHARE", 0)
 
-    def audited(serial: bool):
+    def inputs(serial: bool):
         monkeypatch.setenv("WORKBOOK_GEN_SERIAL", "1" if serial else "0")
         got = read_inputs(path, group=True)
-        report = audit(path).to_json()
-        for key in ("seconds", "timings"):
-            report.pop(key, None)
         return ([list(d.items()) for d in (got.formulas, got.cached, got.constants,
                                            got.broken)],
-                got.grouped.runs, got.grouped.errors, got.grouped.parsed, report)
+                got.grouped.runs, got.grouped.errors, got.grouped.parsed)
 
-    assert audited(False) == audited(True)
+    assert inputs(False) == inputs(True)
+
+
+@pytest.fixture(scope="module")
+def sewing(tmp_path_factory) -> Path:
+    """A workbook of ours: its report has the reference check."""
+    from workbook_gen.scene import load_scene
+    from workbook_gen.workbook import write_workbook
+    scene = load_scene(Path(__file__).resolve().parent.parent / "templates"
+                       / "sewing_machine.toml")
+    return write_workbook(scene, tmp_path_factory.mktemp("sewing") / "sewing", force=True)
+
+
+@pytest.mark.parametrize("name", ["book", "sewing", "xlcalculator__BASES.xlsx"])
+def test_audit_report_of_two_processes_is_that_of_one(name, book, sewing, monkeypatch):
+    """The whole report: the evaluation beside the local one, the comparison beside the
+    reference check and the findings."""
+    path = {"book": book, "sewing": sewing}.get(name) or CORPUS / name
+    monkeypatch.setattr(apart, "MIN_SHARE", 0)
+
+    def report(serial: bool):
+        monkeypatch.setenv("WORKBOOK_GEN_SERIAL", "1" if serial else "0")
+        out = audit(path).to_json()
+        for key in ("seconds", "timings"):
+            out.pop(key, None)
+        return out
+
+    forked = report(False)
+    assert forked == report(True)
+    assert name != "sewing" or forked["reference"], "the reference check did not run"
