@@ -24,7 +24,7 @@ from xlsxwriter.utility import xl_col_to_name, xl_rowcol_to_cell
 
 from ..errors import FormulaSyntaxError, WorkbookGenError, WorkbookReadError
 from ..evaluator import evaluate_cells
-from ..evaluator.keys import column_groups
+from ..evaluator.keys import column_groups, pick
 from ..evaluator.store import value_scale
 from ..evaluator.volatile import Clock
 from ..formula import ast, parse
@@ -198,8 +198,7 @@ def _in_columns(cells: dict, columns: set[tuple[str, int]], leave=()) -> dict:
     groups, _ = column_groups(keys)
     for sheet, col, idx in groups:
         if (sheet, col) in columns:
-            pick = idx.tolist()
-            out.update(zip(map(keys.__getitem__, pick), map(values.__getitem__, pick)))
+            out.update(zip(pick(keys, idx), pick(values, idx)))
     for key in leave:
         out.pop(key, None)
     return out
@@ -267,11 +266,12 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
     value_of.clip = lambda sheet, *rect: evaluation.store.clip(evaluation.store.sheet(sheet),
                                                                *rect)
 
-    # the reference model's check on the other core while this one compares,
+    # the reference model's check and the findings on the other core while this one
+    # compares (their times their own, spent alongside); is_formula would make the
+    # Table's Cell objects for its input columns
     trees = noise_trees(inputs.book, evaluation.runs,
                         lambda k: k in inputs.formulas or k in inputs.broken
                         or k in inputs.array_master)
-    # and the findings (their times their own, spent alongside)
     aside = Forked(_beside_compare, inputs, evaluation.runs, value_of,
                    evaluation.store.column_values, trees)
     try:
@@ -360,7 +360,7 @@ def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, t
         if len(fast):
             column = store.cols[(sheet, col)]
             rows = all_rows[fast]
-            cached = np.array([cached_values[i] for i in fast.tolist()], float)
+            cached = np.array(pick(cached_values, fast), float)
             plain = ~column.irr[rows] & (column.err[rows] == 0)
             if not plain.all():
                 fast, rows, cached = fast[plain], rows[plain], cached[plain]
@@ -375,7 +375,7 @@ def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, t
                 k = keys[fast[i]]
                 mismatches.append(Mismatch(_cell_name(k), inputs.text_of(k), inputs.cached[k],
                                            float(column.val[rows[i]]), float(diff[i])))
-        for key in map(keys.__getitem__, idx[~done[idx]].tolist()):
+        for key in pick(keys, idx[~done[idx]]):
             cached = inputs.cached[key]
             source = local if key in local.values else evaluation
             recomputed = source.values[key]

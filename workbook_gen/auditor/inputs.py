@@ -135,8 +135,6 @@ def read_inputs(path: str | Path, group: bool = False) -> AuditInputs:
             inputs.grouping_seconds += seconds
 
     inputs.book = read_workbook(path, ready=take, prepare=_grouped if group else None)
-    for sheet in inputs.book.sheets:
-        take(sheet)
     return inputs
 
 

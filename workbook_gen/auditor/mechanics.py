@@ -129,7 +129,7 @@ def noise_trees(book, runs=(), has_formula=None) -> dict | None:
         elif has_formula and not mine and not has_formula((table.name, rows.start, col)):
             out[col] = INPUT
         else:
-            out.update((c, t) for c, t in column_trees(table, rows, [col]).items())
+            out.update(column_trees(table, rows, [col]))
     return out
 
 

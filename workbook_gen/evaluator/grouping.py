@@ -14,12 +14,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from itertools import repeat
-from operator import itemgetter
 
 import numpy as np
 
 from workbook_gen.errors import FormulaSyntaxError, WorkbookReadError
-from workbook_gen.evaluator.keys import column_groups
+from workbook_gen.evaluator.keys import column_groups, pick
 from workbook_gen.formula import ast
 from workbook_gen.formula import tokenizer as tk
 from workbook_gen.formula.parser import parse
@@ -206,7 +205,5 @@ def _columns(keys: list, texts: list[str]) -> list[tuple[str, int, list[int], li
         if len(idx) > 1 and not (np.diff(col_rows) > 0).all():
             idx = idx[np.argsort(col_rows, kind="stable")]
             col_rows = rows[idx]
-        pick = idx.tolist()
-        out.append((sheet, col, col_rows.tolist(),
-                    [texts[pick[0]]] if len(pick) == 1 else list(itemgetter(*pick)(texts))))
+        out.append((sheet, col, col_rows.tolist(), pick(texts, idx)))
     return out

@@ -13,12 +13,11 @@ import math
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass
-from operator import itemgetter
 
 import numpy as np
 
 from workbook_gen.errors import FormulaSyntaxError
-from workbook_gen.evaluator.keys import column_groups
+from workbook_gen.evaluator.keys import column_groups, pick
 from workbook_gen.formula import ast
 from workbook_gen.formula.parser import parse
 from workbook_gen.formula.values import Range
@@ -159,9 +158,7 @@ class Store:
         groups, all_rows = column_groups(keys)
         for sheet, col, idx in groups:  # (a column's keys in the order of ``constants``)
             rows = all_rows[idx]
-            pick = idx.tolist()
-            values = [all_values[pick[0]]] if len(pick) == 1 else list(
-                itemgetter(*pick)(all_values))
+            values = pick(all_values, idx)
             row_list = rows.tolist()
             self.note(sheet, int(rows.max()), col)
             c = self._column(sheet, col, int(rows.max()))

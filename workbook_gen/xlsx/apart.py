@@ -86,8 +86,8 @@ def read_apart(pkg: Package, sheet_parts: list[tuple[Sheet, str]], strings: list
     pkg.inflated += their_inflated
     for (sheet, _), (_, dimension, shared, hidden, columns, chunks, prepared) in zip(
             theirs, results):
-        sheet.cells = dict(zip(columns[0], map(Cell, *columns)))
-        sheet.chunks, sheet.prepared = chunks, prepared
+        sheet.adopt(dict(zip(columns[0], map(Cell, *columns))), chunks)
+        sheet.prepared = prepared
         sheet.dimension, sheet.shared_formulas, sheet.hidden_rows = dimension, shared, hidden
     for sheet, _ in sheet_parts[child[0]:]:
         ready(sheet)

@@ -102,6 +102,12 @@ class Sheet:
             cells.update(zip(refs, map(Cell, refs, rows, cols, values, formulas, kinds)))
         self.chunks = []
 
+    def adopt(self, cells: dict[str, Cell], chunks: list[Chunk]) -> None:
+        """The cells and chunks of this sheet as another process read them (its ``parts``
+        checked the chunks)."""
+        self.cells = cells
+        self.chunks, self._unique = chunks, True
+
     def chunk(self) -> Chunk:
         """The open chunk the scanner appends plain cells to."""
         if not self.chunks:
