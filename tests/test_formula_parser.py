@@ -296,3 +296,44 @@ def test_a_deleted_reference_on_a_named_sheet_is_ref_error():
     from workbook_gen.xlerror import ExcelError as _E
     for text in ("'OP LTR'!#REF!", "Sheet1!#REF!"):
         assert parse(text) == _ast.ErrorLit(_E.REF)
+
+
+def test_name_character_classes_are_the_documented_ranges_on_the_bmp():
+    """The tokenizer's and printer's classes are spelled negated (cheap to compile); on
+    the Basic Multilingual Plane each is exactly the range it stands for, and beyond it
+    the tokenizer may only take more (a name), the printer only less (then it quotes)."""
+    import re
+
+    from workbook_gen.formula import printer, tokenizer
+
+    word = tokenizer._WORD_RE.pattern
+    plain = printer._PLAIN_SHEET.pattern
+    cut = plain.index("]") + 1
+    cases = [  # (the range spelling, the class used, beyond the BMP: "more" | "less" | "same")
+        (r"[A-Za-z_\\\u00a1-\uffff]", tokenizer._FIRST, "same"),
+        (r"[\w.\u00a1-\uffff]", tokenizer._NEXT, "more"),
+        (r"[\w.(!\[\u00a1-\uffff]", tokenizer._END[3:-1], "more"),
+        (r"[\w.?\\\u00a1-\uffff]", word[word.rindex("[^"):-1], "more"),
+        (r"[A-Za-z_\u00a1-\uffff]", plain[:cut], "same"),
+        (r"[\w.\u00a1-\uffff]", plain[cut:-1], "less"),
+    ]
+    beyond = "".join(map(chr, (0x10000, 0x1D465, 0x1F600, 0x20000, 0x10FFFF)))
+    for spelled, used, outside in cases:
+        want, got = re.compile(spelled), re.compile(used)
+        bmp = "".join(map(chr, range(0x10000)))
+        assert [m.start() for m in want.finditer(bmp)] == \
+            [m.start() for m in got.finditer(bmp)], used
+        for ch in beyond:
+            w, g = bool(want.fullmatch(ch)), bool(got.fullmatch(ch))
+            assert {"same": g == w, "more": g >= w, "less": g <= w}[outside], (used, ch)
+
+
+@pytest.mark.parametrize("formula, texts", [
+    ("Größe*2", ["Größe", "*", "2"]),
+    ("'Größe'!A1+Δx", ["'Größe'!A1", "+", "Δx"]),
+    ("Лист1!B2:C3", ["Лист1!B2:C3"]),
+    ("名前.一&x\\y?", ["名前.一", "&", "x\\y?"]),
+    ("A1é", ["A1é"]),  # a name, not A1 followed by a letter
+])
+def test_names_of_any_script_tokenize(formula, texts):
+    assert [t.text for t in tokenize(formula)] == texts

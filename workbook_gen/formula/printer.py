@@ -16,7 +16,10 @@ from workbook_gen.formula.ast import INFIX_POWER as _INFIX_POWER
 from workbook_gen.formula.ast import PERCENT_POWER as _PERCENT_POWER
 from workbook_gen.formula.ast import PREFIX_POWER as _PREFIX_POWER
 
-_PLAIN_SHEET = re.compile(r"[A-Za-z_\u00a1-\uffff][\w.\u00a1-\uffff]*")
+# [A-Za-z_\u00a1-\uffff][\w.\u00a1-\uffff]*, spelled negated (see the tokenizer's _FIRST):
+# a word character beyond U+FFFF is quoted, as any name may be
+_PLAIN_SHEET = re.compile(r"[^\x00-@\[-^`{-\xa0\U00010000-\U0010ffff]"
+                          r"[^\x00-\-/:-@\[-^`{-\xa0\U00010000-\U0010ffff]*")
 _R1C1_LIKE = re.compile(r"(?:R[0-9]*)?(?:C[0-9]*)?", re.IGNORECASE)
 
 
