@@ -74,19 +74,29 @@ ERRORS = {
 STRINGS = "<si><t>zero</t></si><si><t>one</t></si>"
 
 
-def _read(path, monkeypatch, scanner: bool):
-    """(cells as tuples, hidden rows, shared formulas) of sheet S, or the error's text."""
+def _read(path, monkeypatch, scanner: bool | str):
+    """(cells as tuples, hidden rows, shared formulas) of sheet S, or the error's text;
+    and the attributes of the rows the scanner read (a plain batch's rows marked "whole").
+    ``scanner``: True, "rows" (no batch taken whole) or False (ElementTree only)."""
     used = []
-    real = sheetdata._scanned_row
+    real_row, real_batch = sheetdata._scanned_row, sheetdata._plain_rows
 
     def counted(*args):
-        used.append(args[0])
-        return real(*args)
+        used.append(args[0][0])
+        return real_row(*args)
+
+    def counted_batch(*args):
+        out = real_batch(*args)
+        used.extend(("whole", a) for a in args[0].attributes)
+        return out
 
     with monkeypatch.context() as m:
         m.setattr(sheetdata, "_scanned_row", counted)
-        if not scanner:
-            m.setattr(scan, "rows", _refuse)
+        m.setattr(sheetdata, "_plain_rows", counted_batch)
+        if scanner == "rows":
+            m.setattr(scan, "plain_rows", lambda text: None)
+        elif not scanner:
+            m.setattr(scan, "decoded", _refuse)
         try:
             sheet = read_workbook(path).sheet("S")
         except WorkbookReadError as exc:
@@ -104,9 +114,21 @@ def _refuse(data):
 def test_scanner_reads_what_elementtree_reads(tmp_path, monkeypatch, body):
     path = _package(tmp_path / "s.xlsx", {"S": body}, shared_strings=STRINGS)
     scanned, used = _read(path, monkeypatch, scanner=True)
+    by_rows, used_rows = _read(path, monkeypatch, scanner="rows")
     parsed, none = _read(path, monkeypatch, scanner=False)
-    assert scanned == parsed and not none
-    assert used, "no row went through the scanner"
+    assert scanned == parsed and by_rows == parsed and not none
+    assert used and used_rows, "no row went through the scanner"
+    assert not any(isinstance(u, tuple) for u in used_rows)
+
+
+def test_a_batch_of_plain_rows_is_taken_whole(tmp_path, monkeypatch):
+    body = SHEETS["plain cells in every spelling"] + SHEETS["row and cell numbers"]
+    path = _package(tmp_path / "s.xlsx", {"S": body}, shared_strings=STRINGS)
+    (cells, hidden, *_), used = _read(path, monkeypatch, scanner=True)
+    assert [u for u in used if u[0] != "whole"] == []
+    assert [a for _, a in used] == [' r="1"', ' r="2" hidden="true"', ' r="3"', ' r="5"', ""]
+    assert hidden == [2] and [ref for ref, _ in cells][-3:] == ["A5", "XFD5", "B6"]
+    assert (cells, hidden) == _read(path, monkeypatch, scanner=False)[0][:2]
 
 
 @pytest.mark.parametrize("body", SHEETS.values(), ids=SHEETS.keys())
@@ -122,7 +144,7 @@ def test_audit_inputs_of_plain_columns_are_those_of_cells(tmp_path, monkeypatch,
 
     scanned = inputs()
     with monkeypatch.context() as m:
-        m.setattr(scan, "rows", _refuse)
+        m.setattr(scan, "decoded", _refuse)
         parsed = inputs()
     assert scanned == parsed
 
@@ -152,7 +174,7 @@ def test_plain_rows_are_scanned_and_unusual_ones_parsed(tmp_path, monkeypatch):
             '<row r="3"><c><v>3</v></c></row><row r="4"><c r="D4"><f>B2</f><v>2</v></c></row>')
     path = _package(tmp_path / "s.xlsx", {"S": body})
     (cells, *_), used = _read(path, monkeypatch, scanner=True)
-    assert [row[0] for row in used] == [' r="2"', ' r="4"']  # the plain rows only
+    assert used == [' r="2"', ' r="4"']  # the plain rows only, one by one
     assert [ref for ref, _ in cells] == ["A1", "B2", "A3", "D4"]
 
 

@@ -145,14 +145,16 @@ def _grouped(sheet) -> tuple[Grouped | str, float]:
     cells, chunks = sheet.parts()
     mine = AuditInputs(None)  # type: ignore[arg-type]
     _sheet_inputs(mine, sheet, cells, [])
-    keys, texts = list(mine.formulas), list(mine.formulas.values())
-    for rows, cols, _, formulas in chunks:
+    rows, cols = [k[1] for k in mine.formulas], [k[2] for k in mine.formulas]
+    texts = list(mine.formulas.values())
+    for chunk_rows, chunk_cols, _, formulas in chunks:
         is_formula = [t is not None for t in formulas]
-        keys += compress(zip(repeat(sheet.name), rows, cols), is_formula)
+        rows += compress(chunk_rows, is_formula)
+        cols += compress(chunk_cols, is_formula)
         texts += compress(formulas, is_formula)
     grouped = Grouped()
     try:
-        grouped.add(keys, texts)
+        grouped.add_sheet(sheet.name, rows, cols, texts)
     except WorkbookReadError as exc:
         return str(exc), time.perf_counter() - t
     return grouped, time.perf_counter() - t

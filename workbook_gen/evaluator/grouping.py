@@ -18,7 +18,7 @@ from itertools import repeat
 import numpy as np
 
 from workbook_gen.errors import FormulaSyntaxError, WorkbookReadError
-from workbook_gen.evaluator.keys import column_groups, pick
+from workbook_gen.evaluator.keys import column_groups, groups_by, pick
 from workbook_gen.formula import ast
 from workbook_gen.formula import tokenizer as tk
 from workbook_gen.formula.parser import parse
@@ -169,10 +169,23 @@ class Grouped:
 
     def add(self, keys: list, texts: list[str], budget: float | None = None) -> None:
         """Group the formulas ``texts`` of cells ``keys`` (sheet, row, col)."""
-        self.formulas += len(keys)
+        self._add(_columns(keys, texts), len(keys), budget)
+
+    def add_sheet(self, sheet: str, rows: list[int], cols: list[int], texts: list[str],
+                  budget: float | None = None) -> None:
+        """Group the formulas ``texts`` of one sheet's cells at ``rows``, ``cols``."""
+        columns = []
+        if texts:
+            at = np.array(rows, np.int64)
+            columns = [(sheet, cols[g[0]]) + _in_rows(at, g, texts)
+                       for g in groups_by(np.array(cols, np.int64))]
+        self._add(columns, len(texts), budget)
+
+    def _add(self, columns, n: int, budget: float | None) -> None:
+        self.formulas += n
         allowed = [allowance(self.formulas, budget) - self.parsed]
         before = allowed[0]
-        for sheet, col, rows, col_texts in _columns(keys, texts):
+        for sheet, col, rows, col_texts in columns:
             self.runs.extend(find_runs(rows, col_texts, sheet, col, self.errors, allowed))
         self.parsed += before - allowed[0]
 
@@ -199,11 +212,13 @@ def _columns(keys: list, texts: list[str]) -> list[tuple[str, int, list[int], li
     """``(sheet, col, rows, texts)`` of each column of the formulas ``texts`` of cells
     ``keys``, rows ascending, the columns in the order of their first formula."""
     groups, rows = column_groups(keys)
-    out = []
-    for sheet, col, idx in groups:
+    return [(sheet, col) + _in_rows(rows, idx, texts) for sheet, col, idx in groups]
+
+
+def _in_rows(rows: np.ndarray, idx: np.ndarray, texts: list[str]) -> tuple[list[int], list[str]]:
+    """(rows, texts) of one column's cells ``idx``, rows ascending."""
+    col_rows = rows[idx]
+    if len(idx) > 1 and not (np.diff(col_rows) > 0).all():
+        idx = idx[np.argsort(col_rows, kind="stable")]
         col_rows = rows[idx]
-        if len(idx) > 1 and not (np.diff(col_rows) > 0).all():
-            idx = idx[np.argsort(col_rows, kind="stable")]
-            col_rows = rows[idx]
-        out.append((sheet, col, col_rows.tolist(), pick(texts, idx)))
-    return out
+    return col_rows.tolist(), pick(texts, idx)

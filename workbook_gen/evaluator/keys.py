@@ -29,8 +29,14 @@ def column_groups(keys: list[tuple[str, int, int]]
     index = {name: i for i, name in enumerate(dict.fromkeys(sheets))}
     key = np.fromiter(map(index.__getitem__, sheets), np.int64, n) * (1 << 15)
     key += np.fromiter(cols, np.int64, n)
+    return ([(sheets[g[0]], cols[g[0]], g) for g in groups_by(key)],
+            np.fromiter(rows, np.int64, n))
+
+
+def groups_by(key: np.ndarray) -> list[np.ndarray]:
+    """The indexes of the entries of ``key`` (integers) equal to each other, in their
+    order, the groups in the order of their first entry."""
     order = np.argsort(key, kind="stable")
     groups = np.split(order, np.flatnonzero(np.diff(key[order])) + 1)
     groups.sort(key=lambda g: g[0])
-    return ([(sheets[g[0]], cols[g[0]], g) for g in groups],
-            np.fromiter(rows, np.int64, n))
+    return groups

@@ -1,8 +1,10 @@
 """The regular-expression scanner of <sheetData> rows in the plain form programs write.
 
-``rows(text)`` cuts a batch of whole ``<row>`` elements (decoded, without a namespace
-prefix) into ``(row attributes, cells)``, each cell the groups of ``CELL``: no Python
-code runs per XML element, and no element object is made. Whatever it does not
+``plain_rows(text)`` takes a batch of whole ``<row>`` elements (decoded, without a
+namespace prefix) made only of plain cells as a whole: the rows' attributes and every
+cell's groups, each a C loop over the batch. ``rows(text)`` cuts any other batch into
+``(row attributes, cells)``, each cell the groups of ``CELL``: no Python code runs per XML
+element, and no element object is made. Whatever it does not
 recognise to the last character (other elements, a prefix, unusual spellings, entities it
 does not know) it hands back as the row's XML text, for ElementTree to parse: the scanner
 only ever takes the common path, never guesses.
@@ -30,7 +32,12 @@ _PLAIN = (r'<c r="([A-Z]{1,3})([1-9][0-9]{0,6})"(?: s="[0-9]{1,9}")?(?: t="(n|s|
           r'(?:/>|>(?:<f(?: aca="false")?>([^<]+)</f>)?(?:<v>([^<]+)</v>)?</c>)')
 PLAIN = re.compile(_PLAIN)
 _PLAIN_ROW = re.compile("(?:" + re.sub(r"\((?!\?)", "(?:", _PLAIN) + ")*")
-_ROW_START = re.compile(r'\s*<row' + _ATTRS + r'\s*>')
+_S = r"[ \t\r\n]*"  # XML's white space
+_ROW_START = re.compile(_S + r'<row' + _ATTRS + _S + '>')
+ROW_TAG = re.compile(r'<row' + _ATTRS + _S + '>')
+# a batch of rows whose cells are all plain (the rows' attributes hold no "<")
+_PLAIN_ROWS = re.compile(f"(?:{_S}<row{re.sub(r'[(](?![?])', '(?:', _ATTRS)}{_S}>"
+                         f"{_PLAIN_ROW.pattern}</row>)*{_S}")
 ATTR = re.compile(r' ([A-Za-z_:][\w:.-]*)="([^"]*)"')
 _ENTITY = re.compile(r"&(#[0-9]+|#x[0-9A-Fa-f]+|[A-Za-z]+);")
 _CONTROL = bytes(c for c in range(32) if c not in (9, 10, 13))  # not XML characters
@@ -41,19 +48,32 @@ class Unrecognised(Exception):
     """Text the scanner does not take: the caller parses it with ElementTree."""
 
 
-def rows(data: bytes) -> list[tuple[str | None, list | tuple, str, bool]]:
-    """``(attributes, cells, xml without </row>, plain)`` for each row of ``data`` (UTF-8,
-    whole rows and nothing else); ``attributes`` is None for a row the scanner does not
-    recognise to the last character. A plain row's cells are all of the ``PLAIN`` kind, as
-    its groups; another row's cells are the groups of ``CELL``. Raises Unrecognised if
-    ``data`` holds anything else, or characters XML forbids (the parser's error to word)."""
+def decoded(data: bytes) -> str:
+    """A batch of rows (UTF-8) as text; Unrecognised if it holds characters XML forbids
+    (the parser's error to word)."""
     if len(data.translate(None, _CONTROL)) != len(data) or b"]]>" in data \
             or b"\xef\xbf\xbe" in data or b"\xef\xbf\xbf" in data:
         raise Unrecognised
     try:
-        text = data.decode("utf-8")
+        return data.decode("utf-8")
     except UnicodeDecodeError:
         raise Unrecognised from None
+
+
+def plain_rows(text: str) -> tuple[list[str], list[tuple]] | None:
+    """``(each row's attributes, every cell's PLAIN groups)`` of a batch of rows that are
+    all plain, else None."""
+    if _PLAIN_ROWS.fullmatch(text) is None:
+        return None
+    return ROW_TAG.findall(text), PLAIN.findall(text)
+
+
+def rows(text: str) -> list[tuple[str | None, list | tuple, str, bool]]:
+    """``(attributes, cells, xml without </row>, plain)`` for each row of ``text`` (whole
+    rows and nothing else, ``decoded``); ``attributes`` is None for a row the scanner does
+    not recognise to the last character. A plain row's cells are all of the ``PLAIN`` kind,
+    as its groups; another row's cells are the groups of ``CELL``. Raises Unrecognised if
+    ``text`` holds anything else."""
     pieces = text.split("</row>")
     if pieces[-1].strip():
         raise Unrecognised

@@ -17,7 +17,7 @@ from workbook_gen.xlsx.limits import Package
 from workbook_gen.xlsx.model import (MAX_COL, Cell, SharedFormula, Sheet, Value,
                                      column_letters)
 from workbook_gen.xlsx.scan import Unrecognised, attributes, xml_text
-from workbook_gen.xlsx.sheetrows import _LOCAL, _parse_row, _rows
+from workbook_gen.xlsx.sheetrows import _LOCAL, PlainRows, _parse_row, _rows, apart
 
 log = logging.getLogger(__name__)
 
@@ -56,7 +56,15 @@ def read_sheet(pkg: Package, part: str, sheet: Sheet, strings: list[str], budget
     count = row_no = n_rows = 0
     pending: list[Cell] = []
     arrays: list[Cell] = []
-    for row in _rows(pkg, part, sheet):
+    rows, again = _rows(pkg, part, sheet), []
+    while (row := again.pop() if again else next(rows, None)) is not None:
+        if type(row) is PlainRows:  # a batch of plain rows, taken whole
+            try:
+                row_no, count, n_rows = _plain_rows(row, row_no, count, n_rows, budget, sheet,
+                                                    strings)
+            except Unrecognised:  # something in it to word, or unusual: row by row
+                again = apart(pkg, part, row)[::-1]
+            continue
         if type(row) is tuple:  # scanned: (attributes, cells, the row's XML)
             marks = len(pending), len(arrays), set(shared)
             try:
@@ -215,6 +223,33 @@ def _row_start(row: tuple, row_no: int, count: int, budget: int) -> tuple[dict, 
     return a, r, row_no
 
 
+def _plain_rows(batch: PlainRows, row_no: int, count: int, n_rows: int, budget: int,
+                sheet: Sheet, strings: list[str]) -> tuple[int, int, int]:
+    """Add a batch of plain rows (scan.plain_rows) as columns, a few list operations per
+    batch; ``(row number, cells read, rows read)``. Unrecognised (before anything is added)
+    for what the row-by-row path words or reads otherwise: the cell budget, Excel's rows."""
+    found = batch.cells
+    if count + len(found) > budget or n_rows + len(batch.attributes) > MAX_ROW:
+        raise Unrecognised
+    hidden = []
+    for attrs in batch.attributes:
+        a = attributes(attrs) if attrs else {}
+        r = a.get("r")
+        row_no = int(r) if r and r.isdigit() else row_no + 1
+        if row_no > MAX_ROW:
+            raise Unrecognised
+        if a.get("hidden") in ("1", "true"):
+            hidden.append(row_no)
+    if found:
+        letters, digits, kinds, texts, vs = zip(*found)
+        rows = list(map(int, digits))
+        if max(rows) > MAX_ROW:
+            raise Unrecognised
+        _plain_cells(sheet, strings, letters, rows, kinds, texts, vs)
+    sheet.hidden_rows.update(hidden)
+    return row_no, count + len(found), n_rows + len(batch.attributes)
+
+
 def _plain_row(row: tuple, row_no: int, count: int, budget: int, sheet: Sheet,
                strings: list[str]) -> tuple[int, int]:
     """_scanned_row for a row of plain cells (scan.PLAIN): appended to the sheet's open
@@ -223,45 +258,52 @@ def _plain_row(row: tuple, row_no: int, count: int, budget: int, sheet: Sheet,
     a, r, row_no = _row_start(row, row_no, count, budget)
     if found:
         letters, digits, kinds, texts, vs = zip(*found)
-        cols = list(map(_COLS.get, letters))
-        if None in cols:
-            cols = [c or _column(x) for c, x in zip(cols, letters)]
         if r and digits.count(r) == len(digits):  # every cell in the row's own row
             rows = [row_no] * len(digits)
         else:
             rows = list(map(int, digits))
             if max(rows) > MAX_ROW:
                 raise Unrecognised
-        try:
-            typed = [i for i, k in enumerate(kinds) if k and k != "n"] if any(kinds) else ()
-            typed_vs: list[str] = []
-            if typed:  # numbers at C speed, then the few typed cells one by one
-                vs, typed_vs = list(vs), [vs[i] for i in typed]
-                for i in typed:
-                    vs[i] = "0"
-            values = [float(v) if v else None for v in vs] if "" in vs else list(map(float, vs))
-            for i, v in zip(typed, typed_vs):
-                values[i] = _value(kinds[i], xml_text(v) if v else None, None, strings)
-        except (ValueError, IndexError):
-            raise Unrecognised from None
-        joined = "\0".join(texts)  # (XML text never holds a NUL)
-        if "&" in joined or "\r" in joined:
-            joined = xml_text(joined)
-            texts = joined.split("\0")
-        if joined[:1] == "=" or "\0=" in joined:
-            texts = [f[1:] if f[:1] == "=" else f for f in texts]
-        formulas = [f or None for f in texts] if "" in texts else list(texts)
-        if None in values:  # a cell with neither a value nor a formula is not kept
-            keep = [v is not None or f is not None for v, f in zip(values, formulas)]
-            if not all(keep):
-                rows, cols, values, formulas = ([x for x, k in zip(column, keep) if k]
-                                                for column in (rows, cols, values, formulas))
-        chunk = sheet.chunk()
-        for column, new in zip(chunk, (rows, cols, values, formulas)):
-            column.extend(new)
+        _plain_cells(sheet, strings, letters, rows, kinds, texts, vs)
     if a.get("hidden") in ("1", "true"):
         sheet.hidden_rows.add(row_no)
     return row_no, count + len(found)
+
+
+def _plain_cells(sheet: Sheet, strings: list[str], letters, rows: list[int], kinds, texts,
+                 vs) -> None:
+    """Append plain cells (the columns of their scan.PLAIN groups, their rows) to the
+    sheet's open chunk; Unrecognised, before anything is added, for a value to word."""
+    cols = list(map(_COLS.get, letters))
+    if None in cols:
+        cols = [c or _column(x) for c, x in zip(cols, letters)]
+    try:
+        typed = [i for i, k in enumerate(kinds) if k and k != "n"] if any(kinds) else ()
+        typed_vs: list[str] = []
+        if typed:  # numbers at C speed, then the few typed cells one by one
+            vs, typed_vs = list(vs), [vs[i] for i in typed]
+            for i in typed:
+                vs[i] = "0"
+        values = [float(v) if v else None for v in vs] if "" in vs else list(map(float, vs))
+        for i, v in zip(typed, typed_vs):
+            values[i] = _value(kinds[i], xml_text(v) if v else None, None, strings)
+    except (ValueError, IndexError):
+        raise Unrecognised from None
+    joined = "\0".join(texts)  # (XML text never holds a NUL)
+    if "&" in joined or "\r" in joined:
+        joined = xml_text(joined)
+        texts = joined.split("\0")
+    if joined[:1] == "=" or "\0=" in joined:
+        texts = [f[1:] if f[:1] == "=" else f for f in texts]
+    formulas = [f or None for f in texts] if "" in texts else list(texts)
+    if None in values:  # a cell with neither a value nor a formula is not kept
+        keep = [v is not None or f is not None for v, f in zip(values, formulas)]
+        if not all(keep):
+            rows, cols, values, formulas = ([x for x, k in zip(column, keep) if k]
+                                            for column in (rows, cols, values, formulas))
+    chunk = sheet.chunk()
+    for column, new in zip(chunk, (rows, cols, values, formulas)):
+        column.extend(new)
 
 
 def _column(letters: str) -> int:

@@ -2,14 +2,16 @@
 
 The part's bytes are cut into batches of whole rows (about a megabyte each); a batch in
 the plain form spreadsheet programs write is read by the regular-expression scanner of
-:mod:`scan` (rows as ``(attributes, cells, xml, plain, context)``), any other by ElementTree
-(rows as elements), which words every error; a part this cutting cannot handle is read
+:mod:`scan`: whole (``PlainRows``) when all its cells are plain, else as rows
+``(attributes, cells, xml, plain, context)``; any other by ElementTree (rows as
+elements), which words every error; a part this cutting cannot handle is read
 element by element.
 """
 
 from __future__ import annotations
 
 import re
+from typing import NamedTuple
 from xml.etree.ElementTree import Element, ParseError, fromstring
 
 from workbook_gen.xlsx import scan
@@ -83,16 +85,17 @@ def _rows(pkg: Package, part: str, sheet: Sheet):
             cut += len(row_end)
             batch, buf = buf[:cut], buf[cut:]
             clean -= cut
-        scanned = None
+        scanned = text = None
         if not prefix:
             try:
-                scanned = scan.rows(batch)
+                text = scan.decoded(batch)
+                plain = scan.plain_rows(text)
+                scanned = [PlainRows(*plain, text, context)] if plain else scan.rows(text)
             except Unrecognised:
                 pass  # ElementTree reads the batch, and words what is wrong
         if scanned is not None:
-            for row in scanned:
-                yield (_parse_row(pkg, part, context, row[2]) if row[0] is None
-                       else (*row, context))
+            yield from (row if type(row) is PlainRows else _scanned(pkg, part, context, row)
+                        for row in scanned)
         else:
             try:
                 wrapper = fromstring(start_tag + batch + close_root)
@@ -103,6 +106,24 @@ def _rows(pkg: Package, part: str, sheet: Sheet):
             for _ in chunks:  # the rest of the part still counts against the budget
                 pass
             return
+
+
+class PlainRows(NamedTuple):
+    """A batch of rows whose cells are all plain (scan.plain_rows), to be taken whole."""
+
+    attributes: list[str]  # each row's
+    cells: list[tuple]     # every cell's scan.PLAIN groups
+    text: str
+    context: tuple[bytes, bytes]
+
+
+def apart(pkg: Package, part: str, batch: PlainRows) -> list:
+    """The rows of a PlainRows batch one by one, as ``_rows`` gives other batches' rows."""
+    return [_scanned(pkg, part, batch.context, row) for row in scan.rows(batch.text)]
+
+
+def _scanned(pkg: Package, part: str, context: tuple[bytes, bytes], row: tuple):
+    return _parse_row(pkg, part, context, row[2]) if row[0] is None else (*row, context)
 
 
 def _safe(pkg: Package, part: str, head: bytes) -> bool:
