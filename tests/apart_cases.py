@@ -63,6 +63,35 @@ def test_forked_runs_in_a_child_and_hands_back_results_and_errors():
     assert pid == os.getpid() and fn() == 7
 
 
+def _values(parent: int, fail_at: int | None = None, die_at: int | None = None):
+    """A generator for Forked: (value, made in the child?) three times; an exception, or
+    the child's death, at one of them."""
+    for i in range(3):
+        if i == fail_at:
+            raise KeyError(f"at {i}")
+        if i == die_at and os.getpid() != parent:
+            os._exit(3)
+        yield i, os.getpid() != parent
+
+
+def test_forked_generator_sends_each_value_as_it_is_made():
+    me = os.getpid()
+    job = Forked(_values, me)
+    assert [job.next() for _ in range(3)] == [(0, True), (1, True), (2, True)]
+    job.close()
+    job = Forked(_values, me, 1)  # its exception raised where the value would be
+    assert job.next() == (0, True)
+    with pytest.raises(KeyError, match="at 1"):
+        job.next()
+    # a child that dies: the values after the last it sent are made here
+    job = Forked(_values, me, None, 1)
+    assert [job.next() for _ in range(3)] == [(0, True), (1, False), (2, False)]
+    job.close()
+    # a value that cannot be pickled is made here, and those after it
+    job = Forked(lambda: (yield from [(os.getpid(), 1), (os.getpid(), lambda: 2)]))
+    assert job.next()[0] != me and job.next()[0] == me
+
+
 @pytest.mark.parametrize("name", ["book", *CORPUS_FILES])
 def test_two_processes_read_what_one_reads(name, book, monkeypatch):
     path = book if name == "book" else CORPUS / name

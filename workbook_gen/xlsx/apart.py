@@ -75,22 +75,38 @@ def read_apart(pkg: Package, sheet_parts: list[tuple[Sheet, str]], strings: list
     except BaseException:
         job.cancel()
         raise
-    outcome = _guarded(job, undo, job.result)
+    outcome = _guarded(job, undo, job.next)
     if outcome is _FAILED:
         return False
     their_inflated, results = outcome
     count += sum(n for n, *_ in results)
     if count > max_cells:  # read in order, the limit would have stopped it: say where
+        job.cancel()
         _empty(sheet_parts, pkg, inflated)
         return False
     pkg.inflated += their_inflated
-    for (sheet, _), (_, dimension, shared, hidden, columns, chunks, prepared) in zip(
-            theirs, results):
+    for (sheet, _), (_, dimension, shared, hidden, columns, chunks) in zip(theirs, results):
         sheet.adopt(dict(zip(columns[0], map(Cell, *columns))), chunks)
-        sheet.prepared = prepared
         sheet.dimension, sheet.shared_formulas, sheet.hidden_rows = dimension, shared, hidden
-    for sheet, _ in sheet_parts[child[0]:]:
-        ready(sheet)
+
+    def prepared() -> None:  # the child's second value: what prepare made of its sheets
+        try:
+            made = job.next()
+        finally:
+            job.close()
+        for (sheet, _), value in zip(theirs, made):
+            sheet.prepared = value
+
+    for sheet, _ in theirs:  # asked for by ready(sheet), or below
+        sheet._pending = prepared
+    try:
+        for sheet, _ in sheet_parts[child[0]:]:
+            ready(sheet)
+        if theirs[0][0]._pending is not None:
+            prepared()
+    except BaseException:
+        job.cancel()
+        raise
     return True
 
 
@@ -121,23 +137,26 @@ def _read_mine(pkg: Package, mine: list[tuple[Sheet, str]], strings: list[str],
 def _read_columns(path: str, max_uncompressed: int, max_ratio: float, inflated: int,
                   jobs: list[tuple[str, int, str, str]], strings: list[str], max_cells: int,
                   prepare):
-    """In the child: read the sheets, return (bytes inflated, [(cells read, dimension,
+    """In the child: read the sheets, and send (bytes inflated, [(cells read, dimension,
     shared formulas, hidden rows, one list per Cell field of the Cell objects, the plain
-    cells' chunks, what ``prepare`` made of the sheet)])."""
+    cells' chunks)]); then [what ``prepare`` made of each sheet], made while the parent
+    takes the cells."""
     fields = attrgetter(*Cell.__slots__)
-    out, count = [], 0
+    out, count, sheets = [], 0, []
     with Package(path, max_uncompressed=max_uncompressed, max_ratio=max_ratio) as pkg:
         pkg.inflated = inflated
         for name, index, state, part in jobs:
             sheet = Sheet(name, index, state)
             n = read_sheet(pkg, part, sheet, strings, max_cells - count, max_cells)
             count += n
-            prepared = prepare(sheet)
             cells, chunks = sheet.parts()
             columns = [list(c) for c in zip(*map(fields, cells))]
             out.append((n, sheet.dimension, sheet.shared_formulas, sheet.hidden_rows,
-                        columns or [[] for _ in Cell.__slots__], chunks, prepared))
-        return pkg.inflated - inflated, out
+                        columns or [[] for _ in Cell.__slots__], chunks))
+            sheets.append(sheet)
+        inflated = pkg.inflated - inflated
+    yield inflated, out
+    yield [prepare(sheet) for sheet in sheets]
 
 
 def _empty(sheet_parts: list[tuple[Sheet, str]], pkg: Package, inflated: int) -> None:

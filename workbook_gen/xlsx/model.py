@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -80,7 +80,8 @@ class Sheet:
     # document order. The audit takes them as they are (``parts``); ``cells`` turns them
     # into Cell objects on first use.
     chunks: list[Chunk] = field(default_factory=list, repr=False)
-    prepared: object = field(default=None, repr=False)  # read_workbook's prepare(sheet)
+    _prepared: object = field(default=None, repr=False)
+    _pending: Callable[[], None] | None = field(default=None, repr=False)  # fetches _prepared
     _unique: bool = field(default=False, repr=False)  # chunks checked to repeat no cell
 
     @property
@@ -92,6 +93,18 @@ class Sheet:
     @cells.setter
     def cells(self, value: dict[str, Cell]) -> None:
         self._cells, self.chunks, self._rows = value, [], None
+
+    @property
+    def prepared(self) -> object:
+        """What read_workbook's ``prepare(sheet)`` made of the sheet, in the process that
+        read it (waiting for the other process, if it is still at it)."""
+        if self._pending is not None:
+            self._pending()
+        return self._prepared
+
+    @prepared.setter
+    def prepared(self, value: object) -> None:
+        self._prepared, self._pending = value, None
 
     def _materialize(self) -> None:
         cells = self._cells

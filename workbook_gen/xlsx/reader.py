@@ -45,7 +45,8 @@ def read_workbook(path: str | Path, *, max_cells: int = MAX_CELLS,
     on the other core); a sheet read again after a failed read on two cores is given
     again. ``prepare(sheet)`` is called in the process that read the sheet (a forked child
     for a share of a large workbook), right after; what it returns (to be pickled) is
-    ``sheet.prepared``.
+    ``sheet.prepared`` (the child makes it while this process takes the cells it sent:
+    asking for it may wait).
 
     Raises WorkbookReadError (one line, naming the file and the part) for a file that
     is not a zip, lacks xl/workbook.xml, has broken or hostile XML, a part whose
