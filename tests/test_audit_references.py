@@ -47,6 +47,9 @@ CASES = {
     # arrays outside array formulas, implicit intersection across sheets
     "B20": "=SUMPRODUCT(Data!A1:A3*Data!B1:B3)",
     "B21": "=SUMPRODUCT((Data!A1:C1>1)*Data!A2:C2)",
+    # an aggregate over a sheet-scoped name, in a book whose sheets have print titles
+    # (names of their sheets too): the aggregates' local evaluation reads what it names
+    "B22": "=SUM(LocalName)+SUM(Data!A1:A1)",
 }
 # array formulas: (range, formula)
 ARRAYS = {
@@ -87,6 +90,7 @@ def saved(libreoffice, tmp_path_factory):
     book.defined_names["Twice"] = DefinedName("Twice", attr_text="Data!$A$1*2+SUM(Data!$B:$B)")
     main.defined_names["LocalName"] = DefinedName("LocalName", attr_text="Data!$C$3")
     data.defined_names["LocalName"] = DefinedName("LocalName", attr_text="Data!$A$2")
+    data.print_title_rows = "1:1"
     for ref, formula in CASES.items():
         main[ref] = formula
     for ref, (area, formula) in ARRAYS.items():
@@ -106,6 +110,7 @@ def test_libreoffice_computed_what_the_cases_mean(saved):
     assert values["B10"].value == 10
     assert values["B13"].value == 12
     assert values["B17"].value == 9 and values["B18"].value == 4
+    assert values["B22"].value == 9 + 1
     assert values["B20"].value == 1 * 2 + 4 * 5 + 7 * 8
     assert [values[f"D{r}"].value for r in (1, 2, 3)] == [3, 24, 63]
     assert values["D5"].value == 5 + 6 + 7 + 8 + 9
@@ -120,3 +125,22 @@ def test_every_reference_case_is_recomputed_and_agrees(saved):
     filled = 3 + 3 + 1 + 4 + 3 + 1
     assert report.formula_cells == len(CASES) + 3 + len(ARRAYS)
     assert report.cells_checked == len(CASES) + 3 + filled
+
+
+def test_aggregate_over_a_sheet_scoped_name_among_print_titles(tmp_path):
+    """The aggregates' local evaluation reads only the columns their formulas name, unless
+    a formula uses a sheet-scoped name; print titles (names of their sheets too) must not
+    hide one that is used. Cached values by hand: 9 + 1 and 1 + 2."""
+    import xlsxwriter
+    path = tmp_path / "local.xlsx"
+    book = xlsxwriter.Workbook(str(path))
+    main, data = book.add_worksheet("Main"), book.add_worksheet("Data")
+    for r, row in enumerate([[1, 2, 3], [4, 5, 6], [7, 8, 9]]):
+        data.write_row(r, 0, row)
+    data.repeat_rows(0)  # Data!_xlnm.Print_Titles
+    book.define_name("Main!LocalName", "=Data!$C$3")
+    main.write_formula("A1", "=SUM(LocalName)+SUM(Data!A1:A1)", None, 10)
+    main.write_formula("A2", "=SUM(Data!A1:B1)", None, 3)
+    book.close()
+    report = audit(path)
+    assert report.ok and report.cells_checked == 2, report.mismatches

@@ -16,7 +16,7 @@ from __future__ import annotations
 import gc
 import time
 from itertools import compress, repeat
-from operator import contains
+from operator import contains, itemgetter
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -160,7 +160,8 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: st
     keys = set(compress(inputs.formulas, map(contains, inputs.formulas.values(), repeat(":"))))
     names = inputs.book.defined_names
     read: set[tuple[str, int]] = set()  # the (sheet, column) pairs those formulas read
-    local_names = any(s.defined_names for s in inputs.book.sheets)
+    # (print areas and titles are names of their sheets too: they matter only where used)
+    local_names = {n.upper() for s in inputs.book.sheets for n in s.defined_names}
     everything = False  # 3-D, structured references, sheet-scoped names: read all
     for key in keys:
         try:
@@ -168,7 +169,8 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: st
         except FormulaSyntaxError:
             continue
         if any(isinstance(n, (ast.Sheets3D, ast.StructRef, ast.RefOp))
-               or (local_names and isinstance(n, ast.Name)) for n in ast.walk(node)):
+               or (isinstance(n, ast.Name) and n.name.upper() in local_names)
+               for n in ast.walk(node)):
             everything = True
             break
         for sheet, _, c1, _, c2 in _rectangles(node, key[0], names):
@@ -191,17 +193,15 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: st
 
 
 def _in_columns(cells: dict, columns: set[tuple[str, int]], leave=()) -> dict:
-    """The items of ``cells`` {(sheet, row, col): value} in ``columns`` (sheet, col), in
-    their order by column, but for the keys in ``leave``."""
-    keys, values = list(cells), list(cells.values())
-    out: dict = {}
-    groups, _ = column_groups(keys)
-    for sheet, col, idx in groups:
-        if (sheet, col) in columns:
-            out.update(zip(pick(keys, idx), pick(values, idx)))
+    """The items of ``cells`` {(sheet, row, col): value} in ``columns`` (sheet, col), but
+    for the keys in ``leave`` (C loops: a few hundred thousand cells, a few columns)."""
+    out = dict(compress(cells.items(), map(columns.__contains__, map(_SHEET_COL, cells))))
     for key in leave:
         out.pop(key, None)
     return out
+
+
+_SHEET_COL = itemgetter(0, 2)
 
 
 def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True,
