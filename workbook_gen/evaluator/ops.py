@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from workbook_gen.xlmath import kernels as k
-from workbook_gen.evaluator.store import Num, Obj, to_items
+from workbook_gen.evaluator.store import Num, Obj, error_codes, to_items, with_nan
 from workbook_gen.formula import functions as fx
 from workbook_gen.formula import values as xv
 from workbook_gen.formula.functions import coerce
@@ -105,10 +105,7 @@ def as_num(v, n: int) -> Num | None:
         return Num(np.array(v.items, float), np.zeros(len(v.items), np.uint8), False)
     kinds.discard(ExcelError)
     if kinds <= {float, int} or kinds == {bool}:
-        boolean = kinds == {bool}
-        val = np.array([np.nan if isinstance(x, ExcelError) else float(x) for x in v.items])
-        err = np.array([x.code if isinstance(x, ExcelError) else 0 for x in v.items], np.uint8)
-        return Num(val, err, boolean)
+        return Num(np.array(with_nan(v.items), float), error_codes(v.items), kinds == {bool})
     return None
 
 

@@ -13,6 +13,7 @@ import math
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass
+from itertools import compress, repeat
 
 import numpy as np
 
@@ -187,9 +188,11 @@ class Store:
         n = len(items)
         c = self._column(sheet, col, first + n - 1)
         sl = slice(first, first + n)
-        plain = np.array([type(v) is float for v in items], bool)
-        codes = np.array([v.code if isinstance(v, ExcelError) else 0 for v in items], np.uint8)
-        c.val[sl] = np.array([v if type(v) is float else np.nan for v in items])
+        plain = np.fromiter(map(_IS_FLOAT, map(type, items)), bool, n)
+        codes = error_codes(items)
+        val = np.full(n, np.nan)
+        val[plain] = list(compress(items, plain))
+        c.val[sl] = val
         c.err[sl] = codes
         irr = ~plain & (codes == 0)
         c.irr[sl] = irr
@@ -277,6 +280,24 @@ def _python_values(c: _Column, first: int, last: int) -> list:
         values[i] = ExcelError.from_code(int(err[i]))
     out[lo - first:hi - first + 1] = values
     return out
+
+
+_CODE = {e: e.code for e in ExcelError}
+_IS_FLOAT = frozenset({float}).__contains__
+_NAN_FOR_ERROR = dict.fromkeys(ExcelError, math.nan)
+
+
+def error_codes(items: list) -> np.ndarray:
+    """The error code of each value (0 where it is none), in C loops."""
+    try:
+        return np.fromiter(map(_CODE.get, items, repeat(0)), np.uint8, len(items))
+    except TypeError:  # an unhashable value (an array): one by one
+        return np.array([x.code if isinstance(x, ExcelError) else 0 for x in items], np.uint8)
+
+
+def with_nan(numbers: list) -> list:
+    """Numbers and errors (hashable values) with NaN for each error, in a C loop."""
+    return list(map(_NAN_FOR_ERROR.get, numbers, numbers))
 
 
 def to_items(num: Num) -> list:
