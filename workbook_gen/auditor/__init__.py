@@ -349,9 +349,11 @@ def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, t
         keep = [k not in skipped and k in evaluated for k in keys]
         keys, cached_values = list(compress(keys, keep)), list(compress(cached_values, keep))
     groups, all_rows = column_groups(keys)
-    fast_all = np.array([type(v) is float for v in cached_values], bool)
+    n = len(keys)
+    fast_all = np.fromiter(map(frozenset({float}).__contains__, map(type, cached_values)),
+                           bool, n)
     if aggregates:
-        fast_all[[i for i, k in enumerate(keys) if k in aggregates]] = False
+        fast_all &= ~np.fromiter(map(aggregates.__contains__, keys), bool, n)
     done = np.zeros(len(keys), bool)
     store = evaluation.store
     for sheet, col, idx in groups:
