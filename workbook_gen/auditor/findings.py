@@ -30,6 +30,7 @@ from __future__ import annotations
 import math
 import re
 from collections import defaultdict
+from itertools import compress
 from operator import itemgetter
 
 from ..formula import ast
@@ -338,8 +339,10 @@ class _Checks:
     # error_value ---------------------------------------------------------------------
     def errors(self) -> None:
         grid = self.grid
-        errors = {k: v for k, v in grid.cached.items() if type(v) is ExcelError
-                  and grid.kind(k) == FORMULA}
+        cached = grid.cached  # (the error values first, in C loops: 200,000 cells)
+        errors = {k: v for k, v in compress(cached.items(), map(
+            frozenset({ExcelError}).__contains__, map(type, cached.values())))
+            if grid.kind(k) == FORMULA}
         errors.update((k, v) for k, v in grid.constants.items()
                       if grid.kind(k) == ERROR)
         if not errors:

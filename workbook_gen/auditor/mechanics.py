@@ -17,7 +17,7 @@ from xlsxwriter.utility import xl_cell_to_rowcol, xl_rowcol_to_cell
 
 from .. import reference
 from ..reference.newton import NOISE
-from .noise import INPUT, ColumnNoise, column_trees
+from .noise import INPUT, ColumnNoise, column_trees, numbers_or_nan
 
 REFERENCE_TOLERANCE = 1e-9  # of the column's magnitude, or of its rounding noise (noise.py)
 # An angle's magnitude is at least a radian: a rod 1e20 long at 4e-17 deg to the slide is
@@ -183,11 +183,6 @@ def check_mechanics(book, value_of, column_of, trees: dict | None = None
                            _paper_table(table, column_of, solved, inputs, rows), flagged)
 
 
-def _as_float(values: list) -> np.ndarray:
-    return np.array([v if isinstance(v, (int, float)) and not isinstance(v, bool) else np.nan
-                     for v in values], dtype=float)
-
-
 def _name_value(book, value_of, name: str) -> float | None:
     """The number a defined name holds (a Parameters cell), or None."""
     text = book.resolve_name(name)
@@ -207,7 +202,7 @@ def _check_column(name, values, ref, inputs, col, singular, noise, unit) -> Quan
     """Worst error of a column against the model, over the larger of the column's
     magnitude and each row's rounding noise; rows flagged singular are counted, not
     compared (the model's Newton loses half its digits at a dead centre)."""
-    ours = _as_float(values)
+    ours = numbers_or_nan(values)
     wrong = []
     for i in np.flatnonzero(np.isfinite(ours) != np.isfinite(ref)):
         if singular[i]:  # a flagged row may hold an error value, or the model none
@@ -253,7 +248,7 @@ def _paper_table(table, column_of, solved, inputs, rows):
                None)
     if col is None:
         return []
-    ours = _as_float(_column(column_of, "Table", col, rows))
+    ours = numbers_or_nan(_column(column_of, "Table", col, rows))
     out = []
     for i, angle in enumerate(inputs):
         if abs(angle / 10.0 - round(angle / 10.0)) > 1e-9 or not np.isfinite(solved[PAPER_QUANTITY][i]):

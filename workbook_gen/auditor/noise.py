@@ -24,6 +24,7 @@ the comparison falls back to the column's magnitude.
 
 from __future__ import annotations
 
+from itertools import compress
 from typing import Callable
 
 import re
@@ -34,6 +35,19 @@ from ..errors import WorkbookGenError
 from ..formula import ast, parse
 from ..formula.ast import to_relative
 from ..xlsx.model import column_letters
+
+_NUMBER_TYPES = frozenset({int, float, np.float64})
+
+
+def numbers_or_nan(values: list) -> np.ndarray:
+    """The numbers among ``values`` (not booleans), NaN for any other value: C loops."""
+    n = len(values)
+    number = np.fromiter(map(_NUMBER_TYPES.__contains__, map(type, values)), bool, n)
+    if number.all():
+        return np.array(values, float)
+    out = np.full(n, np.nan)
+    out[number] = list(compress(values, number))
+    return out
 
 _DIGITS = re.compile(r"[0-9]+")
 Pair = tuple[np.ndarray, np.ndarray]  # values, noise magnitudes
@@ -130,9 +144,7 @@ class ColumnNoise:
     def _numbers(self, col: int) -> np.ndarray:
         """The column's numbers (NaN elsewhere); the same array at every call."""
         if col not in self._numbers_memo:
-            self._numbers_memo[col] = np.array(
-                [v if isinstance(v, (int, float)) and not isinstance(v, bool) else np.nan
-                 for v in self._values(col)], dtype=float)
+            self._numbers_memo[col] = numbers_or_nan(self._values(col))
         return self._numbers_memo[col]
 
     # -- the tree, over all rows at once ------------------------------------------------
