@@ -262,7 +262,9 @@ def choose(pick: np.ndarray, cerr: np.ndarray, then, other, n: int):
         err = np.where(cerr != 0, cerr, np.where(pick, x.err, y.err)).astype(np.uint8)
         val = np.where(err != 0, np.nan, np.where(pick, x.val, y.val))
         return Num(val, err, x.boolean)
-    out = []
-    for e, p, a, b in zip(cerr.tolist(), pick.tolist(), items(then, n), items(other, n)):
-        out.append(ExcelError.from_code(e) if e else (a if p else b))
-    return _obj(out)
+    # per row, in C loops: object arrays hold the very values (text, numbers, ranges)
+    out = np.where(pick, np.fromiter(items(then, n), object, n),
+                   np.fromiter(items(other, n), object, n))
+    for i in np.flatnonzero(cerr).tolist():
+        out[i] = ExcelError.from_code(int(cerr[i]))
+    return _obj(out.tolist())

@@ -271,11 +271,16 @@ def _python_values(c: _Column, first: int, last: int) -> list:
     lo, hi = max(first, 1), min(last, len(c.val) - 1)
     if hi < lo:
         return out
-    values = c.val[lo:hi + 1].tolist()
     irr, err = c.irr[lo:hi + 1], c.err[lo:hi + 1]
-    objs = c.objs
-    for i in np.flatnonzero(irr).tolist():
-        values[i] = objs.get(lo + i)
+    if irr.all():  # (a column of text: C loops)
+        out[lo - first:hi - first + 1] = map(c.objs.get, range(lo, hi + 1))
+        return out
+    values = c.val[lo:hi + 1].tolist()
+    at = np.flatnonzero(irr)
+    if len(at):  # set in an object array, in C loops
+        array = np.fromiter(values, object, len(values))
+        array[at] = np.fromiter(map(c.objs.get, (at + lo).tolist()), object, len(at))
+        values = array.tolist()
     for i in np.flatnonzero((err != 0) & ~irr).tolist():
         values[i] = ExcelError.from_code(int(err[i]))
     out[lo - first:hi - first + 1] = values
