@@ -70,6 +70,8 @@ ERRORS = {
     "bad shared string": '<row r="1"><c r="A1" t="s"><v>7</v></c></row>',
     "unknown entity": '<row r="1"><c r="A1" t="str"><v>&nbsp;</v></c></row>',
     "unclosed cell": '<row r="1"><c r="A1"><v>1</v></row>',
+    "non-character": '<row r="1"><c r="A1" t="str"><f>"a"</f><v>a\uffffb</v></c></row>',
+    "]]> in text": '<row r="1"><c r="A1" t="str"><f>"a"</f><v>a]]&gt;b]]>c</v></c></row>',
 }
 STRINGS = "<si><t>zero</t></si><si><t>one</t></si>"
 

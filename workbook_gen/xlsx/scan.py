@@ -17,6 +17,8 @@ from __future__ import annotations
 
 import re
 
+import numpy as np
+
 _ATTRS = r'((?: [A-Za-z_:][\w:.-]*="[^"<&\t\n\r]*")*)'
 # one <c>: whole, column letters, row digits, attributes after r, plain <f> text,
 # <f> attributes, their <f> text, <v> text, inline string <is><t> text
@@ -51,8 +53,10 @@ class Unrecognised(Exception):
 def decoded(data: bytes) -> str:
     """A batch of rows (UTF-8) as text; Unrecognised if it holds characters XML forbids
     (the parser's error to word)."""
-    if len(data.translate(None, _CONTROL)) != len(data) or b"]]>" in data \
-            or b"\xef\xbf\xbe" in data or b"\xef\xbf\xbf" in data:
+    octets = np.frombuffer(data, np.uint8)  # (the usual batch has none of the bytes
+    if ((octets < 32) | (octets == 0x5D) | (octets == 0xEF)).any() and (  # searched: numpy)
+            len(data.translate(None, _CONTROL)) != len(data) or b"]]>" in data
+            or b"\xef\xbf\xbe" in data or b"\xef\xbf\xbf" in data):
         raise Unrecognised
     try:
         return data.decode("utf-8")
