@@ -3,7 +3,8 @@
 For the workbook generated at 10, 1 and 0.1 degree steps (37, 361, 3601 rows), in one
 run: our audit (best of REPEAT; total and its evaluate phase), LibreOffice headless
 recalculating the file (one run, start-up included), ``formualizer`` (a Rust engine:
-``load_workbook(path).evaluate_all()``, load and evaluate; best of REPEAT), the ``formulas``
+``load_workbook(path).evaluate_all()``, load and evaluate; best of REPEAT, each run right
+after one of ours), the ``formulas``
 package (load + compile, calculate; one run), ``pycel`` in its own virtual environment (Table and Checks
 formula cells; one run) and plain numpy evaluating the closed form (best of 5). Prints
 absolute times and ratios against our audit. A peer that fails or times out is reported
@@ -174,12 +175,20 @@ def measure(step: float, tmp: Path, args, prev: dict) -> dict:
     path = write_workbook(scene, tmp / f"step{step:g}", force=True)
     row: dict = {"step": step}
 
-    reports, cpus = [], []
+    # our audit and formualizer in turn, so that the machine's drift (these shared machines
+    # vary by a fifth from minute to minute) falls on both alike
+    reports, cpus, theirs = [], [], []
     for _ in range(args.repeat):
         cpu = time.process_time() + _children_cpu()
         reports.append(audit(path))
         # the audit's own forked reader counts too (workbook_gen/forked.py waits for it)
         cpus.append(time.process_time() + _children_cpu() - cpu)
+        if args.formualizer_ok:
+            theirs.append(run_peer("formualizer", [sys.executable, __file__,
+                                                   "--formualizer-runner", str(path)],
+                                   reports[0].formula_cells, ("load", "evaluate"),
+                                   args.timeout, prev.get("formualizer"),
+                                   reports[0].formula_cells))
     if not all(r.ok for r in reports):
         print(f"warning: audit at {step:g} deg is not ok", file=sys.stderr)
     cells = reports[0].formula_cells
@@ -199,12 +208,10 @@ def measure(step: float, tmp: Path, args, prev: dict) -> dict:
     except WorkbookGenError as exc:
         row["lo"] = Peer(status="failed", note=str(exc))
 
-    if args.formualizer_ok:  # best of REPEAT, as our audit (a few seconds each)
-        runs = [run_peer("formualizer", [sys.executable, __file__, "--formualizer-runner",
-                                         str(path)], cells, ("load", "evaluate"), args.timeout,
-                         prev.get("formualizer"), cells) for _ in range(args.repeat)]
-        finished = [p for p in runs if p.status == "ok"]
-        row["formualizer"] = min(finished, key=lambda p: p.total) if finished else runs[0]
+    if args.formualizer_ok:  # best of REPEAT, as our audit, run in turn with it
+        finished = [p for p in theirs if p.status == "ok"]
+        row["formualizer"] = min(finished, key=lambda p: p.total) if finished else theirs[0]
+        row["rounds"] = [[r.seconds, p.total] for r, p in zip(reports, theirs)]
     else:
         row["formualizer"] = Peer(status="failed", note=args.formualizer_why)
 
@@ -244,6 +251,7 @@ def to_json(rows: list[dict], args) -> dict:
     for r in rows:
         item = {k: r[k] for k in ("step", "rows", "cells", "ours_eval", "ours_cpu", "ours_ok",
                                   "ours_timings", "numpy")}
+        item["rounds"] = r.get("rounds", [])  # (ours, formualizer) seconds, run in turn
         item.update({k: r[k].to_json() for k in ("ours", "lo", "formualizer", "formulas",
                                                  "pycel")})
         out.append(item)
@@ -296,6 +304,13 @@ def _ratio(value: float | None, ours: float, peer: Peer | None = None) -> str:
     return f"{mark}{value / ours:.1f}x"
 
 
+def _rounds(rounds: list | None) -> str:
+    """'k of n': the rounds (our audit, then formualizer) in which ours took less time."""
+    if not rounds or any(f is None for _, f in rounds):
+        return "n/a"
+    return f"{sum(o < f for o, f in rounds)} of {len(rounds)}"
+
+
 def print_table(rows: list[dict]) -> None:
     width = 16
     head = [f"{r['step']:g} deg" for r in rows]
@@ -326,6 +341,7 @@ def print_table(rows: list[dict]) -> None:
                                           for r in rows])
     add("formualizer / our audit (>1)", [_ratio(r["formualizer"].total, r["ours"].total,
                                                 r["formualizer"]) for r in rows])
+    add("rounds ours faster than formualizer", [_rounds(r.get("rounds")) for r in rows])
     add("our evaluate / numpy (<=20)", [_ratio(r["ours_eval"], r["numpy"]) for r in rows])
     add("formulas / ours per cell (>=100)",
         [_ratio(r["formulas"].per_cell, r["ours"].per_cell, r["formulas"]) for r in rows])

@@ -167,10 +167,13 @@ def audit_block(record: dict) -> str:
         parts.append(f"against LibreOffice: {r['lo']['status']}")
     if fz:
         close = abs(fz / ours - 1) < 0.1  # best-of-3 figures move by more between runs
+        rounds = r.get("rounds") or []
+        won = (f"; ours took less time in {sum(o < t for o, t in rounds)} of the "
+               f"{len(rounds)} rounds run in turn" if rounds and all(t is not None for _, t in rounds) else "")
         parts.append(f"faster than `formualizer`: {s(ours)} s against {s(fz)} s, "
                      f"**{verdict(ours < fz)}**"
                      + (" by under 10%, within the run-to-run variation of these figures "
-                        "(the two are at parity)" if close else ""))
+                        "(the two are at parity)" if close else "") + won)
     else:
         parts.append(f"against `formualizer`: {r['formualizer']['status']}")
     text = (f"Targets (issue 10), the {count(r['cells'])} formula cells at "

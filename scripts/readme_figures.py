@@ -47,7 +47,7 @@ import figures_bench  # noqa: E402
 # docs/bench/NAME.json <- the command that measures it (at the sizes the README quotes)
 BENCHES = {
     "generate": ["bench/generate.py", "--variants", "50"],
-    "audit": ["bench/audit.py", "--only", "lo-formualizer", "--repeat", "3"],
+    "audit": ["bench/audit.py", "--only", "lo-formualizer", "--repeat", "5"],
     "read_xlsx": ["bench/read_xlsx.py"],
     "batch": ["bench/batch.py"],
     "corpus": ["bench/corpus.py"],

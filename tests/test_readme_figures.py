@@ -112,6 +112,9 @@ def test_targets_are_computed_from_the_data(figures):
     faster = copy.deepcopy(AUDIT)
     faster["steps"][0]["lo"] = _peer(7.0)
     assert "3.5x, **not reached**" in fb.audit_block(_record(faster))
+    faster["steps"][0]["rounds"] = [[2.0, 1.9], [2.1, 2.4], [1.8, 2.5]]
+    assert "ours took less time in 2 of the 3 rounds run in turn" in \
+        fb.audit_block(_record(faster))
 
     batch = fb.batch_block(_record(BATCH))
     assert "<= 20 s: reached" in batch and ">= 1.7x: reached" in batch   # 19 s, 2.00x
