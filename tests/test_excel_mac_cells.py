@@ -59,6 +59,22 @@ CELLS = {
     # ROW and COLUMN of an empty intersection: its #NULL!
     "LOOKUP!AG13": "COLUMN(C12:E13 F12:H13) = #NULL!",
     "LOOKUP!AG113": "ROW(C112:E113 F112:H113) = #NULL!",
+    # a union's size is #REF!; an intersection with a union intersects each area; AREAS
+    "LOOKUP!S15": "COLUMNS((D15:G15,I15:J15,K15:N15)) = #REF!",
+    "LOOKUP!S115": "ROWS((D115:G115,I114:J115,K115:N115)) = #REF!",
+    "LOOKUP!V15": "COLUMNS(((F15:G15,G15:I15,F19:G19,G19:I19) G14:G44)) = #REF! (4 areas)",
+    "LOOKUP!V115": "ROWS(((F115:G115,G115:I115,F118:G118,G118:I118) G114:G134)) = #REF!",
+    "CORE!E7": "SUM(E3:G4 (B2:E5,G2:H5)) = 16",
+    "LOOKUP!R4": "AREAS(C4:F4) = 1",
+    "LOOKUP!S4": "AREAS((D4:G4,I4:J4,K4:N4)) = 3",
+    "LOOKUP!T4": "AREAS((E4:H4 J4:K4 L4:O4)) = #NULL! (two intersections in a row)",
+    "LOOKUP!V4": "AREAS(((F4:G4,G4:I4,F6:G6,G6:I6) G3:G11)) = 4",
+    # ISFORMULA: the cell's formula, each cell's for a range in an array formula
+    "INFORMATION!R10": "ISFORMULA(C10) = FALSE",
+    "INFORMATION!U10": "ISFORMULA(F10) = TRUE",
+    "INFORMATION!AK10": "{=ISFORMULA(C10:J10)}, F10's = TRUE",
+    "INFORMATION!AP10": "{=ISFORMULA(C10:J10)} beyond the range = #N/A",
+    "EXTRA!BG77": "{=ISFORMULA(BC75:BD93)} = TRUE",
     # Student's t far tails from the tail itself, and the density at 0 degrees of freedom
     "STATISTICAL!X103": "T.DIST.2T(60,60) = 2.85e-55",
     "STATISTICAL!X104": "T.DIST.RT(60,60) = 1.42e-55",

@@ -337,3 +337,15 @@ def test_name_character_classes_are_the_documented_ranges_on_the_bmp():
 ])
 def test_names_of_any_script_tokenize(formula, texts):
     assert [t.text for t in tokenize(formula)] == texts
+
+
+@pytest.mark.parametrize("formula", ["A1:B2 B1:C2 B2:C3", "SUM( A1:B2  B1:C2 B2:C3 )",
+                                     "AREAS((E4:H4 J4:K4 L4:O4))"])
+def test_intersections_chain_left_to_right(formula):
+    """Each space between references is the intersection operator, however many in a row
+    (a space the operator's right operand ended on was lost before)."""
+    node = parse(formula)
+    found = [n for n in ast.walk(node) if isinstance(n, ast.RefOp) and n.op == " "]
+    assert len(found) == 2
+    outer = found[0]
+    assert isinstance(outer.left, ast.RefOp) and outer.left.op == " "  # (a b) c

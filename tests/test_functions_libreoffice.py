@@ -73,6 +73,13 @@ LOOKUP = [
     "ROW(Data!C7)", "COLUMN(Data!C7)", "COLUMN()", "ROW()", "ROWS(Data!A1:C4)", 'INDIRECT("Data!A3")', 'INDIRECT("Data!R4C1",FALSE)',
     'SUM(INDIRECT("Data!A1:A3"))', "SUM(OFFSET(Data!A1,1,0,3,1))", "OFFSET(Data!A1,2,1)",
     "ADDRESS(2,3)", "ADDRESS(2,3,4)", 'ADDRESS(1,1,1,TRUE,"My Sheet")', 'ADDRESS(1,3,4,TRUE,"")', "ADDRESS(5,28,2)",
+    # unions and intersections: LibreOffice gives #VALUE! for the size of a union (Excel
+    # #REF!) and for an intersection with a union (Excel intersects each area); the Excel
+    # side is tested on Mac Excel's cells (test_excel_mac_cells.py, LOOKUP!S15, CORE!E7)
+    "AREAS((Data!A1,Data!A3:A4))", "AREAS(Data!A1:B2)", "AREAS((Data!A1:B2 Data!B1:C2 Data!B2:C3))",
+    "SUM(Data!A1:A3 Data!A2:C5 Data!A3:A9)", "COLUMNS((Data!A1:B1,Data!C1:D1))",
+    "ROWS((Data!A1:B2,Data!C1:C4))", "SUM((Data!A1:A2,Data!A5:A6) Data!A1:A5)",
+    "ISFORMULA(Data!D1)", "ISFORMULA(Data!A1)", "ISFORMULA(Data!Z99)", "ISFORMULA(Data!C1:D2)",
 ]
 STATS = [
     # arrays of different sizes, one with an error; PROB's upper limit an empty cell
@@ -235,7 +242,7 @@ CASES = _cell_rows(FAMILIES)
 FUTURE = ["AGGREGATE", "CEILING.MATH", "FLOOR.MATH", "XOR", "IFS", "SWITCH", "IFNA", "MAXIFS", "MINIFS",
           "STDEV.S", "STDEV.P", "VAR.S", "VAR.P", "RANK.AVG", "RANK.EQ", "CONCAT", "TEXTJOIN",
           "UNICHAR", "UNICODE", "NUMBERVALUE", "ISOWEEKNUM", "DAYS", "XLOOKUP", "XMATCH",
-          "ARABIC", "HYPGEOM.DIST"]
+          "ARABIC", "HYPGEOM.DIST", "ISFORMULA"]
 _FUTURE = re.compile(r"(?<![A-Z.])(" + "|".join(re.escape(f) for f in FUTURE) + r")\(")
 
 

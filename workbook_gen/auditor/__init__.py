@@ -88,6 +88,7 @@ def _libreoffice_explains(inputs: AuditInputs, key, value_of, cached) -> bool:
         return False
     resolver = _Resolver(value_of, inputs.book.defined_names, key[0],
                          getattr(value_of, "clip", None))
+    resolver.has_formula = lambda sheet, row, col: inputs.is_formula((sheet or key[0], row, col))
     try:
         value = evaluate_scalar(node, resolver, dialect="libreoffice")
     except (ArithmeticError, ValueError, TypeError, IndexError, KeyError, RecursionError):

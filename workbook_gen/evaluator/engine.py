@@ -149,6 +149,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     store.hidden = {store.sheet(s): rows for s, rows in book.hidden_rows.items()}
     store.charset = book.charset
     store.formula_texts, store.array_formulas = formulas, arrays or {}
+    store.unparsed = uncheckable or {}
     store.put_constants(constants)
     name_table = Names(dict(names), book.local_names,
                        prepare=lambda node: resolve(node, book, "", 0, 0))

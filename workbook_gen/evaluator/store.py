@@ -87,6 +87,8 @@ class Store:
         self.formula_texts: Mapping[tuple[str, int, int], str] = {}  # for subtotal_cells
         self.array_formulas: Mapping[tuple[str, int, int], tuple] = {}  # (text, (r2, c2))
         self._subtotals: dict[str, list[tuple[int, int]]] | None = None
+        self.unparsed: Mapping[tuple[str, int, int], str] = {}  # formulas not handed over
+        self._array_cells: set[tuple[str, int, int]] | None = None
 
     def subtotal_cells(self, sheet: str) -> list[tuple[int, int]]:
         """(row, col) of the cells of ``sheet`` whose formula calls SUBTOTAL or AGGREGATE
@@ -101,6 +103,18 @@ class Store:
                     self._subtotals.setdefault(name, []).extend(
                         (r, k) for r in range(row, r2 + 1) for k in range(col, c2 + 1))
         return self._subtotals.get(sheet, [])
+
+    def has_formula(self, sheet: str, row: int, col: int) -> bool:
+        """Does the cell hold a formula (its own, an array formula's, one that does not
+        parse)? (ISFORMULA.)"""
+        key = (sheet, row, col)
+        if key in self.formula_texts or key in self.unparsed:
+            return True
+        if self._array_cells is None:
+            self._array_cells = {(name, r, k) for (name, r1, c1), (_, (r2, c2))
+                                 in self.array_formulas.items()
+                                 for r in range(r1, r2 + 1) for k in range(c1, c2 + 1)}
+        return key in self._array_cells
 
     def sheet(self, name: str) -> str:
         return self.canonical.get(name.lower(), name)
@@ -405,6 +419,9 @@ class SheetResolver:
     def subtotal_cells(self, sheet) -> list[tuple[int, int]]:
         """(row, col) of a sheet's cells holding SUBTOTAL or AGGREGATE (left out by them)."""
         return self.store.subtotal_cells(self._sheet(sheet))
+
+    def has_formula(self, sheet, row, col) -> bool:
+        return self.store.has_formula(self._sheet(sheet), row, col)
 
     def sheets_between(self, first: str, last: str) -> list[str] | None:
         return self.store.sheets_between(first, last)

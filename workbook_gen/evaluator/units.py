@@ -18,7 +18,8 @@ from workbook_gen.formula import functions as fx
 from workbook_gen.formula.scalar import Evaluator, evaluate
 
 # functions that use a reference's position or size, never its cells' values
-REFERENCE_ONLY = frozenset({"ROW", "COLUMN", "ROWS", "COLUMNS", "ISREF", "AREAS"})
+REFERENCE_ONLY = frozenset({"ROW", "COLUMN", "ROWS", "COLUMNS", "ISREF", "AREAS",
+                            "ISFORMULA"})
 
 
 @dataclass

@@ -94,10 +94,10 @@ class _Parser:
                 f"formula nested deeper than {MAX_DEPTH} levels"))
         left = self._prefix()
         while True:
-            had_space = self.i < len(self.tokens) and self.tokens[self.i].kind == tk.WSPACE
-            token = self._peek()
+            token = self._peek()  # (it steps over white space: the space operator's)
             if token is None:
                 return left
+            had_space = self.tokens[self.i - 1].kind == tk.WSPACE
             if token.kind == tk.POSTFIX:
                 if PERCENT_POWER < min_power:
                     return left

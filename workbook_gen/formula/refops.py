@@ -88,15 +88,64 @@ def read(ev, rect: Rect) -> Range:
 def ref_op(ev, node: ast.RefOp):
     """``A1:INDEX(..)``, ``A1:B3 B2:C2`` (intersection) or ``(A1,B2:B3)`` (union)."""
     if node.op in ",~":  # '~' is how LibreOffice saves the union
-        values = []
+        values, areas = [], []
         for part in (node.left, node.right):
             v = ev.arg(part)
             if isinstance(v, ExcelError):
                 return v
             values.extend(v.flat() if isinstance(v, Range) else [v])
-        return Range.of([[v] for v in values])
+            if areas is not None:  # (None once a part is no reference)
+                areas = areas + list(_areas_of(v)) if _areas_of(v) else None
+        return Range(tuple((v,) for v in values), areas=tuple(areas or ()))
+    if node.op == " " and (_is_union(node.left) or _is_union(node.right)):
+        if getattr(ev, "dialect", "excel") == "libreoffice":
+            return ExcelError.VALUE  # (measured: LibreOffice 7.4 intersects no union)
+        return _union_intersection(ev, node)
     rect = _combine(ev, node)
     return rect if isinstance(rect, ExcelError) else read(ev, rect)
+
+
+def _is_union(node) -> bool:
+    while isinstance(node, ast.Paren):
+        node = node.inner
+    return isinstance(node, ast.RefOp) and node.op in ",~"
+
+
+def _areas_of(v) -> tuple:
+    """The areas of a reference value: a union's, or its one; () for no reference."""
+    if not isinstance(v, Range):
+        return ()
+    return v.areas or ((v.ref,) if v.ref is not None else ())
+
+
+def _union_intersection(ev, node: ast.RefOp):
+    """``(A1:B2,C1:C4) B1:C9``: each area of one side with each of the other's; one area
+    left is a plain reference, several are a union again, none is #NULL!."""
+    sides = []
+    for part in (node.left, node.right):
+        v = ev.arg(part)
+        if isinstance(v, ExcelError):
+            return v
+        areas = _areas_of(v)
+        if not areas:
+            return ExcelError.VALUE
+        sides.append(areas)
+    found = []
+    for a in sides[0]:
+        for b in sides[1]:
+            if a.sheet and b.sheet and a.sheet.casefold() != b.sheet.casefold():
+                return ExcelError.VALUE
+            r1, c1 = max(a.row1, b.row1), max(a.col1, b.col1)
+            r2, c2 = min(a.row2, b.row2), min(a.col2, b.col2)
+            if r1 <= r2 and c1 <= c2:
+                found.append((a.sheet or b.sheet, r1, c1, r2, c2))
+    if not found:
+        return ExcelError.NULL
+    if len(found) == 1:
+        return read(ev, found[0])
+    parts = [read(ev, rect) for rect in found]
+    return Range(tuple((v,) for part in parts for v in part.flat()),
+                 areas=tuple(part.ref or xv.Ref(*rect) for part, rect in zip(parts, found)))
 
 
 def sheets_3d(ev, node: ast.Sheets3D):

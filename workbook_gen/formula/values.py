@@ -47,6 +47,8 @@ class Range:
     _numbers: object = field(default=False, compare=False, repr=False)  # cache of numbers()
     ref: Ref | None = field(default=None, compare=False)
     array: bool = field(default=False, compare=False)
+    # a union's areas, each a Ref (its values are theirs in one column); () for the rest
+    areas: tuple = field(default=(), compare=False)
 
     @classmethod
     def of(cls, rows, ref: Ref | None = None) -> "Range":

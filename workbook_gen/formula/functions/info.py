@@ -41,6 +41,22 @@ def _isref(ctx, v):
     return isinstance(v, Range) and v.ref is not None
 
 
+@register("ISFORMULA", "info", 1, 1, "ref")
+def _isformula(ctx, v):
+    """Does the cell hold a formula (for a range, each cell: an array)? A resolver that
+    knows no formulas, a table of values, has none."""
+    if isinstance(v, ExcelError):
+        return v
+    if not isinstance(v, Range) or v.ref is None:
+        return ExcelError.VALUE
+    ask = getattr(ctx.resolver, "has_formula", None) or (lambda sheet, row, col: False)
+    ref = v.ref
+    if ref.shape == (1, 1):
+        return bool(ask(ref.sheet, ref.row1, ref.col1))
+    return Range.array_of([[bool(ask(ref.sheet, r, k)) for k in range(ref.col1, ref.col2 + 1)]
+                           for r in range(ref.row1, ref.row2 + 1)])  # (each cell's)
+
+
 def _parity(ctx, v, odd):
     if isinstance(v, bool):
         return ExcelError.VALUE

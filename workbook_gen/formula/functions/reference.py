@@ -1,5 +1,5 @@
-"""References themselves: ROW, COLUMN, ROWS, COLUMNS, OFFSET and INDIRECT (volatile, and
-evaluated), ADDRESS, TRANSPOSE. A reference argument is a Range with ``.ref``."""
+"""References themselves: ROW, COLUMN, ROWS, COLUMNS, AREAS, OFFSET and INDIRECT (volatile,
+and evaluated), ADDRESS, TRANSPOSE. A reference argument is a Range with ``.ref``."""
 
 from __future__ import annotations
 
@@ -36,14 +36,26 @@ register("COLUMN", "lookup", 0, 1, "ref", position=True)(
     lambda ctx, v=None: _position(ctx, v, 1))
 
 
-def _extent(v, axis):
+def _extent(ctx, v, axis):
     if isinstance(v, ExcelError):
         return v
+    if isinstance(v, Range) and len(v.areas) > 1:  # a union: #REF! in Excel (formulas__test
+        return ExcelError.REF if ctx.dialect == "excel" else ExcelError.VALUE  # LOOKUP!S15)
     return float(v.shape[axis]) if isinstance(v, Range) else 1.0
 
 
-register("ROWS", "lookup", 1, 1, "ref")(lambda ctx, v: _extent(v, 0))
-register("COLUMNS", "lookup", 1, 1, "ref")(lambda ctx, v: _extent(v, 1))
+@register("AREAS", "lookup", 1, 1, "ref")
+def _areas(ctx, v):
+    """How many areas a reference has: a union's, else 1; #VALUE! for no reference."""
+    if isinstance(v, ExcelError):
+        return v
+    if not isinstance(v, Range) or (v.ref is None and not v.areas):
+        return ExcelError.VALUE
+    return float(len(v.areas) or 1)
+
+
+register("ROWS", "lookup", 1, 1, "ref")(lambda ctx, v: _extent(ctx, v, 0))
+register("COLUMNS", "lookup", 1, 1, "ref")(lambda ctx, v: _extent(ctx, v, 1))
 
 
 @register("OFFSET", "lookup", 3, 5, ("ref", "scalar"), volatile=True, omitted=True)
