@@ -75,6 +75,19 @@ CELLS = {
     "INFORMATION!AK10": "{=ISFORMULA(C10:J10)}, F10's = TRUE",
     "INFORMATION!AP10": "{=ISFORMULA(C10:J10)} beyond the range = #N/A",
     "EXTRA!BG77": "{=ISFORMULA(BC75:BD93)} = TRUE",
+    # tests and fits of two arrays pass over a #NULL! that another error follows; CHISQ.TEST
+    # takes the actual values' errors first, and #DIV/0! without a pair of numbers; a paired
+    # T.TEST takes its errors pair by pair
+    "STATISTICAL!AD26": "COVARIANCE.P({#NULL!,#NUM!,#REF!},{#REF!,-0.01,-0.01}) = #NUM!",
+    "STATISTICAL!AD55": "INTERCEPT({#NULL!,#NUM!,..},{#VALUE!,..}) = #NUM!",
+    "STATISTICAL!AD77": "PEARSON({#NULL!,#NUM!},{#REF!,#DIV/0!}) = #NUM!",
+    "STATISTICAL!AD34": "F.TEST({#NULL!,#NUM!},{#REF!,#DIV/0!}) = #NUM!",
+    "STATISTICAL!AD17": "CHISQ.TEST({#NULL!,#NUM!},{#REF!,x}) = #NUM!",
+    "STATISTICAL!Y17": "CHISQ.TEST({TRUE,#VALUE!},{#N/A,#DIV/0!}) = #VALUE!",
+    "STATISTICAL!V17": "CHISQ.TEST({4,,text},{,text,TRUE}) = #DIV/0!",
+    "STATISTICAL!AD107": "{=T.TEST({#NULL!,#NUM!},{#REF!,x},1,1)} = #NUM!",
+    "STATISTICAL!Y107": "{=T.TEST({TRUE,#VALUE!},{#N/A,#DIV/0!},1,1)} = #N/A",
+    "STATISTICAL!AD108": "{=T.TEST({#NULL!,#NUM!},{#REF!,x},2,2)} = #NUM!",
     # Student's t far tails from the tail itself, and the density at 0 degrees of freedom
     "STATISTICAL!X103": "T.DIST.2T(60,60) = 2.85e-55",
     "STATISTICAL!X104": "T.DIST.RT(60,60) = 1.42e-55",

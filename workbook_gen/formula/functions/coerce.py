@@ -54,6 +54,16 @@ def first_error(values) -> ExcelError | None:
     return None
 
 
+def past_null(error, values):
+    """Excel's tests and fits of two arrays (CHISQ.TEST, T.TEST, F.TEST, SLOPE, PEARSON
+    ...) pass over a #NULL! when another error follows it in ``values`` (Mac Excel 16,
+    formulas__test.xlsx STATISTICAL!AD17, AD26, AD107): that one, else ``error``."""
+    if error is not ExcelError.NULL:
+        return error
+    return next((v for v in values if isinstance(v, ExcelError) and v is not ExcelError.NULL),
+                error)
+
+
 def number(v) -> float | ExcelError:
     """A direct argument as a number (a reference to one cell is that cell)."""
     return to_number(scalar_of(v))

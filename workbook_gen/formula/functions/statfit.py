@@ -13,23 +13,28 @@ from workbook_gen.formula.functions.registry import register
 from workbook_gen.xlerror import ExcelError
 
 
-def _pairs(ys, xs):
+def _pairs(ys, xs, dialect: str = "excel"):
     """Paired numbers of two equal-sized areas (pairs with a non-number skipped); an
-    argument that is an error (an undefined name: #NAME?) is that error."""
+    argument that is an error (an undefined name: #NAME?) is that error. The first error
+    pair by pair; Excel passes over a pair whose first value is #NULL! when an error
+    follows (c.past_null)."""
     for arg in (ys, xs):
         if isinstance(arg, ExcelError):
             return arg
     a, b = c.flat(c.as_area(ys)), c.flat(c.as_area(xs))
     if len(a) != len(b):
         return ExcelError.NA
-    out = []
+    out, null = [], None
     for y, x in zip(a, b):
+        if y is ExcelError.NULL and dialect == "excel":
+            null = y  # passed over, unless no other error follows
+            continue
         for v in (y, x):
             if isinstance(v, ExcelError):
                 return v
         if c.is_number(y) and c.is_number(x):
             out.append((float(y), float(x)))
-    return out
+    return null or out
 
 
 def _moments(pairs):
@@ -44,7 +49,7 @@ def _moments(pairs):
 
 def _fit(kind):
     def fn(ctx, ys, xs):
-        pairs = _pairs(ys, xs)
+        pairs = _pairs(ys, xs, ctx.dialect)
         if isinstance(pairs, ExcelError):
             return pairs
         if len(pairs) < (3 if kind == "steyx" else 1):
@@ -82,7 +87,7 @@ def _forecast(ctx, x, ys, xs):
     x = c.to_number(x)
     if isinstance(x, ExcelError):
         return x
-    pairs = _pairs(ys, xs)
+    pairs = _pairs(ys, xs, ctx.dialect)
     if isinstance(pairs, ExcelError):
         return pairs
     if not pairs:

@@ -21,6 +21,15 @@ def _nums(ctx, *args):
     return c.numbers(args, ctx)
 
 
+def _array_nums(ctx, arg):
+    """One array's numbers, or its first error (#NULL! passed over in Excel when another
+    error follows: c.past_null)."""
+    xs = _nums(ctx, arg)
+    if xs is ExcelError.NULL and ctx.dialect == "excel" and isinstance(arg, Range):
+        return c.past_null(xs, arg.flat())
+    return xs
+
+
 def _stat(name, fn, aliases=()):
     def scalar(ctx, *args):
         xs = _nums(ctx, *args)
@@ -207,7 +216,12 @@ def _chisq_test(ctx, actual, expected):
     if a.shape != b.shape:
         return ExcelError.NA
     rows, cols = a.shape
-    stat = 0.0
+    if ctx.dialect == "excel":  # the actual values' errors first, then the expected ones'
+        for area in (a, b):    # (Mac Excel 16, formulas__test.xlsx STATISTICAL!Y17, AD17)
+            error = c.first_error(area.flat())
+            if error is not None:
+                return c.past_null(error, area.flat())
+    stat, pairs = 0.0, 0
     for x, e in zip(a.flat(), b.flat()):
         for v in (x, e):
             if isinstance(v, ExcelError):
@@ -216,6 +230,9 @@ def _chisq_test(ctx, actual, expected):
             if e == 0:
                 return ExcelError.DIV0
             stat += (x - e) ** 2 / e
+            pairs += 1
+    if not pairs and ctx.dialect == "excel":  # no number against a number (V17)
+        return ExcelError.DIV0
     df = (rows - 1) * (cols - 1) if rows > 1 and cols > 1 else max(rows, cols) - 1
     if df < 1:
         return ExcelError.NA
@@ -225,7 +242,7 @@ def _chisq_test(ctx, actual, expected):
 
 @register("F.TEST", "stats", 2, 2, "range", aliases=("FTEST",))
 def _f_test(ctx, a1, a2):
-    xs, ys = _nums(ctx, a1), _nums(ctx, a2)
+    xs, ys = _array_nums(ctx, a1), _array_nums(ctx, a2)
     for v in (xs, ys):
         if isinstance(v, ExcelError):
             return v
@@ -251,7 +268,12 @@ def _t_test(ctx, a1, a2, tails, kind):
         a, b = c.flat(c.as_area(a1)), c.flat(c.as_area(a2))
         if len(a) != len(b):
             return ExcelError.NA
-        err = c.first_error(a + b)
+        if ctx.dialect == "excel":  # pair by pair, as the fits (Y107, AD107)
+            err = c.first_error(
+                u for x, y in zip(a, b) if x is not ExcelError.NULL for u in (x, y))
+            err = err or c.first_error(a)
+        else:
+            err = c.first_error(a + b)
         if err is not None:
             return err
         d = [x - y for x, y in zip(a, b) if c.is_number(x) and c.is_number(y)]
@@ -262,7 +284,7 @@ def _t_test(ctx, a1, a2, tails, kind):
             return ExcelError.DIV0
         t, df = _mean(d) / (sd / math.sqrt(len(d))), len(d) - 1
     else:
-        xs, ys = _nums(ctx, a1), _nums(ctx, a2)
+        xs, ys = _array_nums(ctx, a1), _array_nums(ctx, a2)
         for v in (xs, ys):
             if isinstance(v, ExcelError):
                 return v
