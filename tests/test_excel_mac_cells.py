@@ -88,6 +88,12 @@ CELLS = {
     "STATISTICAL!AD107": "{=T.TEST({#NULL!,#NUM!},{#REF!,x},1,1)} = #NUM!",
     "STATISTICAL!Y107": "{=T.TEST({TRUE,#VALUE!},{#N/A,#DIV/0!},1,1)} = #N/A",
     "STATISTICAL!AD108": "{=T.TEST({#NULL!,#NUM!},{#REF!,x},2,2)} = #NUM!",
+    # LINEST, LOGEST, TREND, GROWTH: an error among the values or the flags is #VALUE!
+    "STATISTICAL!Z58": "{=LINEST(C58:E58,E58:G58,#N/A,0)} = #VALUE!",
+    "STATISTICAL!AB58": "{=LINEST({#N/A,#DIV/0!,#NAME?},{..},0,0)} = #VALUE!",
+    "STATISTICAL!AC59": "{=LOGEST({#DIV/0!,..},{..},0,0)} = #VALUE!",
+    "STATISTICAL!AA51": "{=GROWTH(..,..,{#N/A,..})} = #VALUE!",
+    "STATISTICAL!AB113": "{=TREND(..,..,{#DIV/0!,..})} = #VALUE!",
     # Student's t far tails from the tail itself, and the density at 0 degrees of freedom
     "STATISTICAL!X103": "T.DIST.2T(60,60) = 2.85e-55",
     "STATISTICAL!X104": "T.DIST.RT(60,60) = 1.42e-55",

@@ -26,7 +26,14 @@ def _flag(v, default=True):
     return c.to_bool(c.scalar_of(v))
 
 
-def _data(known_y, known_x):
+def _error(v: ExcelError, dialect: str) -> ExcelError:
+    """An error among the values or the flags: #VALUE! in Excel, whichever it is (Mac
+    Excel 16, formulas__test.xlsx STATISTICAL!Z58, AB58, AA51: LINEST, LOGEST, TREND and
+    GROWTH); itself in LibreOffice."""
+    return ExcelError.VALUE if dialect == "excel" else v
+
+
+def _data(known_y, known_x, dialect: str = "excel"):
     """(y vector n, X n x k, layout, y's shape) with layout 'col', 'row' or 'one', or an
     error (sizes are checked before the values, as Excel does: #REF! before #VALUE!)."""
     ya = c.as_area(known_y)
@@ -34,7 +41,7 @@ def _data(known_y, known_x):
     if known_x is None:
         y = matrix(ya)
         if isinstance(y, ExcelError):
-            return y
+            return _error(y, dialect)
         return y.ravel(), np.arange(1, y.size + 1, dtype=float).reshape(-1, 1), "one", y.shape
     xa = c.as_area(known_x)
     if cols == 1 and xa.shape[0] == rows:
@@ -48,7 +55,7 @@ def _data(known_y, known_x):
     y, x = matrix(ya), matrix(xa)
     for v in (y, x):
         if isinstance(v, ExcelError):
-            return v
+            return _error(v, dialect)
     if layout == "col":
         return y[:, 0], x, layout, y.shape
     if layout == "row":
@@ -119,15 +126,15 @@ def _stats(y, x, coef, b, kept, const):
     return se, se_b, r2, sey, f, float(df), ss_reg, ss_resid
 
 
-def _linest(known_y, known_x, const, stats, log):
-    got = _data(known_y, known_x)
+def _linest(known_y, known_x, const, stats, log, dialect):
+    got = _data(known_y, known_x, dialect)
     if isinstance(got, ExcelError):
         return got
     y, x, _, _ = got
     const, stats = _flag(const), _flag(stats, False)
     for v in (const, stats):
         if isinstance(v, ExcelError):
-            return v
+            return _error(v, dialect)
     if log:
         if np.any(y <= 0):
             return ExcelError.NUM
@@ -148,14 +155,14 @@ def _linest(known_y, known_x, const, stats, log):
                            row(ss_reg, ss_resid)])
 
 
-def _trend(known_y, known_x, new_x, const, log):
-    got = _data(known_y, known_x)
+def _trend(known_y, known_x, new_x, const, log, dialect):
+    got = _data(known_y, known_x, dialect)
     if isinstance(got, ExcelError):
         return got
     y, x, layout, yshape = got
     const = _flag(const)
     if isinstance(const, ExcelError):
-        return const
+        return _error(const, dialect)
     if log:
         if np.any(y <= 0):
             return ExcelError.NUM
@@ -168,7 +175,7 @@ def _trend(known_y, known_x, new_x, const, log):
     else:
         nx = matrix(new_x)
         if isinstance(nx, ExcelError):
-            return nx
+            return _error(nx, dialect)
         if k == 1:
             points, shape = nx.reshape(-1, 1), nx.shape
         elif layout == "col" and nx.shape[1] == k:
@@ -186,19 +193,19 @@ def _trend(known_y, known_x, new_x, const, log):
 
 @register("LINEST", "stats", 1, 4, ("range", "range", "scalar", "scalar"), omitted=True)
 def _linest_fn(ctx, known_y, known_x=None, const=None, stats=None):
-    return _linest(known_y, known_x, const, stats, False)
+    return _linest(known_y, known_x, const, stats, False, ctx.dialect)
 
 
 @register("LOGEST", "stats", 1, 4, ("range", "range", "scalar", "scalar"), omitted=True)
 def _logest_fn(ctx, known_y, known_x=None, const=None, stats=None):
-    return _linest(known_y, known_x, const, stats, True)
+    return _linest(known_y, known_x, const, stats, True, ctx.dialect)
 
 
 @register("TREND", "stats", 1, 4, ("range", "range", "range", "scalar"), omitted=True)
 def _trend_fn(ctx, known_y, known_x=None, new_x=None, const=None):
-    return _trend(known_y, known_x, new_x, const, False)
+    return _trend(known_y, known_x, new_x, const, False, ctx.dialect)
 
 
 @register("GROWTH", "stats", 1, 4, ("range", "range", "range", "scalar"), omitted=True)
 def _growth_fn(ctx, known_y, known_x=None, new_x=None, const=None):
-    return _trend(known_y, known_x, new_x, const, True)
+    return _trend(known_y, known_x, new_x, const, True, ctx.dialect)
