@@ -94,6 +94,10 @@ CELLS = {
     "STATISTICAL!AC59": "{=LOGEST({#DIV/0!,..},{..},0,0)} = #VALUE!",
     "STATISTICAL!AA51": "{=GROWTH(..,..,{#N/A,..})} = #VALUE!",
     "STATISTICAL!AB113": "{=TREND(..,..,{#DIV/0!,..})} = #VALUE!",
+    # MODE.SNGL, MODE.MULT: a direct "" left out, an omitted argument #VALUE!
+    "STATISTICAL!S71": 'MODE.SNGL(D71:E71,E71:F71,F71:G71,"") = 0.2',
+    "STATISTICAL!S69": '{=MODE.MULT(D69:E69,E69:F69,F69:G69,"")} = 0.1',
+    "STATISTICAL!AG69": "{=MODE.MULT(H69:J69,D69:I69,E69:G69,F69:H69,)} = #VALUE!",
     # Student's t far tails from the tail itself, and the density at 0 degrees of freedom
     "STATISTICAL!X103": "T.DIST.2T(60,60) = 2.85e-55",
     "STATISTICAL!X104": "T.DIST.RT(60,60) = 1.42e-55",

@@ -79,8 +79,22 @@ def _mode(ctx, *args):
     return _mode_sngl(ctx, *args)
 
 
-@register("MODE.SNGL", "stats", 1, -1, "range")
+def mode_args(ctx, args):
+    """MODE.SNGL's and MODE.MULT's arguments in Excel: a direct "" is left out, an omitted
+    argument is #VALUE! (Mac Excel 16, formulas__test.xlsx STATISTICAL!S71, S69, AG69);
+    in LibreOffice an omitted argument is 0."""
+    if ctx is not None and ctx.dialect == "excel":
+        if any(a is None for a in args):
+            return ExcelError.VALUE
+        return [a for a in args if not (isinstance(a, str) and a == "")]
+    return [0.0 if a is None else a for a in args]
+
+
+@register("MODE.SNGL", "stats", 1, -1, "range", omitted=True)
 def _mode_sngl(ctx, *args):
+    args = mode_args(ctx, args)
+    if isinstance(args, ExcelError):
+        return args
     xs = c.numbers(args, ctx)
     if isinstance(xs, ExcelError):
         return xs

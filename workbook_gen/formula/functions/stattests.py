@@ -13,6 +13,7 @@ from workbook_gen.formula.functions import coerce as c
 from workbook_gen.formula.functions.distributions import DPS, args_of, f_cdf, t_cdf
 from workbook_gen.formula.functions.math import fsum
 from workbook_gen.formula.functions.registry import register
+from workbook_gen.formula.functions.stats import mode_args
 from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
 
@@ -145,8 +146,11 @@ register("PERCENTRANK.INC", "stats", 2, 3, ("range", "scalar"),
 register("PERCENTRANK.EXC", "stats", 2, 3, ("range", "scalar"))(_percentrank(True))
 
 
-@register("MODE.MULT", "stats", 1, -1, "range")
+@register("MODE.MULT", "stats", 1, -1, "range", omitted=True)
 def _mode_mult(ctx, *args):
+    args = mode_args(ctx, args)
+    if isinstance(args, ExcelError):
+        return args
     xs = _nums(ctx, *args)
     if isinstance(xs, ExcelError):
         return xs
