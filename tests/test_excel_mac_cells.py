@@ -98,6 +98,11 @@ CELLS = {
     "STATISTICAL!S71": 'MODE.SNGL(D71:E71,E71:F71,F71:G71,"") = 0.2',
     "STATISTICAL!S69": '{=MODE.MULT(D69:E69,E69:F69,F69:G69,"")} = 0.1',
     "STATISTICAL!AG69": "{=MODE.MULT(H69:J69,D69:I69,E69:G69,F69:H69,)} = #VALUE!",
+    # INDEX of a union: area_num picks the area, #REF! beyond
+    "LOOKUP!AQ52": "{=INDEX((C52:C54,D52:D54),1,1,{3;2;1})}, area 3 = #REF!",
+    "LOOKUP!AQ53": "the same, area 2 = D52",
+    "LOOKUP!AS53": "{=INDEX((C52:C54,D52:D54),{3;2;1},1,{3;2;1})}, row 2 of area 2 = D53",
+    "LOOKUP!AT52": "{=INDEX((C52:C53,D52:D53),1,1,{3;2})} = #REF!",
     # Student's t far tails from the tail itself, and the density at 0 degrees of freedom
     "STATISTICAL!X103": "T.DIST.2T(60,60) = 2.85e-55",
     "STATISTICAL!X104": "T.DIST.RT(60,60) = 1.42e-55",
