@@ -103,6 +103,9 @@ CELLS = {
     "LOOKUP!AQ53": "the same, area 2 = D52",
     "LOOKUP!AS53": "{=INDEX((C52:C54,D52:D54),{3;2;1},1,{3;2;1})}, row 2 of area 2 = D53",
     "LOOKUP!AT52": "{=INDEX((C52:C53,D52:D53),1,1,{3;2})} = #REF!",
+    # an IS function over a range in a wider array formula: f(#N/A) beyond the range
+    "INFORMATION!AW7": "{=ISERR(C7:Q7)} beyond Q = FALSE",
+    "INFORMATION!AW12": "{=ISNA(C12:Q12)} beyond Q = TRUE",
     # Student's t far tails from the tail itself, and the density at 0 degrees of freedom
     "STATISTICAL!X103": "T.DIST.2T(60,60) = 2.85e-55",
     "STATISTICAL!X104": "T.DIST.RT(60,60) = 1.42e-55",

@@ -117,9 +117,10 @@ def evaluate_unit(unit: Unit, store: Store, names: Names, dialect: str = "excel"
     resolver = scaler if view is None else SheetResolver(view, names, unit.sheet)
     cell = (unit.sheet, unit.first, unit.col)
     if unit.area is not None:
-        from workbook_gen.formula.arrays import evaluate_array, spread
+        from workbook_gen.formula.arrays import beyond, evaluate_array, spread
         rows, cols = unit.area[0] - unit.first + 1, unit.area[1] - unit.col + 1
-        values = spread(evaluate_array(unit.node, resolver, dialect, cell), rows, cols)
+        values = spread(evaluate_array(unit.node, resolver, dialect, cell), rows, cols,
+                        beyond(unit.node, dialect))
         scale = cell_scale(unit.node, scaler)
         for i, row in enumerate(values):
             for j, value in enumerate(row):

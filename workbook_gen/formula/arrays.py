@@ -163,13 +163,33 @@ def evaluate_array(node: ast.Node, resolver, dialect: str, cell) -> object:
     return lambdas.final(ArrayEvaluator(resolver, dialect, None, cell).arg(node))
 
 
-def spread(value, rows: int, cols: int) -> list[list]:
+# functions of one value that Excel applies to each cell of a range broadcast to the
+# array formula's area, #N/A where the range has no cell: beyond it they show f(#N/A)
+# (Mac Excel 16, formulas__test.xlsx INFORMATION!AW7: {=ISERR(C7:Q7)} is FALSE there)
+_PADDED = frozenset({"ISERR", "ISERROR", "ISNA", "ISBLANK", "ISNUMBER", "ISTEXT",
+                     "ISNONTEXT", "ISLOGICAL"})
+
+
+def beyond(node, dialect: str = "excel"):
+    """What an array formula shows beyond its result's shape: #N/A, or f(#N/A) for one of
+    the functions above applied to one range."""
+    while isinstance(node, ast.Paren):
+        node = node.inner
+    if dialect == "excel" and isinstance(node, ast.Func) and node.name in _PADDED \
+            and len(node.args) == 1:
+        return fx.call(node.name, [ExcelError.NA], fx.Context(dialect))
+    return ExcelError.NA
+
+
+def spread(value, rows: int, cols: int, pad=ExcelError.NA) -> list[list]:
     """The values an array formula shows in its ``rows`` x ``cols`` cells (a reference
-    read only up to the used range is empty beyond it, not #N/A)."""
+    read only up to the used range is empty beyond it, not #N/A; ``pad`` beyond the
+    value's shape: ``beyond``)."""
     if isinstance(value, Range) and value.shape == (1, 1):
         value = value.rows[0][0]
     ref = getattr(value, "ref", None)
     full = (ref.row2 - ref.row1 + 1, ref.col2 - ref.col1 + 1) if ref is not None else None
+    shape = value.shape if isinstance(value, Range) else (1, 1)
     out = []
     for i in range(rows):
         row = []
@@ -177,6 +197,9 @@ def spread(value, rows: int, cols: int) -> list[list]:
             v = element(value, i, j)
             if v is ExcelError.NA and full is not None and _within(value, full, i, j):
                 v = None
+            elif pad is not ExcelError.NA and ((shape[0] > 1 and i >= shape[0])
+                                               or (shape[1] > 1 and j >= shape[1])):
+                v = pad
             row.append(0.0 if v is None else v)
         out.append(row)
     return out
