@@ -106,6 +106,8 @@ CELLS = {
     # an IS function over a range in a wider array formula: f(#N/A) beyond the range
     "INFORMATION!AW7": "{=ISERR(C7:Q7)} beyond Q = FALSE",
     "INFORMATION!AW12": "{=ISNA(C12:Q12)} beyond Q = TRUE",
+    # TYPE of a function as a value
+    "INFORMATION!S24": "TYPE(_xleta.SUM) = 128",
     # Student's t far tails from the tail itself, and the density at 0 degrees of freedom
     "STATISTICAL!X103": "T.DIST.2T(60,60) = 2.85e-55",
     "STATISTICAL!X104": "T.DIST.RT(60,60) = 1.42e-55",

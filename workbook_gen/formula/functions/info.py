@@ -111,6 +111,9 @@ def _type(ctx, v):
     v = c.scalar_of(v)
     if isinstance(v, ExcelError):
         return 16.0
+    from workbook_gen.formula.functions.lambdas import Closure, Function
+    if isinstance(v, (Closure, Function)):  # a LAMBDA, or a function as a value: 128
+        return 128.0                        # (Mac Excel 16: TYPE(_xleta.SUM), INFORMATION!S24)
     if isinstance(v, bool):
         return 1.0 if ctx.dialect == "libreoffice" else 4.0
     return 2.0 if isinstance(v, str) else 1.0
