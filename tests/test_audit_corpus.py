@@ -30,9 +30,13 @@ import pytest
 # fully audited), CONVERT, XMATCH, criteria arrays, IS* in array formulas (formulas__test:
 # 944 -> 219 disagreeing cells; helper corpc3): 6 files with disagreements (4 known, the
 # sheetjs stress test's XNPV, formulas__test)
+# 2026-11-27 18:10: unions with their areas (AREAS, ISFORMULA, INDEX's area_num), Excel's
+# error order in the tests and fits of two arrays, LINEST's #VALUE!: coverage.py 56,894 of
+# 57,344; formulas__test.xlsx 100 -> 36 disagreeing cells
 MIN_FULLY_AUDITED = 66
-MIN_RECOMPUTED_CELLS = 56_800
+MIN_RECOMPUTED_CELLS = 56_880
 MAX_DISAGREEING_FILES = 6
+MAX_FORMULAS_TEST_DISAGREEING = 36  # Mac Excel 16's test of every function
 MAX_REFUSED = 0
 # files whose cached values are wrong or odd: the audit is right to report them, always
 KNOWN_DISAGREEMENTS = {
@@ -74,3 +78,9 @@ def test_disagreeing_files_only_shrink_and_odd_files_stay_reported(corpus_result
     disagreeing = set(_names(corpus_results, "disagreements"))
     assert len(disagreeing) <= MAX_DISAGREEING_FILES, sorted(disagreeing)
     assert KNOWN_DISAGREEMENTS <= disagreeing, KNOWN_DISAGREEMENTS - disagreeing
+
+
+def test_formulas_test_disagreements_only_shrink(corpus_audits):
+    report = corpus_audits["formulas__test.xlsx"].report
+    assert len(report.mismatches) <= MAX_FORMULAS_TEST_DISAGREEING, \
+        sorted(m.cell for m in report.mismatches)
