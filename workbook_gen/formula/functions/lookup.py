@@ -10,6 +10,7 @@ Excel's results on pycel's lookup.xlsx show).
 from __future__ import annotations
 
 from workbook_gen.formula.functions import coerce as c
+from workbook_gen.formula.functions.reference import union_area
 from workbook_gen.formula.functions.registry import register
 from workbook_gen.formula.values import Range, Ref
 from workbook_gen.xlerror import ExcelError
@@ -226,20 +227,6 @@ def _sub(area: Range, r1: int, c1: int, r2: int, c2: int) -> Range:
                               ref.row1 + r2, ref.col1 + c2))
 
 
-def _area(union: Range, part) -> Range | ExcelError:
-    """Area ``part`` (1-based) of a union, with its values and reference; #REF! beyond."""
-    if isinstance(part, ExcelError):
-        return part
-    n = int(part)
-    if not 1 <= n <= len(union.areas):
-        return ExcelError.REF
-    start = sum(a.shape[0] * a.shape[1] for a in union.areas[:n - 1])
-    ref = union.areas[n - 1]
-    height, width = ref.shape
-    values = [v for row in union.rows[start:start + height * width] for v in row]
-    return Range.of([values[i * width:(i + 1) * width] for i in range(height)], ref)
-
-
 @register("INDEX", "lookup", 2, 4, ("ref", "scalar"))
 def _index(ctx, area, row, col=None, part=1.0):
     area = c.as_area(area)
@@ -249,7 +236,7 @@ def _index(ctx, area, row, col=None, part=1.0):
     if bad is not None:
         return bad
     if area.areas and ctx is not None and ctx.dialect == "excel":
-        area = _area(area, c.to_number(part))  # area_num picks one area of a union
+        area = union_area(area, c.to_number(part))  # area_num picks one area of a union
         if isinstance(area, ExcelError):        # (Mac Excel 16, LOOKUP!AQ52:AU53)
             return area
     nrows, ncols = area.shape

@@ -44,6 +44,20 @@ def _extent(ctx, v, axis):
     return float(v.shape[axis]) if isinstance(v, Range) else 1.0
 
 
+def union_area(union: Range, part) -> Range | ExcelError:
+    """Area ``part`` (1-based) of a union, with its values and reference; #REF! beyond."""
+    if isinstance(part, ExcelError):
+        return part
+    n = int(part)
+    if not 1 <= n <= len(union.areas):
+        return ExcelError.REF
+    start = sum(a.shape[0] * a.shape[1] for a in union.areas[:n - 1])
+    ref = union.areas[n - 1]
+    height, width = ref.shape
+    values = [v for row in union.rows[start:start + height * width] for v in row]
+    return Range.of([values[i * width:(i + 1) * width] for i in range(height)], ref)
+
+
 @register("AREAS", "lookup", 1, 1, "ref")
 def _areas(ctx, v):
     """How many areas a reference has: a union's, else 1; #VALUE! for no reference."""
