@@ -129,10 +129,15 @@ def _pickled(fn, args) -> bytes:
         outcome = (True, fn(*args))
     except BaseException as exc:  # handed to the parent, which raises it
         outcome = (False, exc)
+    return _dumps(outcome)
+
+
+def _dumps(outcome: tuple) -> bytes:
+    """An outcome pickled; b"" if it cannot be (the parent then computes it itself)."""
     try:
         return pickle.dumps(outcome, protocol=pickle.HIGHEST_PROTOCOL)
     except Exception:
-        return b""  # the parent computes it itself
+        return b""
 
 
 def _send_each(values, out) -> None:
@@ -146,9 +151,8 @@ def _send_each(values, out) -> None:
             return
         except BaseException as exc:
             outcome = (False, exc)
-        try:
-            data = pickle.dumps(outcome, protocol=pickle.HIGHEST_PROTOCOL)
-        except Exception:
+        data = _dumps(outcome)
+        if not data:
             return  # the parent makes it, and those after it, itself
         out.write(_LENGTH.pack(len(data)) + data)
         out.flush()

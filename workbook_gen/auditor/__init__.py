@@ -25,7 +25,7 @@ from xlsxwriter.utility import xl_col_to_name, xl_rowcol_to_cell
 from ..errors import FormulaSyntaxError, WorkbookGenError, WorkbookReadError
 from ..evaluator import evaluate_cells
 from ..evaluator.keys import column_groups, pick
-from ..evaluator.store import value_scale
+from ..evaluator.store import FLOAT, type_mask, value_scale
 from ..evaluator.volatile import Clock
 from ..formula import ast, parse
 from ..formula.functions import dialect_of
@@ -350,11 +350,9 @@ def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, t
         keep = [k not in skipped and k in evaluated for k in keys]
         keys, cached_values = list(compress(keys, keep)), list(compress(cached_values, keep))
     groups, all_rows = column_groups(keys)
-    n = len(keys)
-    fast_all = np.fromiter(map(frozenset({float}).__contains__, map(type, cached_values)),
-                           bool, n)
+    fast_all = type_mask(cached_values, FLOAT)
     if aggregates:
-        fast_all &= ~np.fromiter(map(aggregates.__contains__, keys), bool, n)
+        fast_all &= ~np.fromiter(map(aggregates.__contains__, keys), bool, len(keys))
     done = np.zeros(len(keys), bool)
     store = evaluation.store
     for sheet, col, idx in groups:

@@ -33,11 +33,14 @@ from collections import defaultdict
 from itertools import compress
 from operator import itemgetter
 
+from ..evaluator.store import type_mask
 from ..formula import ast
 from ..formula.printer import column_letters
 from ..xlerror import ExcelError
 from .grid import ERROR, FORMULA, NUMBER, TEXT, Grid, Key, value_kind
 from .structure import Finding
+
+_ERROR = frozenset({ExcelError})
 
 KINDS = ("inconsistent_formula", "constant_in_formula_run", "formula_omits_adjacent_cells",
          "number_stored_as_text", "reference_to_empty_cell", "error_value")
@@ -340,9 +343,8 @@ class _Checks:
     def errors(self) -> None:
         grid = self.grid
         cached = grid.cached  # (the error values first, in C loops: 200,000 cells)
-        errors = {k: v for k, v in compress(cached.items(), map(
-            frozenset({ExcelError}).__contains__, map(type, cached.values())))
-            if grid.kind(k) == FORMULA}
+        errors = {k: v for k, v in compress(cached.items(), type_mask(cached.values(), _ERROR))
+                  if grid.kind(k) == FORMULA}
         errors.update((k, v) for k, v in grid.constants.items()
                       if grid.kind(k) == ERROR)
         if not errors:

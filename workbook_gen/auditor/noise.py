@@ -24,7 +24,6 @@ the comparison falls back to the column's magnitude.
 
 from __future__ import annotations
 
-from itertools import compress
 from typing import Callable
 
 import re
@@ -32,6 +31,7 @@ import re
 import numpy as np
 
 from ..errors import WorkbookGenError
+from ..evaluator.store import floats_where, type_mask
 from ..formula import ast, parse
 from ..formula.ast import to_relative
 from ..xlsx.model import column_letters
@@ -41,13 +41,7 @@ _NUMBER_TYPES = frozenset({int, float, np.float64})
 
 def numbers_or_nan(values: list) -> np.ndarray:
     """The numbers among ``values`` (not booleans), NaN for any other value: C loops."""
-    n = len(values)
-    number = np.fromiter(map(_NUMBER_TYPES.__contains__, map(type, values)), bool, n)
-    if number.all():
-        return np.array(values, float)
-    out = np.full(n, np.nan)
-    out[number] = list(compress(values, number))
-    return out
+    return floats_where(values, type_mask(values, _NUMBER_TYPES))
 
 _DIGITS = re.compile(r"[0-9]+")
 Pair = tuple[np.ndarray, np.ndarray]  # values, noise magnitudes

@@ -202,11 +202,9 @@ class Store:
         n = len(items)
         c = self._column(sheet, col, first + n - 1)
         sl = slice(first, first + n)
-        plain = np.fromiter(map(_IS_FLOAT, map(type, items)), bool, n)
+        plain = type_mask(items, FLOAT)
         codes = error_codes(items)
-        val = np.full(n, np.nan)
-        val[plain] = list(compress(items, plain))
-        c.val[sl] = val
+        c.val[sl] = floats_where(items, plain)
         c.err[sl] = codes
         irr = ~plain & (codes == 0)
         c.irr[sl] = irr
@@ -302,8 +300,23 @@ def _python_values(c: _Column, first: int, last: int) -> list:
 
 
 _CODE = {e: e.code for e in ExcelError}
-_IS_FLOAT = frozenset({float}).__contains__
 _NAN_FOR_ERROR = dict.fromkeys(ExcelError, math.nan)
+FLOAT = frozenset({float})
+
+
+def type_mask(values, types: frozenset) -> np.ndarray:
+    """Whether each value's type is one of ``types`` (exactly: a bool is no int), in C
+    loops."""
+    return np.fromiter(map(types.__contains__, map(type, values)), bool, len(values))
+
+
+def floats_where(values: list, mask: np.ndarray) -> np.ndarray:
+    """The values where ``mask`` holds, as floats; NaN elsewhere."""
+    if mask.all():
+        return np.array(values, float)
+    out = np.full(len(values), np.nan)
+    out[mask] = list(compress(values, mask))
+    return out
 
 
 def error_codes(items: list) -> np.ndarray:

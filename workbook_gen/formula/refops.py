@@ -95,7 +95,8 @@ def ref_op(ev, node: ast.RefOp):
                 return v
             values.extend(v.flat() if isinstance(v, Range) else [v])
             if areas is not None:  # (None once a part is no reference)
-                areas = areas + list(_areas_of(v)) if _areas_of(v) else None
+                found = _areas_of(v)
+                areas = areas + list(found) if found else None
         return Range(tuple((v,) for v in values), areas=tuple(areas or ()))
     if node.op == " " and (_is_union(node.left) or _is_union(node.right)):
         if getattr(ev, "dialect", "excel") == "libreoffice":

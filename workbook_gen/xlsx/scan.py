@@ -35,8 +35,8 @@ _PLAIN = (r'<c r="([A-Z]{1,3})([1-9][0-9]{0,6})"(?: s="[0-9]{1,9}")?(?: t="(n|s|
 PLAIN = re.compile(_PLAIN)
 _PLAIN_ROW = re.compile("(?:" + re.sub(r"\((?!\?)", "(?:", _PLAIN) + ")*")
 _S = r"[ \t\r\n]*"  # XML's white space
-_ROW_START = re.compile(_S + r'<row' + _ATTRS + _S + '>')
 ROW_TAG = re.compile(r'<row' + _ATTRS + _S + '>')
+_ROW_START = re.compile(_S + ROW_TAG.pattern)
 # a batch of rows whose cells are all plain (the rows' attributes hold no "<")
 _PLAIN_ROWS = re.compile(f"(?:{_S}<row{re.sub(r'[(](?![?])', '(?:', _ATTRS)}{_S}>"
                          f"{_PLAIN_ROW.pattern}</row>)*{_S}")

@@ -216,12 +216,28 @@ def _scanned_row(row: tuple, row_no: int, count: int, budget: int, sheet: Sheet,
 def _row_start(row: tuple, row_no: int, count: int, budget: int) -> tuple[dict, str, int]:
     """(attributes, its r, row number) of a scanned row; Unrecognised beyond Excel's rows or
     the cell budget (the ElementTree path words those errors)."""
-    a = attributes(row[0]) if row[0] else {}
+    if count + len(row[1]) > budget:
+        raise Unrecognised
+    return _row_number(row[0], row_no)
+
+
+def _row_number(attrs: str, row_no: int) -> tuple[dict, str, int]:
+    """(attributes, its r, row number) of a row's start tag after row ``row_no``;
+    Unrecognised beyond Excel's rows."""
+    a = attributes(attrs) if attrs else {}
     r = a.get("r")
     row_no = int(r) if r and r.isdigit() else row_no + 1
-    if row_no > MAX_ROW or count + len(row[1]) > budget:
+    if row_no > MAX_ROW:
         raise Unrecognised
     return a, r, row_no
+
+
+def _cell_rows(digits) -> list[int]:
+    """The rows of scanned cells' refs; Unrecognised beyond Excel's rows."""
+    rows = list(map(int, digits))
+    if max(rows) > MAX_ROW:
+        raise Unrecognised
+    return rows
 
 
 def _plain_rows(batch: PlainRows, row_no: int, count: int, n_rows: int, budget: int,
@@ -234,19 +250,12 @@ def _plain_rows(batch: PlainRows, row_no: int, count: int, n_rows: int, budget: 
         raise Unrecognised
     hidden = []
     for attrs in batch.attributes:
-        a = attributes(attrs) if attrs else {}
-        r = a.get("r")
-        row_no = int(r) if r and r.isdigit() else row_no + 1
-        if row_no > MAX_ROW:
-            raise Unrecognised
+        a, _, row_no = _row_number(attrs, row_no)
         if a.get("hidden") in ("1", "true"):
             hidden.append(row_no)
     if found:  # (zip(*found) takes twice as long on a batch's tens of thousands of cells)
         letters, digits, kinds, texts, vs = (list(map(g, found)) for g in _GROUPS)
-        rows = list(map(int, digits))
-        if max(rows) > MAX_ROW:
-            raise Unrecognised
-        _plain_cells(sheet, strings, letters, rows, kinds, texts, vs)
+        _plain_cells(sheet, strings, letters, _cell_rows(digits), kinds, texts, vs)
     sheet.hidden_rows.update(hidden)
     return row_no, count + len(found), n_rows + len(batch.attributes)
 
@@ -265,9 +274,7 @@ def _plain_row(row: tuple, row_no: int, count: int, budget: int, sheet: Sheet,
         if r and digits.count(r) == len(digits):  # every cell in the row's own row
             rows = [row_no] * len(digits)
         else:
-            rows = list(map(int, digits))
-            if max(rows) > MAX_ROW:
-                raise Unrecognised
+            rows = _cell_rows(digits)
         _plain_cells(sheet, strings, letters, rows, kinds, texts, vs)
     if a.get("hidden") in ("1", "true"):
         sheet.hidden_rows.add(row_no)

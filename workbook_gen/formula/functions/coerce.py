@@ -54,6 +54,16 @@ def first_error(values) -> ExcelError | None:
     return None
 
 
+def first_pair_error(a: list, b: list, dialect: str = "excel") -> ExcelError | None:
+    """The first error of two equal-length lists taken pair by pair (``a``'s, then
+    ``b``'s). Excel passes over a pair whose first value is #NULL! when another error
+    follows (as ``past_null``): the fits, a paired T.TEST."""
+    skip = dialect == "excel"
+    error = first_error(u for x, y in zip(a, b) if not (skip and x is ExcelError.NULL)
+                        for u in (x, y))
+    return error or (first_error(a) if skip else None)
+
+
 def past_null(error, values):
     """Excel's tests and fits of two arrays (CHISQ.TEST, T.TEST, F.TEST, SLOPE, PEARSON
     ...) pass over a #NULL! when another error follows it in ``values`` (Mac Excel 16,

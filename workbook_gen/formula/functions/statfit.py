@@ -15,26 +15,18 @@ from workbook_gen.xlerror import ExcelError
 
 def _pairs(ys, xs, dialect: str = "excel"):
     """Paired numbers of two equal-sized areas (pairs with a non-number skipped); an
-    argument that is an error (an undefined name: #NAME?) is that error. The first error
-    pair by pair; Excel passes over a pair whose first value is #NULL! when an error
-    follows (c.past_null)."""
+    argument that is an error (an undefined name: #NAME?) is that error; else the first
+    error pair by pair (c.first_pair_error)."""
     for arg in (ys, xs):
         if isinstance(arg, ExcelError):
             return arg
     a, b = c.flat(c.as_area(ys)), c.flat(c.as_area(xs))
     if len(a) != len(b):
         return ExcelError.NA
-    out, null = [], None
-    for y, x in zip(a, b):
-        if y is ExcelError.NULL and dialect == "excel":
-            null = y  # passed over, unless no other error follows
-            continue
-        for v in (y, x):
-            if isinstance(v, ExcelError):
-                return v
-        if c.is_number(y) and c.is_number(x):
-            out.append((float(y), float(x)))
-    return null or out
+    error = c.first_pair_error(a, b, dialect)
+    if error is not None:
+        return error
+    return [(float(y), float(x)) for y, x in zip(a, b) if c.is_number(y) and c.is_number(x)]
 
 
 def _moments(pairs):

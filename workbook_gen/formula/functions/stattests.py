@@ -272,12 +272,8 @@ def _t_test(ctx, a1, a2, tails, kind):
         a, b = c.flat(c.as_area(a1)), c.flat(c.as_area(a2))
         if len(a) != len(b):
             return ExcelError.NA
-        if ctx.dialect == "excel":  # pair by pair, as the fits (Y107, AD107)
-            err = c.first_error(
-                u for x, y in zip(a, b) if x is not ExcelError.NULL for u in (x, y))
-            err = err or c.first_error(a)
-        else:
-            err = c.first_error(a + b)
+        err = (c.first_pair_error(a, b) if ctx.dialect == "excel"  # as the fits (Y107)
+               else c.first_error(a + b))
         if err is not None:
             return err
         d = [x - y for x, y in zip(a, b) if c.is_number(x) and c.is_number(y)]
