@@ -86,7 +86,7 @@ def read_sheet(pkg: Package, part: str, sheet: Sheet, strings: list[str], budget
         row_no = int(r) if r and r.isdigit() else row_no + 1
         if row_no > MAX_ROW or n_rows > MAX_ROW:
             raise pkg.error(where, f"row {row_no} beyond Excel's {MAX_ROW} rows")
-        if row.get("hidden") in ("1", "true"):  # hidden by hand or by a filter
+        if _hidden(row):  # hidden by hand or by a filter
             sheet.hidden_rows.add(row_no)
         col, row_digits = 0, str(row_no)
         for c in row:
@@ -205,7 +205,7 @@ def _scanned_row(row: tuple, row_no: int, count: int, budget: int, sheet: Sheet,
             out.append(cell)
     except (ValueError, IndexError):
         raise Unrecognised from None
-    if a.get("hidden") in ("1", "true"):
+    if _hidden(a):
         sheet.hidden_rows.add(row_no)
     cells = sheet.cells
     for cell in out:
@@ -232,6 +232,11 @@ def _row_number(attrs: str, row_no: int) -> tuple[dict, str, int]:
     return a, r, row_no
 
 
+def _hidden(row) -> bool:
+    """Is a row hidden (its element, or its attributes as a dict)?"""
+    return row.get("hidden") in ("1", "true")
+
+
 def _cell_rows(digits) -> list[int]:
     """The rows of scanned cells' refs; Unrecognised beyond Excel's rows."""
     rows = list(map(int, digits))
@@ -251,7 +256,7 @@ def _plain_rows(batch: PlainRows, row_no: int, count: int, n_rows: int, budget: 
     hidden = []
     for attrs in batch.attributes:
         a, _, row_no = _row_number(attrs, row_no)
-        if a.get("hidden") in ("1", "true"):
+        if _hidden(a):
             hidden.append(row_no)
     if found:  # (zip(*found) takes twice as long on a batch's tens of thousands of cells)
         letters, digits, kinds, texts, vs = (list(map(g, found)) for g in _GROUPS)
@@ -276,7 +281,7 @@ def _plain_row(row: tuple, row_no: int, count: int, budget: int, sheet: Sheet,
         else:
             rows = _cell_rows(digits)
         _plain_cells(sheet, strings, letters, rows, kinds, texts, vs)
-    if a.get("hidden") in ("1", "true"):
+    if _hidden(a):
         sheet.hidden_rows.add(row_no)
     return row_no, count + len(found)
 
