@@ -17,8 +17,8 @@ alpha_2 = (q'' h - q' h') / h^2.
 
 from __future__ import annotations
 
-from ..expr import (Node, abs_, atan2, cos, degrees, eq, gt, if_, iserror, radians, root, sin,
-                    sqrt)
+from ..expr import (Node, abs_, atan2, cos, degrees, eq, gt, if_, iserror, le, radians, root,
+                    sin, sqrt)
 from .angles import cos_deg, reduced_input, sin_deg, sin_half_squared
 from .base import Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span, Template
 from .base import only_if, quantity_vars, speed_scale, symbols
@@ -38,6 +38,18 @@ PARAMETERS = (
     ParamSpec("omega_1", 10.0, "rad/s", "crank speed, counter-clockwise"),
 )
 
+# A reach factor within rounding of 0 is 0: the rod exactly tangent to the slide line
+# (l_BC = l_AB + |e| at one crank angle) is a dead centre, flagged, its rates #DIV/0!,
+# never the square root of rounding (h_BC 3.8e-7 mm, v_C -1e10 mm/s; SPEC 9.1).  The
+# factor's terms round to a few ulps of l_BC + l_AB + |e| + 2 l_AB; a true excess
+# of 1e-12 of the lengths is kept (tests/test_extremes_slider.py).
+REACH_ROUNDING = 16 * 2.0 ** -52
+
+
+def _exact_zero(factor: Node) -> Node:
+    return if_(le(abs_(factor), REACH_ROUNDING * (l_BC + 3 * l_AB + abs_(e))), 0, factor)
+
+
 Q = Quantity
 PSI, psi = reduced_input("psi", theta_1 - phi_slide, "crank angle from the slide line")
 QUANTITIES = (
@@ -47,8 +59,8 @@ QUANTITIES = (
     Q("n_B", "mm", l_AB * sin_deg(psi), "crank pin across the slide",
       output=False),
     Q("h_BC", "mm", root(
-        ((l_BC - l_AB - e) + 2 * l_AB * sin_half_squared(psi + 90))
-        * ((l_BC - l_AB + e) + 2 * l_AB * sin_half_squared(psi - 90))),
+        _exact_zero((l_BC - l_AB - e) + 2 * l_AB * sin_half_squared(psi + 90))
+        * _exact_zero((l_BC - l_AB + e) + 2 * l_AB * sin_half_squared(psi - 90))),
       "rod's projection on the slide", output=False),
     Q("dh_BC", "mm/s", omega_1 * u_B * q / h_BC, "rate of h_BC", output=False),
     Q("ddh_BC", "mm/s^2", -(w2 * u_B ** 2 + q * w2 * n_B + dh_BC ** 2) / h_BC,
