@@ -42,6 +42,11 @@ LO_DIFFERS = {  # format: Excel's rule and its evidence in pycel text.xlsx (Text
             "drops it",
     "#.###.#.#.#": "later dots are literals that stay (rows 25, 58)",
 }
+LO_DIFFERS_AT = {  # (value, format) of FORMATS that LibreOffice shows otherwise
+    (0, "##0.0E+0"): "zero shows every integer placeholder of a scientific pattern as 0 "
+                     "(NPOI NumberFormatApproxTests.xlsx, saved by Excel: |####.####|e-|#| of "
+                     "0 is |0000.|e|0|); LibreOffice shows 0.0E+0",
+}
 
 
 @pytest.fixture(scope="module")
@@ -67,6 +72,8 @@ def test_number_formats_agree_with_libreoffice(recalculated):
     ws = openpyxl.load_workbook(recalculated, data_only=True)["T"]
     wrong = []
     for i, (v, f) in enumerate(itertools.product(VALUES, FORMATS), 1):
+        if (v, f) in LO_DIFFERS_AT:
+            continue
         theirs = ws.cell(i, 3).value
         theirs = "" if theirs is None else theirs
         if _ours(float(v), f) != theirs:
