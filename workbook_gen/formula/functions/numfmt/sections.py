@@ -10,8 +10,12 @@ Conditions (``[<10]``, ``[>=100]``, ``[<>0]`` ...) stand in the first two sectio
 (Microsoft's KB 67469: the first two clauses are the condition clauses, the third the
 "else" clause):
 
-* the first section shows the numbers its condition holds for, the second those of its
-  own condition, or every other number when it has none; then the third section;
+* the first section shows the numbers its condition holds for (without one: the positive
+  numbers), the second those of its own condition, or without one the negative numbers
+  (every other number when there is no third section: ssf's oddities.json,
+  ``[<=9999999]###-####;(###) ###-####`` of 2813308004 is (281) 330-8004); the third
+  section every other number (KB 67469: ``[>1000]0.00E+00;General;0.00`` shows 999 as
+  999.00);
 * a number no section takes is shown in General (``[<10]#" Wow"`` of 10 is "10":
   NPOI's FormatChoiceTests.xlsx, saved by Excel);
 * a negative number keeps its minus sign, except in a second section without a condition
@@ -54,8 +58,10 @@ def choose(numeric: list[str], x: float) -> tuple[str, bool]:
             return numeric[0], x < 0
     if len(numeric) >= 2:
         second = conds[1]
-        if second is None or second(x):
-            return numeric[1], x < 0 and second is not None and not second.is_negative_default
+        if second is None and (len(numeric) == 2 or x < 0):
+            return numeric[1], False
+        if second is not None and second(x):
+            return numeric[1], x < 0 and not second.is_negative_default
     if len(numeric) >= 3:
         return numeric[2], x < 0
     return GENERAL, x < 0
