@@ -12,6 +12,7 @@ Two independent references:
 
 from __future__ import annotations
 
+from fractions import Fraction
 from pathlib import Path
 
 import openpyxl
@@ -20,6 +21,7 @@ from openpyxl.utils.datetime import to_excel
 
 from workbook_gen import audit
 from workbook_gen.formula import functions as fx
+from workbook_gen.formula.functions.numfmt.fraction import convergent
 from workbook_gen.formula.functions.serials import date_system
 
 CORPUS = Path("/work/shared/corpus/xlsx")
@@ -104,6 +106,7 @@ def test_npoi_format_tests_fully_agree_in_the_audit(name):
     (-12.34, "# ??/100", "-12 34/100"), (1, "??/??", " 1/1 "), (-1.2, "??/??", "- 6/5 "),
     (12.3, "??/??", "123/10"), (-1234.5678, "??/??", "-100000/81"),
     (0.3, "# ?/?", " 2/7"), (2.3, "# ?/?", "2 2/7"),
+    (-123.456, "# ?/?", "-123 1/2"),  # (a convergent: 4/9 would be closer)
 ])
 def test_sheetjs_published_excel_outputs(value, fmt, excel):
     assert _text(float(value), fmt) == excel
@@ -124,6 +127,12 @@ def test_sheetjs_published_excel_outputs(value, fmt, excel):
 ])
 def test_scientific_patterns_with_literals(value, fmt, excel):
     assert _text(float(value), fmt) == excel
+
+
+def test_fraction_stops_at_a_convergent_close_to_15_digits():
+    """ssf's fraction.json: Excel shows 0.123251512342345 as # ??/????????? "  480894/3901729"
+    (the layout of a numerator overflowing its placeholders is not modelled)."""
+    assert convergent(Fraction(0.123251512342345), 999_999_999) == (480894, 3901729)
 
 
 def test_conditions_pick_sections_and_fall_back_to_general():

@@ -27,6 +27,10 @@ FORMATS = [  # LibreOffice and Excel agree on these (every value above)
     "#,##0.00", "0.0%", '#,#"ZZ"#.0"YY"00', "0,", '#,##0,"K"', "0.00E+00", "##0.0E+0",
     "0.0E-0", "$#,##0_);($#,##0)", '0;(0);"zero"', "?.??", "000-00-0000", "#,###",
     "0.0,,", '"x"0"y"', "\\#0", "w;x;z@", "0.0;-0.0", "00.0?#",
+    # colours, currency and locale brackets, conditions, padding and fill, "?" separators
+    "[$€-407]#,##0.00", "[Red]0.0_);[Blue](0.0)", "#,##0.00;[Red]-#,##0.00",
+    "[<100]0.0;[>1000]#,##0;0.000", "0.00E+00;(0.00E+00)", "?,??0.00",
+    "\\$#,##0_);\\(\\$#,##0\\)", '0.0%;-0.0%;"nil"', '#,##0.0,,"M"', "* #,##0",
 ]
 LO_DIFFERS = {  # format: Excel's rule and its evidence in pycel text.xlsx (TextNumbers)
     "%#%#%": "each % multiplies by 100 (row 48: 890123.456789 -> %89012345678%9%); "

@@ -21,6 +21,7 @@ from workbook_gen.formula.functions.numfmt import sections as sec
 from workbook_gen.formula.functions.numfmt.dates import FRACTION, format_date
 from workbook_gen.formula.functions.numfmt.fixed import fixed_digits, format_fixed, shows_zero
 from workbook_gen.formula.functions.numfmt.fraction import format_fraction, is_fraction
+from workbook_gen.formula.functions.numfmt.fraction import value as fraction_value
 from workbook_gen.formula.functions.numfmt.scientific import format_scientific
 from workbook_gen.formula.functions.numfmt.tokens import (
     PLACEHOLDER, is_exponent, is_literal, literal, tokens, unclosed_quote,
@@ -72,7 +73,8 @@ def format_number(x: float, section: str, sign: bool):
         shown = x != 0
     elif is_fraction(toks):
         body = format_fraction(x, toks)
-        shown = any(ch.isdigit() and ch != "0" for ch in body)
+        whole, numerator, _ = fraction_value(x, toks)
+        shown = whole != 0 or numerator != 0
     else:
         body = format_fixed(x, toks)
         shown = not digits or not shows_zero(x, toks)

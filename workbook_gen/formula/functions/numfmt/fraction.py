@@ -61,35 +61,51 @@ def is_fraction(tokens: list[str]) -> bool:
 
 
 def convergent(x: Fraction, max_den: int) -> tuple[int, int]:
-    """The last convergent h/k of ``x``'s continued fraction with k <= ``max_den``."""
+    """The last convergent h/k of ``x``'s continued fraction with k <= ``max_den``, or the
+    first within 1e-13 of ``x`` relatively (``# ??/?????????`` of 0.123251512342345 is
+    480894/3901729, 3e-14 off, not a later convergent: ssf's fraction.json)."""
     h0, h1, k0, k1 = 0, 1, 1, 0
+    rest = x
     while True:
-        a = math.floor(x)
+        a = math.floor(rest)
         h2, k2 = a * h1 + h0, a * k1 + k0
         if k2 > max_den:
             break
         h0, h1, k0, k1 = h1, h2, k1, k2
-        rest = x - a
-        if rest == 0:
+        if rest == a or abs(x - Fraction(h1, k1)) <= x * _CLOSE:
             break
-        x = 1 / rest
+        rest = 1 / (rest - a)
     return h1, k1
 
 
-def format_fraction(x: float, tokens: list[str]) -> str:
-    """The fraction section ``tokens`` applied to ``x`` >= 0."""
-    ints, num, slash, den = layout(tokens)
+_CLOSE = Fraction(1, 10 ** 13)
+
+
+def value(x: float, tokens: list[str]) -> tuple[int, int, int]:
+    """(whole, numerator, denominator) that the fraction section shows for ``x`` >= 0."""
+    ints, _, _, den = layout(tokens)
     den_text = "".join(tokens[k] for k in den)
-    fixed = den_text[0] in "123456789" and den_text.isdigit()
     whole = math.floor(x) if ints else 0
     part = x - whole
-    if fixed:
+    if _fixed(den_text):
         d = int(den_text)
         n = int(round_half_up(part * d, 0))
     else:
         n, d = convergent(Fraction(part), 10 ** len(den) - 1)
     if ints and n >= d:  # rounded up to a whole one
         whole, n = whole + n // d, n % d
+    return whole, n, d
+
+
+def _fixed(den_text: str) -> bool:
+    return den_text[0] in "123456789" and den_text.isdigit()
+
+
+def format_fraction(x: float, tokens: list[str]) -> str:
+    """The fraction section ``tokens`` applied to ``x`` >= 0."""
+    ints, num, slash, den = layout(tokens)
+    fixed = _fixed("".join(tokens[k] for k in den))
+    whole, n, d = value(x, tokens)
     blank = bool(ints) and n == 0
     out: dict[int, str] = {}
     if ints:
