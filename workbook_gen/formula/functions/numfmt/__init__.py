@@ -14,6 +14,7 @@ quote (formulas test.xlsx EXTRA!A4).
 
 from __future__ import annotations
 
+import functools
 import re
 
 from workbook_gen.formula.functions import coerce as c
@@ -55,32 +56,48 @@ def format_value(v, fmt: str):
 def format_number(x: float, section: str, sign: bool):
     """A numeric section applied to ``x`` >= 0, with a leading minus if ``sign`` (and the
     number does not show as zero)."""
-    toks = tokens(section)
-    low = [t.lower() for t in toks]
-    if "general" in low:
-        body = "".join(c.number_to_text(x) if t == "general" else literal(tok)
-                       for t, tok in zip(low, toks))
+    toks, kind, bare = _kind(section)
+    if kind == "general":
+        body = "".join(c.number_to_text(x) if t.lower() == "general" else literal(t)
+                       for t in toks)
         return ("-" if sign else "") + body
-    bare = [t for t in tokens(FRACTION.sub("", section)) if not is_literal(t)]
-    dates = any(_DATE_CODE.fullmatch(t) for t in bare)
-    digits = any(t in PLACEHOLDER for t in bare)
-    if dates and not digits:
+    if kind == "date":
         return _date(x, section, sign, bare)
-    if dates or "@" in bare:  # (an exponent E+ is one token, never a date code)
+    if kind == "invalid":
         return ExcelError.VALUE
-    if any(is_exponent(t) for t in toks):
+    if kind == "scientific":
         body = format_scientific(x, toks)
         shown = x != 0
-    elif is_fraction(toks):
+    elif kind == "fraction":
         body = format_fraction(x, toks)
         whole, numerator, _ = fraction_value(x, toks)
         shown = whole != 0 or numerator != 0
     else:
         body = format_fixed(x, toks)
-        shown = not digits or not shows_zero(x, toks)
+        shown = not any(t in PLACEHOLDER for t in bare) or not shows_zero(x, toks)
     if isinstance(body, ExcelError):
         return body
     return ("-" if sign and shown else "") + body
+
+
+@functools.lru_cache(maxsize=1024)
+def _kind(section: str):
+    """(tokens, kind, tokens that are no literal) of a numeric section; kind is general,
+    date, invalid (date codes or ``@`` with digit placeholders), scientific, fraction or
+    fixed."""
+    toks = tokens(section)
+    if any(t.lower() == "general" for t in toks):
+        return toks, "general", ()
+    bare = tuple(t for t in tokens(FRACTION.sub("", section)) if not is_literal(t))
+    dates = any(_DATE_CODE.fullmatch(t) for t in bare)
+    digits = any(t in PLACEHOLDER for t in bare)
+    if dates and not digits:
+        return toks, "date", bare
+    if dates or "@" in bare:  # (an exponent E+ is one token, never a date code)
+        return toks, "invalid", bare
+    if any(is_exponent(t) for t in toks):
+        return toks, "scientific", bare
+    return toks, "fraction" if is_fraction(toks) else "fixed", bare
 
 
 def _date(x: float, section: str, sign: bool, bare: list[str]):

@@ -19,6 +19,7 @@ formulas' test.xlsx (EXTRA!A37:A43), saved by Excel.
 from __future__ import annotations
 
 import calendar
+import functools
 import math
 import re
 
@@ -77,27 +78,36 @@ def format_date(x: float, fmt: str) -> str | ExcelError:
     """TEXT(x, fmt) for a date or time pattern ``fmt`` and ``x`` >= 0."""
     if x < 0:
         return ExcelError.VALUE
-    tokens = [_code(t) for t in _TOKENS.findall(fmt)]
-    digits = max((len(t) - 1 for t in tokens
-                  if t.startswith(".") and not isinstance(t, _Literal)), default=0)
+    tokens, minutes, digits, needs_date, ampm = _parse(fmt)
     scale = 10 ** digits
     units = math.floor(x * 86400 * scale + 0.5)
     day, rest = divmod(units, 86400 * scale)
     secs, part = divmod(rest, scale)
     ymd = from_serial(day)
     if isinstance(ymd, ExcelError):  # past 9999-12-31: elapsed counts only ([h] of 2958466)
-        if _needs_date(tokens):
+        if needs_date:
             return ExcelError.VALUE
         ymd = (9999, 12, 31)  # not shown
     clock = {"y": ymd[0], "m": ymd[1], "d": ymd[2], "wd": weekday(day), "hh": secs // 3600,
              "mi": secs // 60 % 60, "ss": secs % 60, "part": part, "digits": digits,
-             "units": units, "scale": scale,
-             "ampm": any(not isinstance(t, _Literal) and t.lower() in ("am/pm", "a/p")
-                         for t in tokens)}
-    return "".join(_show(tok, tokens, i, clock) for i, tok in enumerate(tokens))
+             "units": units, "scale": scale, "ampm": ampm}
+    return "".join(_show(tok, i in minutes, clock) for i, tok in enumerate(tokens))
 
 
-def _show(tok: str, tokens: list[str], i: int, c: dict) -> str:
+@functools.lru_cache(maxsize=512)
+def _parse(fmt: str):
+    """(tokens, indices of the m/mm that are minutes, fractional-second digits, whether
+    a calendar code shows, whether AM/PM or A/P shows) of a date pattern."""
+    tokens = tuple(_code(t) for t in _TOKENS.findall(fmt))
+    minutes = frozenset(i for i, t in enumerate(tokens) if not isinstance(t, _Literal)
+                        and t.lower() in ("m", "mm") and _minute(tokens, i))
+    digits = max((len(t) - 1 for t in tokens
+                  if t.startswith(".") and not isinstance(t, _Literal)), default=0)
+    ampm = any(not isinstance(t, _Literal) and t.lower() in ("am/pm", "a/p") for t in tokens)
+    return tokens, minutes, digits, _needs_date(tokens), ampm
+
+
+def _show(tok: str, minute: bool, c: dict) -> str:
     if isinstance(tok, _Literal):
         return str(tok)
     low = tok.lower()
@@ -106,7 +116,7 @@ def _show(tok: str, tokens: list[str], i: int, c: dict) -> str:
         return str(total).zfill(len(low) - 2)
     if low.startswith(".") and len(low) > 1:
         return "." + str(c["part"]).zfill(c["digits"])[:len(low) - 1]
-    if low in ("m", "mm") and _minute(tokens, i):
+    if minute:
         return f"{c['mi']:02d}" if low == "mm" else str(c["mi"])
     if low in ("h", "hh"):
         h = (c["hh"] % 12 or 12) if c["ampm"] else c["hh"]

@@ -25,6 +25,8 @@ Conditions (``[<10]``, ``[>=100]``, ``[<>0]`` ...) stand in the first two sectio
 
 from __future__ import annotations
 
+import functools
+
 from workbook_gen.formula.functions.numfmt.tokens import condition, split_sections, tokens
 
 GENERAL = "General"
@@ -34,6 +36,7 @@ def is_text_section(section: str) -> bool:
     return "@" in tokens(section)
 
 
+@functools.lru_cache(maxsize=1024)
 def split(fmt: str):
     """(numeric sections, text section or None), or None when the sections are invalid."""
     sections = split_sections(fmt)

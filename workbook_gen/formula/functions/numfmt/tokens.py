@@ -9,6 +9,7 @@ Sections are split at ``;`` outside quotes, escapes and brackets.
 
 from __future__ import annotations
 
+import functools
 import re
 
 TOKEN = re.compile(r'"[^"]*"?|\\.|[*_].|\[[^\]]*\]|[Ee][+-]|general|am/pm|a/p|.',
@@ -18,10 +19,12 @@ CONDITION = re.compile(r"\[(<=|>=|<>|<|>|=)\s*([-+]?\d*\.?\d+(?:[eE][-+]?\d+)?)\
 _CURRENCY = re.compile(r"\[\$([^\]]*?)(?:-[0-9A-Fa-f]*)?\]")
 
 
-def tokens(section: str) -> list[str]:
-    return TOKEN.findall(section)
+@functools.lru_cache(maxsize=1024)
+def tokens(section: str) -> tuple[str, ...]:
+    return tuple(TOKEN.findall(section))
 
 
+@functools.lru_cache(maxsize=1024)
 def split_sections(fmt: str) -> list[str]:
     """The sections of a format, split at ``;`` outside quotes, escapes and brackets."""
     sections, start = [], 0
@@ -30,9 +33,10 @@ def split_sections(fmt: str) -> list[str]:
             sections.append(fmt[start:m.start()])
             start = m.end()
     sections.append(fmt[start:])
-    return sections
+    return tuple(sections)
 
 
+@functools.lru_cache(maxsize=1024)
 def unclosed_quote(fmt: str) -> bool:
     return any(t.startswith('"') and (len(t) == 1 or not t.endswith('"'))
                for t in tokens(fmt))
@@ -65,6 +69,7 @@ def is_exponent(tok: str) -> bool:
     return len(tok) == 2 and tok[0] in "Ee" and tok[1] in "+-"
 
 
+@functools.lru_cache(maxsize=1024)
 def condition(section: str):
     """The test of a section's ``[<=100]`` condition, or None."""
     for tok in tokens(section):
