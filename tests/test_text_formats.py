@@ -27,6 +27,10 @@ FORMATS = [  # LibreOffice and Excel agree on these (every value above)
     "#,##0.00", "0.0%", '#,#"ZZ"#.0"YY"00', "0,", '#,##0,"K"', "0.00E+00", "##0.0E+0",
     "0.0E-0", "$#,##0_);($#,##0)", '0;(0);"zero"', "?.??", "000-00-0000", "#,###",
     "0.0,,", '"x"0"y"', "\\#0", "w;x;z@", "0.0;-0.0", "00.0?#",
+    # colours, currency and locale brackets, conditions, padding and fill, "?" separators
+    "[$€-407]#,##0.00", "[Red]0.0_);[Blue](0.0)", "#,##0.00;[Red]-#,##0.00",
+    "[<100]0.0;[>1000]#,##0;0.000", "0.00E+00;(0.00E+00)", "?,??0.00",
+    "\\$#,##0_);\\(\\$#,##0\\)", '0.0%;-0.0%;"nil"', '#,##0.0,,"M"', "* #,##0",
 ]
 LO_DIFFERS = {  # format: Excel's rule and its evidence in pycel text.xlsx (TextNumbers)
     "%#%#%": "each % multiplies by 100 (row 48: 890123.456789 -> %89012345678%9%); "
@@ -41,6 +45,11 @@ LO_DIFFERS = {  # format: Excel's rule and its evidence in pycel text.xlsx (Text
     "#.##": "the decimal point stays without decimals (row 58: 1 -> 1.); LibreOffice "
             "drops it",
     "#.###.#.#.#": "later dots are literals that stay (rows 25, 58)",
+}
+LO_DIFFERS_AT = {  # (value, format) of FORMATS that LibreOffice shows otherwise
+    (0, "##0.0E+0"): "zero shows every integer placeholder of a scientific pattern as 0 "
+                     "(NPOI NumberFormatApproxTests.xlsx, saved by Excel: |####.####|e-|#| of "
+                     "0 is |0000.|e|0|); LibreOffice shows 0.0E+0",
 }
 
 
@@ -67,6 +76,8 @@ def test_number_formats_agree_with_libreoffice(recalculated):
     ws = openpyxl.load_workbook(recalculated, data_only=True)["T"]
     wrong = []
     for i, (v, f) in enumerate(itertools.product(VALUES, FORMATS), 1):
+        if (v, f) in LO_DIFFERS_AT:
+            continue
         theirs = ws.cell(i, 3).value
         theirs = "" if theirs is None else theirs
         if _ours(float(v), f) != theirs:

@@ -41,6 +41,8 @@ class BookInfo:
     # the character set of CHAR and CODE (Microsoft's CHAR page: Windows' ANSI set, cp1252;
     # the Macintosh character set in Excel for Mac)
     charset: str = "cp1252"
+    # the workbook's date system (workbookPr date1904): serial 0 is 1904-01-01 (serials.py)
+    date1904: bool = False
 
     def table(self, name: str, sheet: str, row: int, col: int) -> Table | None:
         """The table called ``name``, or ("" ) the one holding cell (sheet, row, col)."""

@@ -50,6 +50,7 @@ from workbook_gen.evaluator.units import Unit, evaluate_unit, rects, shapes_of, 
 from workbook_gen.evaluator.vector import NotVectorizable, compile_block
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
+from workbook_gen.formula.functions.serials import date_system
 from workbook_gen.formula.parser import parse
 from workbook_gen.formula.scalar import evaluate, unsupported_functions
 from workbook_gen.xlerror import ExcelError
@@ -141,6 +142,13 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     if dialect not in fx.registry.DIALECTS:
         raise ValueError(f"unknown dialect {dialect!r}")
     book = book or BookInfo()
+    with date_system(book.date1904):  # every serial in the workbook's date system
+        return _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
+                               book, arrays, saved, iterate, grouped)
+
+
+def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect, book,
+                    arrays, saved, iterate, grouped) -> Evaluation:
     sheets = set(map(itemgetter(0), formulas)) | set(map(itemgetter(0), constants))
     sheets |= set(book.sheets)
     sheets |= set(book.unreadable)

@@ -36,6 +36,7 @@ from dataclasses import dataclass, field
 
 from workbook_gen.formula import ast
 from workbook_gen.formula.functions import coerce
+from workbook_gen.formula.functions.serials import OFFSET_1904
 from workbook_gen.xlerror import ExcelError
 
 CHANGING = frozenset({"NOW", "TODAY", "RAND", "RANDBETWEEN", "RANDARRAY"})
@@ -56,7 +57,7 @@ class Clock:
         if self.saved is None:
             return None
         delta = self.saved.replace(tzinfo=None) - _EPOCH
-        return delta.total_seconds() / 86400.0 - (1462 if self.date1904 else 0)
+        return delta.total_seconds() / 86400.0 - (OFFSET_1904 if self.date1904 else 0)
 
 
 @dataclass
@@ -72,7 +73,7 @@ def calls(node: ast.Node) -> list[ast.Func]:
 
 def _date(serial: float, date1904: bool = False) -> str:
     try:
-        day = _EPOCH + dt.timedelta(days=serial + (1462 if date1904 else 0))
+        day = _EPOCH + dt.timedelta(days=serial + (OFFSET_1904 if date1904 else 0))
     except (OverflowError, ValueError):
         return f"serial {serial:g}"
     return day.strftime("%Y-%m-%d %H:%M" if serial != int(serial) else "%Y-%m-%d")

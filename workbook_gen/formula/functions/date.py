@@ -1,10 +1,10 @@
-"""Dates and times as Excel's serial numbers (1900 system): DATE, YEAR, MONTH, DAY, TIME,
+"""Dates and times as Excel's serial numbers (the workbook's date system): DATE, YEAR, MONTH, DAY, TIME,
 HOUR, MINUTE, SECOND, TODAY/NOW (volatile), EDATE, EOMONTH, YEARFRAC, WEEKDAY (WEEKNUM and
 ISOWEEKNUM in :mod:`.weeks`),
 DAYS, DAYS360, DATEDIF, DATEVALUE, TIMEVALUE, NETWORKDAYS, WORKDAY.
 
-Serial 1 is 1900-01-01 and serial 60 is the 29 February 1900 that never was (Lotus 1-2-3's
-leap-year bug, kept by Excel): from serial 61 on a serial counts days since 1899-12-30.
+Serial numbers and calendar dates convert in :mod:`.serials` (the 1900 system, with its 29
+February 1900 that never was, or the 1904 system of a workbook saved with ``date1904``).
 """
 
 from __future__ import annotations
@@ -14,31 +14,12 @@ import datetime as dt
 import math
 
 from workbook_gen.formula.functions import coerce as c
-from workbook_gen.formula.functions.datetext import format_date, parse_date_text  # noqa: F401
+from workbook_gen.formula.functions.datetext import parse_date_text
 from workbook_gen.formula.functions.registry import register
+from workbook_gen.formula.functions.serials import (  # noqa: F401  (re-exported)
+    from_serial, max_serial, to_serial, weekday,
+)
 from workbook_gen.xlerror import ExcelError
-
-_EPOCH = dt.date(1899, 12, 30)
-MAX_SERIAL = 2958465  # 9999-12-31
-
-
-def to_serial(d: dt.date) -> float:
-    n = (d - _EPOCH).days
-    return float(n if n >= 61 else n - 1)
-
-
-def from_serial(x: float) -> tuple[int, int, int] | ExcelError:
-    """(year, month, day) of a serial; 0 is 1900-01-00 and 60 is 1900-02-29, as in Excel."""
-    if x < 0 or x >= MAX_SERIAL + 1:
-        return ExcelError.NUM
-    n = int(math.floor(x))
-    if n == 0:
-        return (1900, 1, 0)
-    if n == 60:
-        return (1900, 2, 29)
-    d = _EPOCH + dt.timedelta(days=n if n > 60 else n + 1)
-    return (d.year, d.month, d.day)
-
 
 def _date(x) -> tuple[int, int, int] | ExcelError:
     n = serial_arg(x)
@@ -73,7 +54,7 @@ def make_date(y: int, m: int, d: int) -> float | ExcelError:
     y, m = y + (m - 1) // 12, (m - 1) % 12 + 1
     base = dt.date(y, m, 1)
     serial = to_serial(base) + d - 1  # day arithmetic in serial space: DATE(1900,3,0) is 60
-    return float(serial) if 0 <= serial <= MAX_SERIAL else ExcelError.NUM
+    return float(serial) if 0 <= serial <= max_serial() else ExcelError.NUM
 
 
 @register("DATE", "date", 3, 3)
@@ -154,7 +135,8 @@ def _add_months(v, months, end_of_month: bool):
     last = calendar.monthrange(y, m)[1]
     if d == 0 and not end_of_month:  # 1900-01-00 keeps its day 0: the day before the 1st
         return to_serial(dt.date(y, m, 1)) - 1  # (formulas__test DATE & TIME!V9:W9)
-    return to_serial(dt.date(y, m, last if end_of_month else min(max(d, 1), last)))
+    serial = to_serial(dt.date(y, m, last if end_of_month else min(max(d, 1), last)))
+    return serial if serial >= 0 else ExcelError.NUM  # (before 1904 in the 1904 system)
 
 
 register("EDATE", "date", 2, 2)(lambda ctx, v, k: _add_months(v, k, False))
@@ -325,7 +307,7 @@ def _weekday(ctx, v, kind=1.0):
     for x in (ymd, k):
         if isinstance(x, ExcelError):
             return x
-    wd = (int(serial_arg(v)) + 5) % 7  # Monday 0, from the serial: 1900 has its 29 February
+    wd = weekday(serial_arg(v))  # Monday 0, from the serial: 1900 has its 29 February
     k = int(k)
     if k == 1 or k == 17:
         return float((wd + 1) % 7 + 1)
@@ -369,7 +351,8 @@ def _holidays(h) -> set[int] | ExcelError:
 
 
 def _workday_ok(n: int, hol: set[int]) -> bool:
-    wd = _ymd_date(from_serial(n)).weekday() if n > 0 else 5
+    ymd = from_serial(n)
+    wd = _ymd_date(ymd).weekday() if ymd[2] != 0 else 5  # (1900-01-00: a Saturday)
     return wd < 5 and n not in hol
 
 
@@ -397,7 +380,7 @@ def _workday(ctx, start, days, holidays=None):
     step = 1 if k > 0 else -1
     while k:
         d += step
-        if d < 1 or d > MAX_SERIAL:
+        if d < 1 or d > max_serial():
             return ExcelError.NUM
         if _workday_ok(d, hol):
             k -= step

@@ -8,7 +8,7 @@ import math
 import re
 
 from workbook_gen.formula.functions import coerce as c
-from workbook_gen.formula.functions.numformat import fixed_digits, format_value
+from workbook_gen.formula.functions.numfmt import fixed_digits, format_value
 from workbook_gen.formula.functions.registry import register
 from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
