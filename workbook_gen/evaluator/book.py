@@ -38,6 +38,8 @@ class BookInfo:
     unreadable: list[str] = field(default_factory=list)
     # rows hidden (by hand or by a filter) per sheet: SUBTOTAL 101-111 and AGGREGATE skip them
     hidden_rows: dict[str, frozenset[int]] = field(default_factory=dict)
+    # of those, the rows a filter hid (an autoFilter's or a table's): SUBTOTAL 1-11 skip them
+    filtered_rows: dict[str, frozenset[int]] = field(default_factory=dict)
     # the character set of CHAR and CODE (Microsoft's CHAR page: Windows' ANSI set, cp1252;
     # the Macintosh character set in Excel for Mac)
     charset: str = "cp1252"
@@ -51,44 +53,84 @@ class BookInfo:
                      and t.col1 <= col <= t.col2), None)
 
 
-_ITEM = re.compile(r"\[((?:[^\[\]']|'.)*)\]")
 _SPECIALS = {"#all", "#data", "#headers", "#totals", "#this row"}
 
 
+def _name_end(text: str, at: int) -> int:
+    """Offset of the ``]`` closing the column name that starts at ``at`` (``'`` escapes the
+    next character: ``'[ '] '# ''`` and ``'@``), or -1."""
+    while at < len(text):
+        ch = text[at]
+        if ch == "'":
+            at += 2
+            continue
+        if ch == "]":
+            return at
+        if ch == "[":
+            return -1
+        at += 1
+    return -1
+
+
 def _unescape(text: str) -> str:
-    return re.sub(r"'(.)", r"\1", text).strip()
+    """A column name as its header reads: escapes removed, spaces kept (a header may begin
+    or end with spaces: ``[the two ]`` names the column "the two ")."""
+    return re.sub(r"'(.)", r"\1", text)
+
+
+def _item(text: str, specials: set[str], columns: list[str]) -> None:
+    key = text.strip().lower()
+    if key in _SPECIALS:
+        specials.add(key)
+    else:
+        columns.append(_unescape(text))
 
 
 def _parse_spec(spec: str) -> tuple[set[str], list[str]] | None:
-    """(specials, column names; two names for a column range) of a bracketed spec."""
+    """(specials, column names; two names for a column range) of a bracketed spec.
+
+    Microsoft's grammar ("Using structured references with Excel tables"): a bare column
+    name ``Table1[Sales Amount]``, a special item ``[#All]``, ``[@Col]`` / ``[@[Col]]`` /
+    ``[@]`` for this row, or a list of bracketed items ``[[#Totals],[a]:[b]]`` separated by
+    commas (spaces between items are ignored, spaces inside an item's brackets are part of
+    the name). ``'`` escapes ``[ ] # ' @`` in a name."""
     inner = spec[1:-1]
     specials: set[str] = set()
     columns: list[str] = []
     if inner.startswith("@"):
         specials.add("#this row")
         inner = inner[1:]
-        if not inner:
+        if not inner.strip():
             return specials, columns
-        if not inner.startswith("["):
-            return specials, [_unescape(inner)]
-    if "[" not in inner:
-        text = _unescape(inner)
-        if text.lower() in _SPECIALS:
-            specials.add(text.lower())
-        elif text:
-            columns.append(text)
+        if not inner.lstrip().startswith("["):
+            columns.append(_unescape(inner))
+            return specials, columns
+    if not inner.lstrip().startswith("["):  # one bare name or special item
+        if inner.strip():
+            _item(inner, specials, columns)
         return specials, columns
-    for part in re.split(r"\s*,\s*(?=\[)", inner.strip()):
-        items = _ITEM.findall(part)
-        if not items:
+    at, n, ranged = 0, len(inner), False
+    while True:
+        while at < n and inner[at] == " ":
+            at += 1
+        if at >= n or inner[at] != "[":
             return None
-        for item in items:
-            text = _unescape(item)
-            if text.lower() in _SPECIALS:
-                specials.add(text.lower())
-            else:
-                columns.append(text)
-    return specials, columns
+        end = _name_end(inner, at + 1)
+        if end < 0:
+            return None
+        before = len(columns)
+        _item(inner[at + 1:end], specials, columns)
+        if ranged and len(columns) == before:  # "[a]:[#Data]" is no column range
+            return None
+        at = end + 1
+        while at < n and inner[at] == " ":
+            at += 1
+        if at >= n:
+            return specials, columns
+        ranged = inner[at] == ":"
+        if inner[at] not in ",:":
+            return None
+        at += 1
 
 
 def structured_ref(node: ast.StructRef, info: BookInfo, sheet: str, row: int, col: int):

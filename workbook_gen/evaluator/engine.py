@@ -127,7 +127,8 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
                    dialect: str = "excel", book: BookInfo | None = None,
                    arrays: Mapping[Cell, tuple[str, tuple[int, int]]] | None = None,
                    saved: vol.Clock | None = None, iterate: bool = False,
-                   grouped: Grouped | None = None) -> Evaluation:
+                   grouped: Grouped | None = None,
+                   texts: Mapping[Cell, str] | None = None) -> Evaluation:
     """Recompute every formula (texts without '=') of a workbook; see the module doc.
 
     ``uncheckable``: cells among ``constants`` that are formulas the caller could not
@@ -137,7 +138,9 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     they fill are in ``values``. ``saved``: check volatile cells by contract (see above).
     ``iterate``: the workbook enables iterative calculation (cells on a circular reference
     are then not checked). ``grouped``: the runs of exactly ``formulas``, grouped
-    already (with ``vectorize``)."""
+    already (with ``vectorize``). ``texts``: the texts of every formula of the workbook,
+    where some are among ``constants`` (their cached values taken as they are): SUBTOTAL
+    and ISFORMULA still see them as formulas."""
     if dialect not in fx.registry.DIALECTS:
         raise ValueError(f"unknown dialect {dialect!r}")
     book = book or BookInfo()
@@ -147,8 +150,9 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     store = Store(sheets, book.sheets)
     store.unreadable = {s.lower() for s in book.unreadable}
     store.hidden = {store.sheet(s): rows for s, rows in book.hidden_rows.items()}
+    store.filtered = {store.sheet(s): rows for s, rows in book.filtered_rows.items()}
     store.charset = book.charset
-    store.formula_texts, store.array_formulas = formulas, arrays or {}
+    store.formula_texts, store.array_formulas = texts or formulas, arrays or {}
     store.unparsed = uncheckable or {}
     store.put_constants(constants)
     name_table = Names(dict(names), book.local_names,

@@ -83,6 +83,7 @@ class Store:
         self.rect_cache: dict[tuple, Range] = {}
         self.extent: dict[str, list[int]] = {}
         self.hidden: dict[str, frozenset[int]] = {}  # sheet -> its hidden rows
+        self.filtered: dict[str, frozenset[int]] = {}  # sheet -> the rows a filter hid
         self.charset = "cp1252"  # CHAR and CODE's character set (BookInfo.charset)
         self.formula_texts: Mapping[tuple[str, int, int], str] = {}  # for subtotal_cells
         self.array_formulas: Mapping[tuple[str, int, int], tuple] = {}  # (text, (r2, c2))
@@ -424,6 +425,10 @@ class SheetResolver:
     def hidden_rows(self, sheet) -> frozenset[int]:
         """The hidden rows of a sheet (SUBTOTAL 101-111, AGGREGATE)."""
         return self.store.hidden.get(self._sheet(sheet), frozenset())
+
+    def filtered_rows(self, sheet) -> frozenset[int]:
+        """The rows of a sheet a filter hid (SUBTOTAL 1-11 leave them out too)."""
+        return self.store.filtered.get(self._sheet(sheet), frozenset())
 
     def charset(self) -> str:
         """The workbook's character set for CHAR and CODE ("cp1252" or "mac_roman")."""
