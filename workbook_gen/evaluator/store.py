@@ -426,6 +426,12 @@ class SheetResolver:
         """The hidden rows of a sheet (SUBTOTAL 101-111, AGGREGATE)."""
         return self.store.hidden.get(self._sheet(sheet), frozenset())
 
+    def spill_area(self, sheet, row: int, col: int) -> tuple[int, int] | None:
+        """(last row, last column) of the array formula anchored at the cell, or None
+        (ANCHORARRAY)."""
+        found = self.store.array_formulas.get((self._sheet(sheet), row, col))
+        return None if found is None else found[1]
+
     def filtered_rows(self, sheet) -> frozenset[int]:
         """The rows of a sheet a filter hid (SUBTOTAL 1-11 leave them out too)."""
         return self.store.filtered.get(self._sheet(sheet), frozenset())
