@@ -25,6 +25,7 @@ from xlsxwriter.utility import xl_col_to_name, xl_rowcol_to_cell
 from ..errors import FormulaSyntaxError, WorkbookGenError, WorkbookReadError
 from ..evaluator import evaluate_cells
 from ..evaluator.keys import column_groups, pick
+from ..evaluator.relnames import cell_dependent
 from ..evaluator.store import FLOAT, type_mask, value_scale
 from ..evaluator.volatile import Clock
 from ..formula import ast, parse
@@ -147,6 +148,24 @@ def _mark_roots(inputs: AuditInputs, mismatches: list[Mismatch], differ: set[str
                 break
 
 
+def _relative_names(names: dict[str, str]) -> set[str]:
+    """The workbook's names (upper case) whose value depends on the calling cell, directly
+    or through another such name."""
+    trees = {}
+    for name, text in names.items():
+        try:
+            trees[name.upper()] = parse(str(text).lstrip("="))
+        except FormulaSyntaxError:
+            continue
+    found = {n for n, tree in trees.items() if cell_dependent(tree)}
+    while True:
+        more = {n for n, tree in trees.items() if n not in found and any(
+            isinstance(m, ast.Name) and m.name.upper() in found for m in ast.walk(tree))}
+        if not more:
+            return found
+        found |= more
+
+
 def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: str = "excel",
                       saved: Clock | None = None):
     """Cells that read ranges (MAX, MIN, SUM, INDEX, MATCH over a column), recomputed
@@ -163,15 +182,18 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: st
     read: set[tuple[str, int]] = set()  # the (sheet, column) pairs those formulas read
     # (print areas and titles are names of their sheets too: they matter only where used)
     local_names = {n.upper() for s in inputs.book.sheets for n in s.defined_names}
-    everything = False  # 3-D, structured references, sheet-scoped names: read all
+    relative = None
+    everything = False  # 3-D, structured references, sheet-scoped and relative names: all
     for key in keys:
         try:
             node = parse(inputs.formulas[key])
         except FormulaSyntaxError:
             continue
-        if any(isinstance(n, (ast.Sheets3D, ast.StructRef, ast.RefOp))
-               or (isinstance(n, ast.Name) and n.name.upper() in local_names)
-               for n in ast.walk(node)):
+        used = {n.name.upper() for n in ast.walk(node) if isinstance(n, ast.Name)}
+        if used and relative is None:  # (names read from the calling cell: relnames)
+            relative = _relative_names(names)
+        if any(isinstance(n, (ast.Sheets3D, ast.StructRef, ast.RefOp)) for n in ast.walk(node)
+               ) or used & local_names or used & (relative or set()):
             everything = True
             break
         for sheet, _, c1, _, c2 in _rectangles(node, key[0], names):

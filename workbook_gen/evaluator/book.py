@@ -11,6 +11,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
+from workbook_gen.evaluator.relnames import calling_cell_struct
 from workbook_gen.formula import ast
 from workbook_gen.xlerror import ExcelError
 
@@ -180,6 +181,16 @@ def resolve(node: ast.Node, info: BookInfo | None, sheet: str, row: int, col: in
     if info is None or not any(isinstance(n, ast.StructRef) for n in ast.walk(node)):
         return node
     return _map(node, lambda n: structured_ref(n, info, sheet, row, col))
+
+
+def resolve_fixed(node: ast.Node, info: BookInfo | None) -> ast.Node:
+    """A defined name's tree with the structured references that read the same cells from
+    any cell made plain; those resolved from the calling cell (no table named, this row)
+    are kept for it (:mod:`relnames` writes the name into that cell's formula)."""
+    if info is None or not any(isinstance(n, ast.StructRef) for n in ast.walk(node)):
+        return node
+    return _map(node, lambda n: n if calling_cell_struct(n)
+                else structured_ref(n, info, "", 0, 0))
 
 
 def _map(node, fn):

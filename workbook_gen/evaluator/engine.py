@@ -42,7 +42,8 @@ import numpy as np
 
 from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.evaluator import cycles, graph, volatile as vol
-from workbook_gen.evaluator.book import BookInfo, resolve
+from workbook_gen.evaluator.book import BookInfo, resolve, resolve_fixed
+from workbook_gen.evaluator.relnames import NameInliner
 from workbook_gen.evaluator.taint import Taint
 from workbook_gen.evaluator.grouping import Grouped, Run, group_formulas
 from workbook_gen.evaluator.store import Names, SheetResolver, Store, value_scale
@@ -156,7 +157,8 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     store.unparsed = uncheckable or {}
     store.put_constants(constants)
     name_table = Names(dict(names), book.local_names,
-                       prepare=lambda node: resolve(node, book, "", 0, 0))
+                       prepare=lambda node: resolve_fixed(node, book))
+    inliner = NameInliner(name_table)
     keys = formulas
     if arrays:
         keys = dict.fromkeys(formulas)
@@ -171,7 +173,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
         _source(result, taint, cell, cell, reason)
 
     clock = time.perf_counter()
-    runs, errors = formula_runs(formulas, vectorize, book, grouped)
+    runs, errors = formula_runs(formulas, vectorize, book, grouped, inliner)
     for run in runs:  # store.note of every formula cell (a run's last is its lowest)
         store.note(run.sheet, run.last, run.col)
     for sheet, row, col in errors:
@@ -187,7 +189,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
             store.put(*cell, SYNTAX_VALUE)
             _source(result, taint, cell, cell, f"formula syntax: {message}")
     units = _units(runs, vectorize, store, result)
-    units += _array_units(arrays or {}, book, result, taint, store)
+    units += _array_units(arrays or {}, book, result, taint, store, inliner)
     for cell in result.external:
         _source(result, taint, cell, cell, "external reference")
     _report_functions(units, result)
@@ -253,17 +255,36 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
 
 
 def formula_runs(formulas, vectorize: bool, book: BookInfo,
-                 grouped: Grouped | None = None) -> tuple[list[Run], dict]:
-    """The runs evaluate_cells evaluates (its ``runs``), and the syntax errors."""
+                 grouped: Grouped | None = None, inliner: NameInliner | None = None
+                 ) -> tuple[list[Run], dict]:
+    """The runs evaluate_cells evaluates (its ``runs``), and the syntax errors; names that
+    depend on the calling cell written into the formulas (``inliner``)."""
     if grouped is not None and vectorize:
         grouped.check(len(formulas))
         runs, errors = list(grouped.runs), dict(grouped.errors)
     else:
         runs, errors = _runs(formulas, vectorize)
+    if inliner is not None and inliner.active:
+        runs = [r for run in runs for r in _inlined(run, inliner)]
     if book.tables:
         runs = [dataclasses.replace(r, node=resolve(r.node, book, r.sheet, r.first, r.col))
                 for r in runs]
     return runs, errors
+
+
+def _inlined(run: Run, inliner: NameInliner) -> list[Run]:
+    """A run with its calling-cell-dependent names written in: one run still if the
+    names read the same way down it (no wrap at the sheet's edge), else cell by cell."""
+    first = inliner.inline(run.node, run.sheet, run.first, run.col)
+    if first is run.node or run.last == run.first:
+        return [dataclasses.replace(run, node=first)]
+    last = inliner.inline(ast.shift(run.node, run.last - run.first, 0), run.sheet, run.last,
+                          run.col)
+    if ast.shift(first, run.last - run.first, 0) == last:
+        return [dataclasses.replace(run, node=first)]
+    return [dataclasses.replace(run, first=r, last=r, node=inliner.inline(
+        ast.shift(run.node, r - run.first, 0), run.sheet, r, run.col))
+        for r in range(run.first, run.last + 1)]
 
 
 def _runs(formulas, vectorize: bool) -> tuple[list[Run], dict]:
@@ -308,12 +329,15 @@ def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -
 
 
 def _array_units(arrays, book: BookInfo, result: Evaluation, taint: Taint,
-                 store: Store) -> list[Unit]:
+                 store: Store, inliner: NameInliner | None = None) -> list[Unit]:
     """One unit per array formula, filling its rectangle."""
     units = []
     for (sheet, row, col), (text, area) in arrays.items():
         try:
-            node = resolve(parse(text), book, sheet, row, col)
+            node = parse(text)
+            if inliner is not None:
+                node = inliner.inline(node, sheet, row, col)
+            node = resolve(node, book, sheet, row, col)
         except FormulaSyntaxError as exc:
             for r in range(row, area[0] + 1):
                 for c in range(col, area[1] + 1):
