@@ -9,8 +9,8 @@ Excel's documented rules:
 * hidden rows: left out by SUBTOTAL 101-111 and by AGGREGATE with options 1, 3, 5, 7
   (hidden columns never are); rows a filter hid are left out by every SUBTOTAL ("ignores
   any rows that are not included in the result of a filter, no matter which
-  function_num value you use") and by AGGREGATE with any option (its page lists no
-  option that keeps them; options 1, 3, 5, 7 leave out every hidden row);
+  function_num value you use"); AGGREGATE leaves them out only with the options that
+  leave out hidden rows (option 4 "ignore nothing"; LibreOffice likewise);
 * errors: AGGREGATE with options 2, 3, 6, 7 leaves error values out; otherwise the
   function meets them as usual (the first error is the result);
 * AGGREGATE's variances (7 STDEV.S, 8 STDEV.P, 10 VAR.S, 11 VAR.P) are Excel's one-pass
@@ -46,10 +46,10 @@ READS_LAYOUT = frozenset({"SUBTOTAL", "AGGREGATE",
                           "CHAR", "CODE"})  # (the workbook's character set: text.py)
 
 
-def _left_out(ctx, arg, hidden: bool, nested: bool, errors: bool):
-    """``arg`` with the cells to leave out made empty: rows hidden (``hidden``; else the
-    rows a filter hid), cells holding SUBTOTAL/AGGREGATE (``nested``) of a reference, error
-    values (``errors``)."""
+def _left_out(ctx, arg, hidden: bool, nested: bool, errors: bool, filtered: bool = False):
+    """``arg`` with the cells to leave out made empty: rows hidden (``hidden``; else with
+    ``filtered`` the rows a filter hid), cells holding SUBTOTAL/AGGREGATE (``nested``) of a
+    reference, error values (``errors``)."""
     if not isinstance(arg, Range):
         return None if errors and isinstance(arg, ExcelError) else arg
     ref, resolver = arg.ref, ctx.resolver
@@ -57,7 +57,7 @@ def _left_out(ctx, arg, hidden: bool, nested: bool, errors: bool):
     if ref is not None and resolver is not None:
         n_rows, n_cols = arg.shape
         rows_of = getattr(resolver, "hidden_rows" if hidden else "filtered_rows", None)
-        if rows_of is not None:
+        if rows_of is not None and (hidden or filtered):
             rows = [r - ref.row1 for r in rows_of(ref.sheet)
                     if ref.row1 <= r <= ref.row2 and r - ref.row1 < n_rows]
             drop.update((i, j) for i in rows for j in range(n_cols))
@@ -105,7 +105,7 @@ def _subtotal(ctx, which, *refs):
     name = _SUBTOTAL.get(k % 100) if k in _SUBTOTAL or k - 100 in _SUBTOTAL else None
     if name is None:
         return ExcelError.VALUE
-    refs = tuple(_left_out(ctx, r, k > 100, True, False) for r in refs)
+    refs = tuple(_left_out(ctx, r, k > 100, True, False, True) for r in refs)
     return REGISTRY[name].fn(ctx, *refs)
 
 
