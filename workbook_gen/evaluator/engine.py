@@ -158,7 +158,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     store.put_constants(constants)
     name_table = Names(dict(names), book.local_names,
                        prepare=lambda node: resolve_fixed(node, book))
-    inliner = NameInliner(name_table)
+    inliner = NameInliner(name_table, wrap=dialect == "excel")
     keys = formulas
     if arrays:
         keys = dict.fromkeys(formulas)
@@ -274,17 +274,24 @@ def formula_runs(formulas, vectorize: bool, book: BookInfo,
 
 def _inlined(run: Run, inliner: NameInliner) -> list[Run]:
     """A run with its calling-cell-dependent names written in: one run still if the
-    names read the same way down it (no wrap at the sheet's edge), else cell by cell."""
+    names read the same way down it (no wrap at the sheet's edge, no reference moved off
+    it), else cell by cell."""
     first = inliner.inline(run.node, run.sheet, run.first, run.col)
     if first is run.node or run.last == run.first:
         return [dataclasses.replace(run, node=first)]
     last = inliner.inline(ast.shift(run.node, run.last - run.first, 0), run.sheet, run.last,
                           run.col)
-    if ast.shift(first, run.last - run.first, 0) == last:
+    if ast.shift(first, run.last - run.first, 0) == last and _refs_off(last) == _refs_off(first):
         return [dataclasses.replace(run, node=first)]
     return [dataclasses.replace(run, first=r, last=r, node=inliner.inline(
         ast.shift(run.node, r - run.first, 0), run.sheet, r, run.col))
         for r in range(run.first, run.last + 1)]
+
+
+def _refs_off(node: ast.Node) -> int:
+    """#REF! literals in a tree (a reference moved off the sheet becomes one)."""
+    return sum(1 for n in ast.walk(node) if isinstance(n, ast.ErrorLit)
+               and n.error is ExcelError.REF)
 
 
 def _runs(formulas, vectorize: bool) -> tuple[list[Run], dict]:

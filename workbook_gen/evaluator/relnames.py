@@ -4,7 +4,8 @@ formula.
 A name's relative references are relative to the cell that uses it: the file stores them
 as seen from A1 (``Sheet1!$H1`` read from I12 is ``Sheet1!$H12``; ``Sheet1!A1048576``,
 one row above, read from row 5 is row 4), wrapping at the sheet's edges as Excel does
-(rows modulo 1,048,576, columns modulo 16,384). A structured reference that names no
+(rows modulo 1,048,576, columns modulo 16,384; LibreOffice does not wrap: #REF!, its
+dialect). A structured reference that names no
 table, or says ``[#This Row]`` / ``@``, is likewise resolved from the calling cell.
 
 Such a name is replaced in the formula's tree by its definition, moved to the calling
@@ -18,6 +19,7 @@ from __future__ import annotations
 import dataclasses
 
 from workbook_gen.formula import ast
+from workbook_gen.xlerror import ExcelError
 
 MAX_DEPTH = 16  # names through names
 
@@ -45,32 +47,41 @@ def calling_cell_struct(node: ast.StructRef) -> bool:
     return not node.table or "@" in spec or "#this row" in spec
 
 
-def _moved(ref: ast.CellRef, drow: int, dcol: int) -> ast.CellRef:
-    row = ref.row if ref.row_abs else (ref.row - 1 + drow) % ast.MAX_ROW + 1
-    col = ref.col if ref.col_abs else (ref.col - 1 + dcol) % ast.MAX_COL + 1
+def _moved(ref: ast.CellRef, drow: int, dcol: int, wrap: bool) -> ast.CellRef | None:
+    row = ref.row if ref.row_abs else ref.row + drow
+    col = ref.col if ref.col_abs else ref.col + dcol
+    if wrap:
+        row, col = (row - 1) % ast.MAX_ROW + 1, (col - 1) % ast.MAX_COL + 1
+    elif not (1 <= row <= ast.MAX_ROW and 1 <= col <= ast.MAX_COL):
+        return None
     return dataclasses.replace(ref, row=row, col=col)
 
 
-def at_cell(node: ast.Node, row: int, col: int, sheet: str | None) -> ast.Node:
+def at_cell(node: ast.Node, row: int, col: int, sheet: str | None, wrap: bool = True
+            ) -> ast.Node:
     """A name's tree (as seen from A1) seen from cell (row, col); unqualified references
-    put on ``sheet`` (None: the calling sheet)."""
+    put on ``sheet`` (None: the calling sheet). ``wrap``: a reference moved past the
+    sheet's edge comes back at the other edge (Excel); else it is #REF! (LibreOffice)."""
     def move(ref):
-        if isinstance(ref, ast.CellRef):
-            moved = _moved(ref, row - 1, col - 1)
-            return moved if sheet is None or moved.sheet else dataclasses.replace(
-                moved, sheet=sheet)
         # (whole columns and rows have absolute rows, columns: they stay whole)
-        first, last = (_moved(c, row - 1, col - 1) for c in (ref.first, ref.last))
-        return ast.RangeRef(ref.sheet or sheet, first, last, ref.whole)
+        ends = [_moved(c, row - 1, col - 1, wrap)
+                for c in ((ref,) if isinstance(ref, ast.CellRef) else (ref.first, ref.last))]
+        if None in ends:
+            return ast.ErrorLit(ExcelError.REF)
+        if isinstance(ref, ast.CellRef):
+            return ends[0] if sheet is None or ref.sheet else dataclasses.replace(
+                ends[0], sheet=sheet)
+        return ast.RangeRef(ref.sheet or sheet, ends[0], ends[1], ref.whole)
     return ast.map_refs(node, move)
 
 
 class NameInliner:
     """Writes the calling-cell-dependent names of ``names`` (a :class:`store.Names`) into
-    formulas; ``active`` is False when the workbook has none (nothing to do)."""
+    formulas; ``active`` is False when the workbook has none (nothing to do). ``wrap``:
+    Excel's wrapping at the sheet's edges (LibreOffice's dialect: #REF! there instead)."""
 
-    def __init__(self, names):
-        self.names = names
+    def __init__(self, names, wrap: bool = True):
+        self.names, self.wrap = names, wrap
         self._dependent: dict[tuple, bool] = {}
         self.active = any(cell_dependent(n) for n in names.nodes.values()) or any(
             cell_dependent(n) for scope in names.local.values() for n in scope.values())
@@ -113,8 +124,8 @@ class NameInliner:
             if target is None:
                 return n
             home = n.sheet
-            return self.inline(at_cell(target, row, col, home), home or sheet, row, col,
-                               depth + 1)
+            return self.inline(at_cell(target, row, col, home, self.wrap), home or sheet,
+                               row, col, depth + 1)
         return map_nodes(node, ast.Name, fix)
 
 
