@@ -1,0 +1,52 @@
+"""Spill references ``A1#`` (``_xlfn.ANCHORARRAY``) and implicit intersection ``@``
+(``_xlfn.SINGLE``).
+
+References: Excel's cached values in IronCalc's Excel-saved files ironcalc__dynamic_arrays
+(``SUM(D1#)`` over a dynamic array, ``CONCAT(K1#)`` over an array entered the old way),
+ironcalc__DynamicArrays (``TAKE(A3#,3,1)``, ``SUM(A3#)`` over a SEQUENCE) and
+ironcalc__weekly_timesheet (``TEXT(A3#,"ddd")``, ``SUMIF(..., E14#)``); Microsoft's
+implicit intersection operator page for ``@`` (a range intersected with the formula's
+row or column, an array's top-left value).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from workbook_gen import audit
+from workbook_gen.formula.parser import parse
+from workbook_gen.formula.scalar import DictResolver, evaluate
+from workbook_gen.xlerror import ExcelError
+
+CORPUS = Path("/work/shared/corpus/xlsx")
+# file -> cells that call ANCHORARRAY
+FILES = {"ironcalc__dynamic_arrays.xlsx": ["Sheet1!F1", "Sheet1!M1"],
+         "ironcalc__DynamicArrays.xlsx": ["DynamicArrays!F3", "DynamicArrays!A14"],
+         "ironcalc__weekly_timesheet.xlsx": ["Timesheet!B3", "Overview!E14", "Overview!F14"]}
+
+
+@pytest.mark.parametrize("name", FILES)
+def test_spill_references_agree_with_excel(name):
+    report = audit(CORPUS / name)
+    assert report.ok, [(m.cell, m.formula, m.cached, m.recomputed) for m in report.mismatches]
+    assert not any("ANCHORARRAY" in reason for reason in report.not_checked.values())
+    for cell in FILES[name]:
+        assert cell not in report.not_checked
+
+
+def test_anchor_without_an_array_is_a_ref_error():
+    resolver = DictResolver({"A1": 3.0})
+    assert evaluate(parse("_xlfn.ANCHORARRAY(A1)"), resolver) == ExcelError.REF
+
+
+@pytest.mark.parametrize("formula, cell, expected", [
+    ("_xlfn.SINGLE(A1:A3)", ("Sheet1", 2, 3), 20.0),         # the formula's row
+    ("_xlfn.SINGLE(A1:C1)", ("Sheet1", 5, 2), 2.0),          # the formula's column
+    ("_xlfn.SINGLE(A1:A3)", ("Sheet1", 7, 3), ExcelError.VALUE),  # no intersection
+    ("_xlfn.SINGLE({4,5;6,7})", ("Sheet1", 1, 1), 4.0),     # an array: its top-left
+])
+def test_implicit_intersection(formula, cell, expected):
+    resolver = DictResolver({"A1": 10.0, "A2": 20.0, "A3": 30.0, "B1": 2.0, "C1": 3.0})
+    assert evaluate(parse(formula), resolver, cell=cell) == expected
