@@ -95,7 +95,8 @@ ROWS = [["a", 1, 10, 100, 1000, 2, 3], ["b", 2, 20, 200, 2000, 4, 5],
         ["c", 3, 30, 300, 3000, 6, 7]]
 SUMS = {"M1": "=SUM(T[[ lead]])", "M2": "=SUM(T[trail ])", "M3": "=SUM(T['[Not me']])",
         "M4": "=SUM(T['#Shame])", "M5": "=SUM(T[It''s])", "M6": "=SUM(T[[ lead]:[trail ]])",
-        "M7": "=SUM(T[[#Data],[#Totals],[trail ]])", "M8": "=SUM(T[a'@b])"}
+        "M7": "=SUM(T[[#Data],[#Totals],[trail ]])", "M8": "=SUM(T[a'@b])",
+        "M9": "=SUM(T)"}  # a bare table name: its data
 
 
 @pytest.fixture(scope="module")
@@ -119,7 +120,7 @@ def test_libreoffice_computed_what_the_cases_mean(recalculated):
     ws = openpyxl.load_workbook(recalculated, data_only=True)["Data"]
     assert [ws[f"I{r}"].value for r in range(2, 5)] == [11, 22, 33]
     assert [ws[f"J{r}"].value for r in range(2, 5)] == [2, 4, 6]
-    assert [ws[ref].value for ref in SUMS] == [6, 60, 600, 6000, 12, 66, 60, 15]
+    assert [ws[ref].value for ref in SUMS] == [6, 60, 600, 6000, 12, 66, 60, 15, 6693]
 
 
 def test_column_spellings_and_this_row_in_names_agree_with_libreoffice(recalculated):

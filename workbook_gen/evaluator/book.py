@@ -176,36 +176,49 @@ def structured_ref(node: ast.StructRef, info: BookInfo, sheet: str, row: int, co
     return ast.RangeRef(this_sheet, first, last)
 
 
+def _table_name(node: ast.Node, info: BookInfo) -> bool:
+    """A bare table name (``=SUM(Sales)``: its data rows, as ``Sales[]``); tables and
+    defined names share one namespace in Excel."""
+    return (isinstance(node, ast.Name) and node.sheet is None and bool(info.tables)
+            and info.table(node.name, "", 0, 0) is not None)
+
+
+def _structured(node: ast.Node, info: BookInfo) -> bool:
+    return isinstance(node, ast.StructRef) or _table_name(node, info)
+
+
 def resolve(node: ast.Node, info: BookInfo | None, sheet: str, row: int, col: int) -> ast.Node:
     """``node`` with its structured references made plain (as seen from one cell)."""
-    if info is None or not any(isinstance(n, ast.StructRef) for n in ast.walk(node)):
+    if info is None or not any(_structured(n, info) for n in ast.walk(node)):
         return node
-    return _map(node, lambda n: structured_ref(n, info, sheet, row, col))
+    return _map(node, lambda n: structured_ref(n, info, sheet, row, col), info)
 
 
 def resolve_fixed(node: ast.Node, info: BookInfo | None) -> ast.Node:
     """A defined name's tree with the structured references that read the same cells from
     any cell made plain; those resolved from the calling cell (no table named, this row)
     are kept for it (:mod:`relnames` writes the name into that cell's formula)."""
-    if info is None or not any(isinstance(n, ast.StructRef) for n in ast.walk(node)):
+    if info is None or not any(_structured(n, info) for n in ast.walk(node)):
         return node
     return _map(node, lambda n: n if calling_cell_struct(n)
-                else structured_ref(n, info, "", 0, 0))
+                else structured_ref(n, info, "", 0, 0), info)
 
 
-def _map(node, fn):
+def _map(node, fn, info: BookInfo):
     if isinstance(node, ast.StructRef):
         return fn(node)
+    if _table_name(node, info):
+        return fn(ast.StructRef(node.name, "[]"))
     if isinstance(node, ast.Func):
-        return ast.Func(node.name, tuple(_map(a, fn) for a in node.args), node.prefix)
+        return ast.Func(node.name, tuple(_map(a, fn, info) for a in node.args), node.prefix)
     if isinstance(node, ast.Unary):
-        return ast.Unary(node.op, _map(node.operand, fn))
+        return ast.Unary(node.op, _map(node.operand, fn, info))
     if isinstance(node, ast.Percent):
-        return ast.Percent(_map(node.operand, fn))
+        return ast.Percent(_map(node.operand, fn, info))
     if isinstance(node, ast.Binary):
-        return ast.Binary(node.op, _map(node.left, fn), _map(node.right, fn))
+        return ast.Binary(node.op, _map(node.left, fn, info), _map(node.right, fn, info))
     if isinstance(node, ast.RefOp):
-        return ast.RefOp(node.op, _map(node.left, fn), _map(node.right, fn))
+        return ast.RefOp(node.op, _map(node.left, fn, info), _map(node.right, fn, info))
     if isinstance(node, ast.Paren):
-        return ast.Paren(_map(node.inner, fn))
+        return ast.Paren(_map(node.inner, fn, info))
     return node
