@@ -50,3 +50,31 @@ def test_anchor_without_an_array_is_a_ref_error():
 def test_implicit_intersection(formula, cell, expected):
     resolver = DictResolver({"A1": 10.0, "A2": 20.0, "A3": 30.0, "B1": 2.0, "C1": 3.0})
     assert evaluate(parse(formula), resolver, cell=cell) == expected
+
+
+def test_spill_reference_beside_a_range_in_a_plain_formula(tmp_path):
+    """``SUM(A1:A2)+SUM(D1#)`` as a plain formula (the aggregates' local evaluation reads
+    it too): D1# is the dynamic array D1:D3 = SEQUENCE(3); cached 1+2+(1+2+3) by hand.
+    XlsxWriter writes any formula calling ANCHORARRAY as a dynamic array: the cell is
+    turned back into a plain formula in the written XML."""
+    import zipfile
+
+    import xlsxwriter
+    first, path = tmp_path / "dyn.xlsx", tmp_path / "plain.xlsx"
+    wb = xlsxwriter.Workbook(str(first))
+    ws = wb.add_worksheet("S")
+    ws.write_column("A1", [1, 2])
+    ws.write_dynamic_array_formula("D1:D3", "=_xlfn.SEQUENCE(3)", None, 1)
+    ws.write_column("D2", [2, 3])
+    ws.write_formula("F1", "=SUM(A1:A2)+SUM(_xlfn.ANCHORARRAY(D1))", None, 9)
+    wb.close()
+    with zipfile.ZipFile(first) as zin, zipfile.ZipFile(path, "w") as zout:
+        for item in zin.infolist():
+            data = zin.read(item.filename)
+            if item.filename == "xl/worksheets/sheet1.xml":
+                data = data.replace(b'<c r="F1" cm="1"><f t="array" ref="F1">',
+                                    b'<c r="F1"><f>')
+            zout.writestr(item, data)
+    report = audit(path)
+    assert report.ok and report.not_checked == {}, report.mismatches
+    assert report.formula_cells == 2 and report.cells_checked == 4

@@ -212,7 +212,8 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: st
         saved = Clock(given, saved.saved, saved.agree, saved.date1904)
     return evaluate_cells({k: inputs.formulas[k] for k in keys}, cached, names,
                           dialect=dialect, book=inputs.book_info(), saved=saved,
-                          iterate=inputs.book.iterate, texts=inputs.formulas)
+                          iterate=inputs.book.iterate, texts=inputs.formulas,
+                          array_texts=inputs.arrays)
 
 
 def _in_columns(cells: dict, columns: set[tuple[str, int]], leave=()) -> dict:

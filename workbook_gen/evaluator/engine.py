@@ -129,7 +129,9 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
                    arrays: Mapping[Cell, tuple[str, tuple[int, int]]] | None = None,
                    saved: vol.Clock | None = None, iterate: bool = False,
                    grouped: Grouped | None = None,
-                   texts: Mapping[Cell, str] | None = None) -> Evaluation:
+                   texts: Mapping[Cell, str] | None = None,
+                   array_texts: Mapping[Cell, tuple[str, tuple[int, int]]] | None = None
+                   ) -> Evaluation:
     """Recompute every formula (texts without '=') of a workbook; see the module doc.
 
     ``uncheckable``: cells among ``constants`` that are formulas the caller could not
@@ -139,9 +141,10 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     they fill are in ``values``. ``saved``: check volatile cells by contract (see above).
     ``iterate``: the workbook enables iterative calculation (cells on a circular reference
     are then not checked). ``grouped``: the runs of exactly ``formulas``, grouped
-    already (with ``vectorize``). ``texts``: the texts of every formula of the workbook,
-    where some are among ``constants`` (their cached values taken as they are): SUBTOTAL
-    and ISFORMULA still see them as formulas."""
+    already (with ``vectorize``). ``texts``, ``array_texts``: the texts of every formula
+    and array formula of the workbook, where some are among ``constants`` (their cached
+    values taken as they are): SUBTOTAL, ISFORMULA and spill references (ANCHORARRAY)
+    still see them as formulas."""
     if dialect not in fx.registry.DIALECTS:
         raise ValueError(f"unknown dialect {dialect!r}")
     book = book or BookInfo()
@@ -153,7 +156,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     store.hidden = {store.sheet(s): rows for s, rows in book.hidden_rows.items()}
     store.filtered = {store.sheet(s): rows for s, rows in book.filtered_rows.items()}
     store.charset = book.charset
-    store.formula_texts, store.array_formulas = texts or formulas, arrays or {}
+    store.formula_texts, store.array_formulas = texts or formulas, arrays or array_texts or {}
     store.unparsed = uncheckable or {}
     store.put_constants(constants)
     name_table = Names(dict(names), book.local_names,
