@@ -108,3 +108,18 @@ def test_excel_saved_book_reads_a_name_defined_from_another_cell(tmp_path):
     report = audit(path)
     assert report.semantics == "excel" and report.not_checked == {}
     assert report.ok and report.cells_checked == 13, report.mismatches
+
+
+def test_a_stale_cell_read_through_a_relative_name_is_the_only_source(tmp_path):
+    """A5 caches 3 for =1+1 (stale); C7 =UpLeft reads A5 (two rows up, two columns left)
+    and caches 3 as well: C7 disagrees too, but follows from A5, the one source."""
+    path = tmp_path / "stale.xlsx"
+    wb = xlsxwriter.Workbook(str(path))
+    ws = wb.add_worksheet("Sheet1")
+    wb.define_name("UpLeft", "=Sheet1!XFC1048575")
+    ws.write_formula("A5", "=1+1", None, 3)
+    ws.write_formula("C7", "=UpLeft", None, 3)
+    wb.close()
+    report = audit(path)
+    assert {m.cell: m.root for m in report.mismatches} == {"Sheet1!A5": True,
+                                                           "Sheet1!C7": False}
