@@ -25,7 +25,7 @@ from xlsxwriter.utility import xl_col_to_name, xl_rowcol_to_cell
 from ..errors import FormulaSyntaxError, WorkbookGenError, WorkbookReadError
 from ..evaluator import evaluate_cells
 from ..evaluator.keys import column_groups, pick
-from ..evaluator.relnames import at_cell, cell_dependent
+from ..evaluator.relnames import at_cell, relative_names
 from ..evaluator.store import FLOAT, type_mask, value_scale
 from ..evaluator.volatile import Clock
 from ..formula import ast, parse
@@ -152,24 +152,6 @@ def _mark_roots(inputs: AuditInputs, mismatches: list[Mismatch], differ: set[str
                 break
 
 
-def _relative_names(names: dict[str, str]) -> set[str]:
-    """The workbook's names (upper case) whose value depends on the calling cell, directly
-    or through another such name."""
-    trees = {}
-    for name, text in names.items():
-        try:
-            trees[name.upper()] = parse(str(text).lstrip("="))
-        except FormulaSyntaxError:
-            continue
-    found = {n for n, tree in trees.items() if cell_dependent(tree)}
-    while True:
-        more = {n for n, tree in trees.items() if n not in found and any(
-            isinstance(m, ast.Name) and m.name.upper() in found for m in ast.walk(tree))}
-        if not more:
-            return found
-        found |= more
-
-
 def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: str = "excel",
                       saved: Clock | None = None):
     """Cells that read ranges (MAX, MIN, SUM, INDEX, MATCH over a column), recomputed
@@ -195,7 +177,7 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: st
             continue
         used = {n.name.upper() for n in ast.walk(node) if isinstance(n, ast.Name)}
         if used and relative is None:  # (names read from the calling cell: relnames)
-            relative = _relative_names(names)
+            relative = relative_names(names)
         if any(isinstance(n, (ast.Sheets3D, ast.StructRef, ast.RefOp)) for n in ast.walk(node)
                ) or used & local_names or used & (relative or set()):
             everything = True

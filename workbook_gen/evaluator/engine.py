@@ -268,33 +268,11 @@ def formula_runs(formulas, vectorize: bool, book: BookInfo,
     else:
         runs, errors = _runs(formulas, vectorize)
     if inliner is not None and inliner.active:
-        runs = [r for run in runs for r in _inlined(run, inliner)]
+        runs = [r for run in runs for r in inliner.inline_run(run)]
     if book.tables:
         runs = [dataclasses.replace(r, node=resolve(r.node, book, r.sheet, r.first, r.col))
                 for r in runs]
     return runs, errors
-
-
-def _inlined(run: Run, inliner: NameInliner) -> list[Run]:
-    """A run with its calling-cell-dependent names written in: one run still if the
-    names read the same way down it (no wrap at the sheet's edge, no reference moved off
-    it), else cell by cell."""
-    first = inliner.inline(run.node, run.sheet, run.first, run.col)
-    if first is run.node or run.last == run.first:
-        return [dataclasses.replace(run, node=first)]
-    last = inliner.inline(ast.shift(run.node, run.last - run.first, 0), run.sheet, run.last,
-                          run.col)
-    if ast.shift(first, run.last - run.first, 0) == last and _refs_off(last) == _refs_off(first):
-        return [dataclasses.replace(run, node=first)]
-    return [dataclasses.replace(run, first=r, last=r, node=inliner.inline(
-        ast.shift(run.node, r - run.first, 0), run.sheet, r, run.col))
-        for r in range(run.first, run.last + 1)]
-
-
-def _refs_off(node: ast.Node) -> int:
-    """#REF! literals in a tree (a reference moved off the sheet becomes one)."""
-    return sum(1 for n in ast.walk(node) if isinstance(n, ast.ErrorLit)
-               and n.error is ExcelError.REF)
 
 
 def _runs(formulas, vectorize: bool) -> tuple[list[Run], dict]:

@@ -18,7 +18,9 @@ from __future__ import annotations
 
 import dataclasses
 
+from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.formula import ast
+from workbook_gen.formula.parser import parse
 from workbook_gen.xlerror import ExcelError
 
 MAX_DEPTH = 16  # names through names
@@ -127,6 +129,46 @@ class NameInliner:
             return self.inline(at_cell(target, row, col, home, self.wrap), home or sheet,
                                row, col, depth + 1)
         return map_nodes(node, ast.Name, fix)
+
+
+    def inline_run(self, run) -> list:
+        """A run (:class:`grouping.Run`) with its calling-cell-dependent names written in:
+        one run still if the names read the same way down it (no wrap at the sheet's
+        edge, no reference moved off it), else cell by cell."""
+        first = self.inline(run.node, run.sheet, run.first, run.col)
+        if first is run.node or run.last == run.first:
+            return [dataclasses.replace(run, node=first)]
+        span = run.last - run.first
+        last = self.inline(ast.shift(run.node, span, 0), run.sheet, run.last, run.col)
+        if ast.shift(first, span, 0) == last and _refs_off(last) == _refs_off(first):
+            return [dataclasses.replace(run, node=first)]
+        return [dataclasses.replace(run, first=r, last=r, node=self.inline(
+            ast.shift(run.node, r - run.first, 0), run.sheet, r, run.col))
+            for r in range(run.first, run.last + 1)]
+
+
+def _refs_off(node: ast.Node) -> int:
+    """#REF! literals in a tree (a reference moved off the sheet becomes one)."""
+    return sum(1 for n in ast.walk(node) if isinstance(n, ast.ErrorLit)
+               and n.error is ExcelError.REF)
+
+
+def relative_names(names: dict[str, str]) -> set[str]:
+    """The workbook's names (upper case; name -> definition text) whose value depends on
+    the calling cell, directly or through another such name."""
+    trees = {}
+    for name, text in names.items():
+        try:
+            trees[name.upper()] = parse(str(text).lstrip("="))
+        except FormulaSyntaxError:
+            continue
+    found = {n for n, tree in trees.items() if cell_dependent(tree)}
+    while True:
+        more = {n for n, tree in trees.items() if n not in found and any(
+            isinstance(m, ast.Name) and m.name.upper() in found for m in ast.walk(tree))}
+        if not more:
+            return found
+        found |= more
 
 
 def map_nodes(node: ast.Node, kind, fn) -> ast.Node:
