@@ -104,7 +104,9 @@ def _clean(x: float | ExcelError) -> float | ExcelError:
 
 
 # functions whose arguments Excel evaluates as arrays even outside an array formula
-ARRAY_ARGUMENTS = frozenset({"SUMPRODUCT", "MMULT", "TRANSPOSE", "MDETERM", "MINVERSE"})
+# (AGGREGATE: its array form, 14-19; the reference form refuses an array, subtotal.py)
+ARRAY_ARGUMENTS = frozenset({"SUMPRODUCT", "MMULT", "TRANSPOSE", "MDETERM", "MINVERSE",
+                             "AGGREGATE"})
 
 
 class Evaluator:

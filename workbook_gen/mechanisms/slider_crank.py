@@ -17,10 +17,11 @@ alpha_2 = (q'' h - q' h') / h^2.
 
 from __future__ import annotations
 
-from ..expr import Node, atan2, cos, degrees, eq, if_, iserror, radians, root, sin, sqrt
+from ..expr import (Node, abs_, atan2, cos, degrees, eq, gt, if_, iserror, radians, root, sin,
+                    sqrt)
 from .angles import cos_deg, reduced_input, sin_deg, sin_half_squared
 from .base import Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span, Template
-from .base import quantity_vars, speed_scale, symbols
+from .base import only_if, quantity_vars, speed_scale, symbols
 
 l_AB, l_BC, e, phi_slide, omega_1 = symbols("l_AB l_BC e phi_slide omega_1")
 (theta_1, u_B, n_B, h_BC, dh_BC, ddh_BC, s_C, v_C, a_C, theta_2, omega_2,
@@ -129,6 +130,10 @@ def _time_ratio() -> Node:
 
 
 TIME_RATIO: Node = _time_ratio()
+# The crank turns fully, the rod never tangent to the slide line: the exact stroke and the
+# time ratio hold (at l_BC = l_AB + |e| the rod is tangent at one crank angle).
+FULL_TURN: Node = gt(l_BC, l_AB + abs_(e))
+FULL_TURN_TEXT = "l_BC > l_AB + |e|"
 
 TEMPLATE = Template(
     id="slider_crank",
@@ -149,11 +154,12 @@ TEMPLATE = Template(
     ),
     spans=(Span("stroke", "s_C"), Span("rod swing", "theta_2")),
     figures=(
-        Figure("stroke, exact", "mm", sqrt((l_BC + l_AB) ** 2 - e ** 2)
-               - sqrt((l_BC - l_AB) ** 2 - e ** 2),
-               "between the dead centres (rod and crank in line); needs l_BC > l_AB + |e|"),
-        Figure("time ratio", "", TIME_RATIO,
-               "working stroke time over return stroke time; needs l_BC > l_AB + |e|"),
+        Figure("stroke, exact", "mm", only_if(sqrt((l_BC + l_AB) ** 2 - e ** 2)
+                                              - sqrt((l_BC - l_AB) ** 2 - e ** 2),
+                                              FULL_TURN, FULL_TURN_TEXT),
+               f"between the dead centres (rod and crank in line); needs {FULL_TURN_TEXT}"),
+        Figure("time ratio", "", only_if(TIME_RATIO, FULL_TURN, FULL_TURN_TEXT),
+               f"working stroke time over return stroke time; needs {FULL_TURN_TEXT}"),
     ),
     links=_links(),
     length_unit_m=1e-3,

@@ -124,6 +124,9 @@ def _aggregate(ctx, which, options, *args):
             return ExcelError.VALUE
         data = _left_out(ctx, args[0], hidden, nested, errors)
         return REGISTRY[name].fn(ctx, data, c.scalar_of(args[1]))
+    if ctx.dialect == "excel" and any(isinstance(a, Range) and a.ref is None for a in args):
+        return ExcelError.VALUE  # Excel's reference form takes references only (LibreOffice
+        # also takes an array: AGGREGATE(9,6,A1:A3/(B1:B3="ok")) is 12 there, measured 7.4)
     args = tuple(_left_out(ctx, a, hidden, nested, errors) for a in args)
     if k in _ONE_PASS:
         return _one_pass(ctx, args, *_ONE_PASS[k])
