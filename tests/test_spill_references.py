@@ -78,3 +78,29 @@ def test_spill_reference_beside_a_range_in_a_plain_formula(tmp_path):
     report = audit(path)
     assert report.ok and report.not_checked == {}, report.mismatches
     assert report.formula_cells == 2 and report.cells_checked == 4
+
+
+def test_sheet_numbers_count_chart_sheets(tmp_path):
+    """Microsoft's SHEET page: every sheet counts, chart sheets and hidden ones too.
+    Sheets: Data, a chart sheet, Main (hidden Data2 last); cached values by that rule."""
+    import xlsxwriter
+    path = tmp_path / "sheets.xlsx"
+    wb = xlsxwriter.Workbook(str(path))
+    data = wb.add_worksheet("Data")
+    data.write_column("A1", [1, 2, 3])
+    chart_sheet = wb.add_chartsheet("Chart1")
+    chart = wb.add_chart({"type": "line"})
+    chart.add_series({"values": "=Data!$A$1:$A$3"})
+    chart_sheet.set_chart(chart)
+    main = wb.add_worksheet("Main")
+    wb.add_worksheet("Data2").hide()
+    for ref, formula, value in [("A1", "=_xlfn.SHEET()", 3), ("A2", "=_xlfn.SHEETS()", 4),
+                                ("A3", '=_xlfn.SHEET("chart1")', 2),
+                                ("A4", "=_xlfn.SHEET(Data!A1:A3)", 1),
+                                ("A5", '=_xlfn.SHEET("Data2")', 4),
+                                ("A6", '=_xlfn.SHEET("Nowhere")', "#N/A")]:
+        main.write_formula(ref, formula, None, value)
+    wb.close()
+    report = audit(path)
+    assert report.not_checked == {}
+    assert report.ok and report.cells_checked == 6, report.mismatches

@@ -64,12 +64,12 @@ def tables_report():
 
 
 def test_excel_tables_file_recomputes_every_structured_reference(tables_report):
-    """Every formula cell of the Excel-saved file agrees with what Excel cached; only the
-    SHEET cells (a function outside this work) are not checked."""
+    """Every formula cell of the Excel-saved file is recomputed and agrees with what Excel
+    cached (SHEET of tables, names and sheet names among them)."""
     report = tables_report
     assert report.ok, [(m.cell, m.formula, m.cached, m.recomputed) for m in report.mismatches]
-    assert set(report.not_checked.values()) <= {"unsupported function SHEET"}
-    assert report.cells_checked >= 201
+    assert report.not_checked == {}
+    assert report.cells_checked == report.formula_cells == 212
 
 
 @pytest.mark.parametrize("sheet, ref", [

@@ -78,8 +78,19 @@ class AuditInputs:
                         [name for name, kind in self.book.other_sheets if kind == MISSING_PART],
                         {s.name: frozenset(s.hidden_rows) for s in self.book.sheets
                          if s.hidden_rows}, filtered,
+                        all_sheets=self._all_sheets(),
                         charset="mac_roman" if "macintosh" in (self.book.application or
                                                                "").lower() else "cp1252")
+
+    def _all_sheets(self) -> list[str]:
+        """Every sheet's name in the workbook's order: the worksheets at their positions
+        (``Sheet.index``), the other sheets, listed in order, at the positions left."""
+        book = self.book
+        by_position = {s.index: s.name for s in book.sheets}
+        left = (i for i in range(len(book.sheets) + len(book.other_sheets))
+                if i not in by_position)
+        by_position.update(zip(left, (name for name, _ in book.other_sheets)))
+        return [by_position[i] for i in sorted(by_position)]
 
     @property
     def formula_count(self) -> int:

@@ -41,6 +41,9 @@ class BookInfo:
     hidden_rows: dict[str, frozenset[int]] = field(default_factory=dict)
     # of those, the rows a filter hid (an autoFilter's or a table's): SUBTOTAL 1-11 skip them
     filtered_rows: dict[str, frozenset[int]] = field(default_factory=dict)
+    # every sheet of the workbook (worksheets, chart, macro and dialog sheets) in its order:
+    # SHEET and SHEETS count them all (empty: the worksheets of ``sheets``)
+    all_sheets: list[str] = field(default_factory=list)
     # the character set of CHAR and CODE (Microsoft's CHAR page: Windows' ANSI set, cp1252;
     # the Macintosh character set in Excel for Mac)
     charset: str = "cp1252"

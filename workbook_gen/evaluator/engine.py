@@ -156,6 +156,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     store.hidden = {store.sheet(s): rows for s, rows in book.hidden_rows.items()}
     store.filtered = {store.sheet(s): rows for s, rows in book.filtered_rows.items()}
     store.charset = book.charset
+    store.all_sheets = list(book.all_sheets or book.sheets)
     store.formula_texts, store.array_formulas = texts or formulas, arrays or array_texts or {}
     store.unparsed = uncheckable or {}
     store.put_constants(constants)
