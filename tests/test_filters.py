@@ -107,6 +107,9 @@ def test_excel_filtered_tables_agree_with_excel():
     (b'<x:autoFilter ref="C3:D9"><x:filterColumn colId="1"><x:customFilters>'
      b'<x:customFilter operator="greaterThan" val="20"/></x:customFilters></x:filterColumn>'
      b'</x:autoFilter>', "C3:D9"),                                  # a prefixed part
+    (b'<customSheetViews><customSheetView guid="{0}"><autoFilter ref="A1:B7"><filterColumn'
+     b' colId="0"><filters><filter val="x"/></filters></filterColumn></autoFilter>'
+     b'</customSheetView></customSheetViews>', None),               # a custom view's filter
 ])
 def test_sheet_autofilter_filters_only_with_a_criterion(tail, active):
     assert _active(b"<mergeCells/>" + tail + b"<pageMargins/>") == active

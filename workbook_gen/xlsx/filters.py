@@ -19,6 +19,7 @@ from workbook_gen.xlsx.limits import Package
 _P = rb"(?:[A-Za-z_][\w.-]*:)?"
 _END_DATA = re.compile(rb"</" + _P + rb"sheetData\s*>|<" + _P + rb"sheetData\b[^>]*/>")
 _FILTER = re.compile(rb"<(" + _P + rb")autoFilter\b([^>]*?)(/?)>")
+_VIEWS = re.compile(rb"<" + _P + rb"customSheetViews\b")  # their views' autoFilters follow
 _REF = re.compile(rb"""\sref\s*=\s*["']([^"']*)["']""")
 CRITERIA = ("filters", "customFilters", "top10", "dynamicFilter", "colorFilter", "iconFilter")
 _CRITERION = re.compile(rb"<" + _P + rb"(?:" + b"|".join(c.encode() for c in CRITERIA)
@@ -45,8 +46,11 @@ def sheet_filter(pkg: Package, part: str) -> str | None:
 
 
 def _active(tail: bytes) -> str | None:
+    """The filtering range of the sheet's own autoFilter in the part's bytes after its
+    sheet data (an autoFilter of a custom view, inside <customSheetViews>, is not it)."""
     m = _FILTER.search(tail)
-    if m is None or m.group(3):  # none, or <autoFilter .../> without columns
+    views = _VIEWS.search(tail)
+    if m is None or m.group(3) or (views is not None and views.start() < m.start()):
         return None
     end = tail.find(b"</" + m.group(1) + b"autoFilter", m.end())
     body = tail[m.end():end if end >= 0 else len(tail)]
