@@ -47,6 +47,13 @@ class BookInfo:
     # the character set of CHAR and CODE (Microsoft's CHAR page: Windows' ANSI set, cp1252;
     # the Macintosh character set in Excel for Mac)
     charset: str = "cp1252"
+    _names: tuple | None = field(default=None, repr=False, compare=False)
+
+    def is_table(self, name: str) -> bool:
+        """Does a table have this name (any case)?"""
+        if self._names is None or len(self._names[0]) != len(self.tables):
+            self._names = (tuple(self.tables), frozenset(t.name.casefold() for t in self.tables))
+        return name.casefold() in self._names[1]
 
     def table(self, name: str, sheet: str, row: int, col: int) -> Table | None:
         """The table called ``name``, or ("" ) the one holding cell (sheet, row, col)."""
@@ -183,7 +190,7 @@ def _table_name(node: ast.Node, info: BookInfo) -> bool:
     """A bare table name (``=SUM(Sales)``: its data rows, as ``Sales[]``); tables and
     defined names share one namespace in Excel."""
     return (isinstance(node, ast.Name) and node.sheet is None and bool(info.tables)
-            and info.table(node.name, "", 0, 0) is not None)
+            and info.is_table(node.name))
 
 
 def _structured(node: ast.Node, info: BookInfo) -> bool:
