@@ -25,6 +25,7 @@ from xlsxwriter.utility import xl_col_to_name, xl_rowcol_to_cell
 from ..errors import FormulaSyntaxError, WorkbookGenError, WorkbookReadError
 from ..evaluator import evaluate_cells
 from ..evaluator.keys import column_groups, pick
+from ..evaluator.relnames import at_cell, relative_names
 from ..evaluator.store import FLOAT, type_mask, value_scale
 from ..evaluator.volatile import Clock
 from ..formula import ast, parse
@@ -106,8 +107,10 @@ def _number_if_bool(v):
 MAX_ROOT_SEARCH = 5000  # mismatches beyond this are all listed as roots
 
 
-def _rectangles(node, sheet: str, names: dict[str, str], depth: int = 0):
-    """The cell rectangles (sheet, r1, c1, r2, c2) a formula reads."""
+def _rectangles(node, sheet: str, names: dict[str, str], depth: int = 0,
+                at: tuple[int, int] = (1, 1)):
+    """The cell rectangles (sheet, r1, c1, r2, c2) a formula of the cell at row and column
+    ``at`` reads (a name's relative references read from there: relnames)."""
     for n in ast.walk(node):
         if isinstance(n, ast.CellRef):
             yield (n.sheet or sheet, n.row, n.col, n.row, n.col)
@@ -119,9 +122,10 @@ def _rectangles(node, sheet: str, names: dict[str, str], depth: int = 0):
                 (v for k, v in names.items() if k.upper() == n.name.upper()), None)
             if text is not None:
                 try:
-                    yield from _rectangles(parse(str(text).lstrip("=")), sheet, names, depth + 1)
+                    tree = at_cell(parse(str(text).lstrip("=")), *at, None)
                 except FormulaSyntaxError:
-                    pass
+                    continue
+                yield from _rectangles(tree, sheet, names, depth + 1, at)
 
 
 def _mark_roots(inputs: AuditInputs, mismatches: list[Mismatch], differ: set[str]) -> None:
@@ -141,7 +145,8 @@ def _mark_roots(inputs: AuditInputs, mismatches: list[Mismatch], differ: set[str
             node = parse(m.formula)
         except FormulaSyntaxError:
             continue
-        for s, r1, c1, r2, c2 in _rectangles(node, sheet, inputs.book.defined_names):
+        for s, r1, c1, r2, c2 in _rectangles(node, sheet, inputs.book.defined_names, 0,
+                                             cell_keys[m.cell][1:]):
             if any(r1 <= r <= r2 and c1 <= c <= c2 for r, c in by_sheet.get(s, ())):
                 m.root = False
                 break
@@ -163,15 +168,18 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: st
     read: set[tuple[str, int]] = set()  # the (sheet, column) pairs those formulas read
     # (print areas and titles are names of their sheets too: they matter only where used)
     local_names = {n.upper() for s in inputs.book.sheets for n in s.defined_names}
-    everything = False  # 3-D, structured references, sheet-scoped names: read all
+    relative = None
+    everything = False  # 3-D, structured references, sheet-scoped and relative names: all
     for key in keys:
         try:
             node = parse(inputs.formulas[key])
         except FormulaSyntaxError:
             continue
-        if any(isinstance(n, (ast.Sheets3D, ast.StructRef, ast.RefOp))
-               or (isinstance(n, ast.Name) and n.name.upper() in local_names)
-               for n in ast.walk(node)):
+        used = {n.name.upper() for n in ast.walk(node) if isinstance(n, ast.Name)}
+        if used and relative is None:  # (names read from the calling cell: relnames)
+            relative = relative_names(names)
+        if any(isinstance(n, (ast.Sheets3D, ast.StructRef, ast.RefOp)) for n in ast.walk(node)
+               ) or used & local_names or used & (relative or set()):
             everything = True
             break
         for sheet, _, c1, _, c2 in _rectangles(node, key[0], names):
@@ -190,7 +198,8 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: st
         saved = Clock(given, saved.saved, saved.agree, saved.date1904)
     return evaluate_cells({k: inputs.formulas[k] for k in keys}, cached, names,
                           dialect=dialect, book=inputs.book_info(), saved=saved,
-                          iterate=inputs.book.iterate)
+                          iterate=inputs.book.iterate, texts=inputs.formulas,
+                          array_texts=inputs.arrays)
 
 
 def _in_columns(cells: dict, columns: set[tuple[str, int]], leave=()) -> dict:

@@ -42,7 +42,8 @@ import numpy as np
 
 from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.evaluator import cycles, graph, volatile as vol
-from workbook_gen.evaluator.book import BookInfo, resolve
+from workbook_gen.evaluator.book import BookInfo, resolve, resolve_fixed
+from workbook_gen.evaluator.relnames import NameInliner
 from workbook_gen.evaluator.taint import Taint
 from workbook_gen.evaluator.grouping import Grouped, Run, group_formulas
 from workbook_gen.evaluator.store import Names, SheetResolver, Store, value_scale
@@ -128,7 +129,10 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
                    dialect: str = "excel", book: BookInfo | None = None,
                    arrays: Mapping[Cell, tuple[str, tuple[int, int]]] | None = None,
                    saved: vol.Clock | None = None, iterate: bool = False,
-                   grouped: Grouped | None = None) -> Evaluation:
+                   grouped: Grouped | None = None,
+                   texts: Mapping[Cell, str] | None = None,
+                   array_texts: Mapping[Cell, tuple[str, tuple[int, int]]] | None = None
+                   ) -> Evaluation:
     """Recompute every formula (texts without '=') of a workbook; see the module doc.
 
     ``uncheckable``: cells among ``constants`` that are formulas the caller could not
@@ -138,7 +142,10 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     they fill are in ``values``. ``saved``: check volatile cells by contract (see above).
     ``iterate``: the workbook enables iterative calculation (cells on a circular reference
     are then not checked). ``grouped``: the runs of exactly ``formulas``, grouped
-    already (with ``vectorize``)."""
+    already (with ``vectorize``). ``texts``, ``array_texts``: the texts of every formula
+    and array formula of the workbook, where some are among ``constants`` (their cached
+    values taken as they are): SUBTOTAL, ISFORMULA and spill references (ANCHORARRAY)
+    still see them as formulas."""
     if dialect not in fx.registry.DIALECTS:
         raise ValueError(f"unknown dialect {dialect!r}")
     book = book or BookInfo()
@@ -155,12 +162,15 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
     store = Store(sheets, book.sheets)
     store.unreadable = {s.lower() for s in book.unreadable}
     store.hidden = {store.sheet(s): rows for s, rows in book.hidden_rows.items()}
+    store.filtered = {store.sheet(s): rows for s, rows in book.filtered_rows.items()}
     store.charset = book.charset
-    store.formula_texts, store.array_formulas = formulas, arrays or {}
+    store.all_sheets = list(book.all_sheets or book.sheets)
+    store.formula_texts, store.array_formulas = texts or formulas, arrays or array_texts or {}
     store.unparsed = uncheckable or {}
     store.put_constants(constants)
     name_table = Names(dict(names), book.local_names,
-                       prepare=lambda node: resolve(node, book, "", 0, 0))
+                       prepare=lambda node: resolve_fixed(node, book))
+    inliner = NameInliner(name_table, wrap=dialect == "excel")
     keys = formulas
     if arrays:
         keys = dict.fromkeys(formulas)
@@ -175,7 +185,7 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
         _source(result, taint, cell, cell, reason)
 
     clock = time.perf_counter()
-    runs, errors = formula_runs(formulas, vectorize, book, grouped)
+    runs, errors = formula_runs(formulas, vectorize, book, grouped, inliner)
     for run in runs:  # store.note of every formula cell (a run's last is its lowest)
         store.note(run.sheet, run.last, run.col)
     for sheet, row, col in errors:
@@ -191,7 +201,7 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
             store.put(*cell, SYNTAX_VALUE)
             _source(result, taint, cell, cell, f"formula syntax: {message}")
     units = _units(runs, vectorize, store, result)
-    units += _array_units(arrays or {}, book, result, taint, store)
+    units += _array_units(arrays or {}, book, result, taint, store, inliner)
     for cell in result.external:
         _source(result, taint, cell, cell, "external reference")
     _report_functions(units, result)
@@ -257,13 +267,17 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
 
 
 def formula_runs(formulas, vectorize: bool, book: BookInfo,
-                 grouped: Grouped | None = None) -> tuple[list[Run], dict]:
-    """The runs evaluate_cells evaluates (its ``runs``), and the syntax errors."""
+                 grouped: Grouped | None = None, inliner: NameInliner | None = None
+                 ) -> tuple[list[Run], dict]:
+    """The runs evaluate_cells evaluates (its ``runs``), and the syntax errors; names that
+    depend on the calling cell written into the formulas (``inliner``)."""
     if grouped is not None and vectorize:
         grouped.check(len(formulas))
         runs, errors = list(grouped.runs), dict(grouped.errors)
     else:
         runs, errors = _runs(formulas, vectorize)
+    if inliner is not None and inliner.active:
+        runs = [r for run in runs for r in inliner.inline_run(run)]
     if book.tables:
         runs = [dataclasses.replace(r, node=resolve(r.node, book, r.sheet, r.first, r.col))
                 for r in runs]
@@ -312,12 +326,15 @@ def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -
 
 
 def _array_units(arrays, book: BookInfo, result: Evaluation, taint: Taint,
-                 store: Store) -> list[Unit]:
+                 store: Store, inliner: NameInliner | None = None) -> list[Unit]:
     """One unit per array formula, filling its rectangle."""
     units = []
     for (sheet, row, col), (text, area) in arrays.items():
         try:
-            node = resolve(parse(text), book, sheet, row, col)
+            node = parse(text)
+            if inliner is not None:
+                node = inliner.inline(node, sheet, row, col)
+            node = resolve(node, book, sheet, row, col)
         except FormulaSyntaxError as exc:
             for r in range(row, area[0] + 1):
                 for c in range(col, area[1] + 1):

@@ -83,6 +83,8 @@ class Store:
         self.rect_cache: dict[tuple, Range] = {}
         self.extent: dict[str, list[int]] = {}
         self.hidden: dict[str, frozenset[int]] = {}  # sheet -> its hidden rows
+        self.filtered: dict[str, frozenset[int]] = {}  # sheet -> the rows a filter hid
+        self.all_sheets: list[str] = []  # every sheet in the workbook's order (SHEET)
         self.charset = "cp1252"  # CHAR and CODE's character set (BookInfo.charset)
         self.formula_texts: Mapping[tuple[str, int, int], str] = {}  # for subtotal_cells
         self.array_formulas: Mapping[tuple[str, int, int], tuple] = {}  # (text, (r2, c2))
@@ -424,6 +426,27 @@ class SheetResolver:
     def hidden_rows(self, sheet) -> frozenset[int]:
         """The hidden rows of a sheet (SUBTOTAL 101-111, AGGREGATE)."""
         return self.store.hidden.get(self._sheet(sheet), frozenset())
+
+    def sheet_number(self, name: str | None) -> int | None:
+        """1-based position of a sheet among all the workbook's sheets (``None``: this
+        formula's sheet), or None for no such sheet (SHEET)."""
+        folded = (self.sheet if name is None else name).lower()
+        return next((i for i, s in enumerate(self.store.all_sheets, 1)
+                     if s.lower() == folded), None)
+
+    def sheet_count(self) -> int:
+        """How many sheets the workbook has (SHEETS())."""
+        return len(self.store.all_sheets)
+
+    def spill_area(self, sheet, row: int, col: int) -> tuple[int, int] | None:
+        """(last row, last column) of the array formula anchored at the cell, or None
+        (ANCHORARRAY)."""
+        found = self.store.array_formulas.get((self._sheet(sheet), row, col))
+        return None if found is None else found[1]
+
+    def filtered_rows(self, sheet) -> frozenset[int]:
+        """The rows of a sheet a filter hid (SUBTOTAL 1-11 leave them out too)."""
+        return self.store.filtered.get(self._sheet(sheet), frozenset())
 
     def charset(self) -> str:
         """The workbook's character set for CHAR and CODE ("cp1252" or "mac_roman")."""

@@ -1,5 +1,6 @@
 """References themselves: ROW, COLUMN, ROWS, COLUMNS, AREAS, OFFSET and INDIRECT (volatile,
-and evaluated), ADDRESS, TRANSPOSE. A reference argument is a Range with ``.ref``."""
+and evaluated), ADDRESS, TRANSPOSE; SHEET and SHEETS (the sheets' order from the resolver:
+``sheet_number``, ``sheet_count``). A reference argument is a Range with ``.ref``."""
 
 from __future__ import annotations
 
@@ -171,3 +172,44 @@ def _address(ctx, row, col, absolute=1.0, a1=True, sheet=_OMITTED):
 def _transpose(ctx, v):
     area = c.as_area(v)
     return Range.array_of(zip(*area.rows)) if area.rows else area
+
+
+# -- sheets ---------------------------------------------------------------------------------
+
+def _plain_args(nodes) -> bool:
+    """SHEET and SHEETS of a 3-D reference are not computed (not checked)."""
+    from workbook_gen.formula import ast
+    return not any(isinstance(n, ast.Sheets3D) for a in nodes for n in ast.walk(a))
+
+
+@register("SHEET", "info", 0, 1, "ref", omitted=True, accepts=_plain_args)
+def _sheet(ctx, value=None):
+    """The sheet's number among all the workbook's sheets (Microsoft's SHEET page: hidden
+    sheets and chart, macro and dialog sheets count): of this formula (no argument), of a
+    reference or a name's, of a sheet named by text (any case; #N/A for none)."""
+    number = getattr(ctx.resolver, "sheet_number", None)
+    if number is None:
+        return ExcelError.NA
+    if value is None:
+        found = number(None)
+    elif isinstance(value, ExcelError):
+        return value
+    elif isinstance(value, Range) and value.ref is not None:
+        found = number(value.ref.sheet)
+    else:
+        text = c.text(value)
+        if isinstance(text, ExcelError):
+            return text
+        found = number(text)
+    return ExcelError.NA if found is None else float(found)
+
+
+@register("SHEETS", "info", 0, 1, "ref", omitted=True, accepts=_plain_args)
+def _sheets(ctx, value=None):
+    """How many sheets: the workbook's (no argument), one for a reference."""
+    if isinstance(value, ExcelError):
+        return value
+    if value is None:
+        count = getattr(ctx.resolver, "sheet_count", None)
+        return ExcelError.NA if count is None else float(count())
+    return 1.0 if isinstance(value, Range) and value.ref is not None else ExcelError.VALUE
