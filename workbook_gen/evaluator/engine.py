@@ -14,7 +14,9 @@ Documented choices:
   not take is evaluated normally. With iterative calculation on (``iterate``), a run-time
   cycle's component is not checked (Excel's iteration is not modelled);
 - every cell that cannot be recomputed, and every cell that reads one (directly or
-  through others), is in ``not_checked`` with the reason (:mod:`taint`);
+  through others), is in ``not_checked`` with the reason (:mod:`taint`); given ``saved``,
+  such a cell with a cached value holds it for its readers, which are then checked (the
+  consistency rule of :mod:`taint`);
 - a formula that does not parse gets ``#NAME?`` and its message in ``syntax_errors``;
 - an external reference (``[1]Sheet!A1``) gives ``#REF!`` and the cell is in ``external``;
 - an unsupported function gives ``#NAME?`` where it is evaluated; a volatile function
@@ -162,7 +164,8 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
             store.note(sheet, r2, c2)
     result = Evaluation(CellMap(keys, store.get), CellMap(keys, store.scale),
                         store=store, bad_names=dict(name_table.errors))
-    taint = Taint()
+    taint = Taint(None if saved is None else saved.cached,
+                  lambda cell, value: store.put(*cell, value, value_scale(value)))
     for cell, reason in (uncheckable or {}).items():
         _source(result, taint, cell, cell, reason)
 
@@ -187,6 +190,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     for cell in result.external:
         _source(result, taint, cell, cell, "external reference")
     _report_functions(units, result)
+    taint.flush()
 
     result.seconds["grouping"] = time.perf_counter() - clock
     clock = time.perf_counter()
@@ -212,6 +216,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
         if graph.is_cycle(component, deps):
             _cycle([units[u] for u in component], [shapes[u] for u in component], taint,
                    result, store, name_table, dialect, iterate)
+            taint.flush()
             continue
         for u in component:
             head = (units[u].sheet, units[u].first, units[u].col)
@@ -222,6 +227,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
                 _spread(units[u], shapes[u], taint, result, by_contract)
             if by_contract:
                 _settle(units[u], store, name_table, dialect, saved, result)
+                taint.flush()
                 continue
             clock = time.perf_counter()
             try:
@@ -235,6 +241,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
                             f"evaluator failure: {type(exc).__name__}: {exc}")
             spent["vector" if units[u].block is not None else "scalar"] += (
                 time.perf_counter() - clock)
+            taint.flush()
     result.seconds.update(spent)
     if result.cycles:
         _show_circular(store, cycles.shown(dialect))
@@ -343,11 +350,16 @@ def _where(cell: Cell) -> str:
     return f"{quote_sheet(cell[0])}!{column_letters(cell[2])}{cell[1]}"
 
 
-def _source(result: Evaluation, taint: Taint, cell: Cell, origin: Cell, reason: str) -> None:
-    """``cell`` cannot be recomputed (``origin`` is the cell the reason is about)."""
+def _source(result: Evaluation, taint: Taint, cell: Cell, origin: Cell, reason: str,
+            hold: bool = True) -> None:
+    """``cell`` cannot be recomputed (``origin`` is the cell the reason is about); with
+    ``hold``, its cached value stands for it (the consistency rule of :mod:`taint`)."""
     if cell not in result.not_checked:
         result.not_checked[cell] = reason
-        taint.add(cell[0], cell[2], cell[1], cell[1], origin)
+        if hold:
+            taint.mark(cell, origin)
+        else:
+            taint.add(cell[0], cell[2], cell[1], cell[1], origin)
 
 
 def _changing(result: Evaluation, cell: Cell) -> list[str]:
@@ -390,7 +402,7 @@ def _spread(unit: Unit, shaped: tuple, taint: Taint, result: Evaluation,
             for cell in cells:
                 if cell not in result.not_checked:
                     result.not_checked[cell] = f"depends on {_where(origin)}: {why}"
-                    taint.add(unit.sheet, unit.col, cell[1], cell[1], origin)
+                    taint.mark(cell, origin)
 
 
 def _cycle(members: list[Unit], shaped: list, taint: Taint, result: Evaluation,
@@ -424,7 +436,9 @@ def _cycle(members: list[Unit], shaped: list, taint: Taint, result: Evaluation,
                "too large or not evaluated" if len(cells) > cycles.MAX_CELLS else "")
         for cell in cells:
             store.put(*cell, CYCLE_VALUE)
-            _source(result, taint, cell, cell, f"circular reference ({where}) {why}".strip())
+            # (not held: Excel's cached values around a cycle are not mutually consistent)
+            _source(result, taint, cell, cell, f"circular reference ({where}) {why}".strip(),
+                    hold=False)
         return
     result.cycles.extend(found)
     for unit, shape in zip(members, shaped):
