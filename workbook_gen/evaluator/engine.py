@@ -108,6 +108,8 @@ class Evaluation:
     operands_scale: Mapping[Cell, float]
     cycles: list[list[Cell]] = field(default_factory=list)
     unsupported: dict[Cell, list[str]] = field(default_factory=dict)
+    # cells among ``unsupported`` whose evaluation took no branch calling one: recomputed
+    avoided: set[Cell] = field(default_factory=set)
     syntax_errors: dict[Cell, str] = field(default_factory=dict)
     volatile: dict[Cell, list[str]] = field(default_factory=dict)
     external: list[Cell] = field(default_factory=list)
@@ -220,9 +222,11 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
             continue
         for u in component:
             head = (units[u].sheet, units[u].first, units[u].col)
-            by_contract = (saved is not None and units[u].area is None
+            by_contract = (saved is not None and units[u].area in (None, head[1:])
                            and saved.cached.get(head) is not None
                            and _changing(result, head))
+            if head in result.unsupported and not by_contract and _guarded(units[u]):
+                _try_avoiding(units[u], store, name_table, dialect, result)
             if taint or shapes[u][1] or head in result.unsupported or head in result.volatile:
                 _spread(units[u], shapes[u], taint, result, by_contract)
             if by_contract:
@@ -296,7 +300,7 @@ def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -
                 store.put(run.sheet, r, run.col, EXTERNAL_VALUE)
             continue
         unit = Unit(run.sheet, run.col, run.first, run.last, run.node)
-        if run.last > run.first and vol.calls(run.node):  # checked cell by cell
+        if run.last > run.first and (vol.calls(run.node) or _guarded(run)):  # cell by cell
             units.extend(singles(unit))
             continue
         if vectorize and run.last > run.first:
@@ -345,6 +349,33 @@ def _report_functions(units: list[Unit], result: Evaluation) -> None:
                 result.volatile[cell] = volatile
 
 
+def _guarded(unit) -> bool:
+    """Does the formula call an unsupported function inside a lazy one (IF, IFERROR,
+    CHOOSE ...), so that a cell may take a branch without it?"""
+    funcs = [n for n in ast.walk(unit.node) if isinstance(n, ast.Func)]
+    return (any(n.name in fx.LAZY for n in funcs)
+            and any(n.name not in fx.REGISTRY for n in funcs))
+
+
+def _try_avoiding(unit: Unit, store: Store, names: Names, dialect: str,
+                  result: Evaluation) -> None:
+    """A single cell whose unsupported call sits in a lazy function's branch: evaluated
+    (as Excel does, the branches not taken are not evaluated); if no unsupported function
+    was reached, its value does not depend on one and the cell is checked."""
+    if unit.block is not None or unit.area is not None:
+        return
+    cell = (unit.sheet, unit.first, unit.col)
+    reached = []
+    try:
+        evaluate(unit.node, SheetResolver(store, names, unit.sheet), dialect=dialect,
+                 on_unsupported=reached.append, cell=cell)
+    except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
+            AttributeError, RecursionError):
+        return
+    if not reached:
+        result.avoided.add(cell)
+
+
 def _where(cell: Cell) -> str:
     from workbook_gen.formula.printer import column_letters, quote_sheet
     return f"{quote_sheet(cell[0])}!{column_letters(cell[2])}{cell[1]}"
@@ -370,7 +401,7 @@ def _unit_reason(unit: Unit, result: Evaluation, bad_names: list[str],
                  by_contract: bool = False) -> str | None:
     """Why a unit cannot be recomputed at all, or None."""
     cell = (unit.sheet, unit.first, unit.col)
-    if cell in result.unsupported:
+    if cell in result.unsupported and cell not in result.avoided:
         return "unsupported function " + ", ".join(result.unsupported[cell])
     changing = _changing(result, cell)
     if changing and not by_contract:
