@@ -213,6 +213,10 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
                  for s in (singles(u) if i in split else [u])]
 
     result.seconds["graph"] = time.perf_counter() - clock
+    if saved is not None and result.volatile:  # the moment of the last recalculation
+        vol.moments((((u.sheet, u.first, u.col), u.node) for u in units
+                     if u.first == u.last and u.area in (None, (u.first, u.col))),
+                    saved.cached, saved)
     spent = {"vector": 0.0, "scalar": 0.0}
     for component in components:
         if graph.is_cycle(component, deps):
