@@ -191,7 +191,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     units += _array_units(arrays or {}, book, result, taint, store)
     for cell in result.external:
         _source(result, taint, cell, cell, "external reference")
-    _report_functions(units, result)
+    _report_functions(units, result, name_table)
     taint.flush()
 
     result.seconds["grouping"] = time.perf_counter() - clock
@@ -337,12 +337,27 @@ def _array_units(arrays, book: BookInfo, result: Evaluation, taint: Taint,
     return units
 
 
-def _report_functions(units: list[Unit], result: Evaluation) -> None:
+def _unsupported(node: ast.Node, names: Names, sheet: str, depth: int = 0) -> set[str]:
+    """The functions a formula calls that the evaluator lacks, looking into the defined
+    names holding a LAMBDA that it calls by name (those are not unsupported)."""
+    out = set()
+    for name in unsupported_functions(node):
+        tree = names.node(name, None, sheet)
+        while isinstance(tree, ast.Paren):
+            tree = tree.inner
+        if isinstance(tree, ast.Func) and tree.name == "LAMBDA" and depth < 8:
+            out |= _unsupported(tree, names, sheet, depth + 1) - {name}
+        else:
+            out.add(name)
+    return out
+
+
+def _report_functions(units: list[Unit], result: Evaluation, names: Names) -> None:
     for u in units:
         called = {n.name for n in ast.walk(u.node) if isinstance(n, ast.Func)}
         if not called:
             continue
-        bad = sorted(unsupported_functions(u.node))
+        bad = sorted(_unsupported(u.node, names, u.sheet))
         volatile = sorted(called & VOLATILE)
         if not bad and not volatile:
             continue

@@ -442,6 +442,10 @@ class SheetResolver:
     def range_scale(self, sheet, row1, col1, row2, col2) -> float:
         return self.store.rect_scale(self._sheet(sheet), row1, col1, row2, col2)
 
+    def name_node(self, name: str):
+        """The tree of a defined name seen from this sheet (a LAMBDA called by name)."""
+        return self.names.node(name, None, self.sheet)
+
     def name(self, name, sheet):
         node = self.names.node(name, sheet, self.sheet)
         if node is None or self.depth >= self.MAX_NAME_DEPTH:

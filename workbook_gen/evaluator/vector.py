@@ -165,8 +165,8 @@ class _Compiler:
     def _func(self, node: ast.Func):
         name = node.name
         entry = fx.REGISTRY.get(name)
-        if entry is None:
-            return (lambda env: Const(fx.ExcelError.NAME)), False
+        if entry is None:  # unknown, or a defined name's LAMBDA: the cell-by-cell path
+            raise NotVectorizable(f"{name} is not a built-in function")
         if name in ("IF", "IFERROR"):
             return self._lazy(node)
         if name in READS_LAYOUT:  # hidden rows, nested subtotals: the cell-by-cell path

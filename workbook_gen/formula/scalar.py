@@ -240,6 +240,9 @@ class Evaluator:
     def func(self, node: ast.Func) -> Value | Range:
         entry = fx.REGISTRY.get(node.name)
         if entry is None:
+            called = lambdas.named(self, node)  # a defined name holding a LAMBDA
+            if called is not None:
+                return _clean(called) if isinstance(called, float) else called
             if self.on_unsupported is not None:
                 self.on_unsupported(node.name)
             return ExcelError.NAME
