@@ -104,6 +104,18 @@ class Store:
                         (r, k) for r in range(row, r2 + 1) for k in range(col, c2 + 1))
         return self._subtotals.get(sheet, [])
 
+    def formula_text(self, sheet: str, row: int, col: int) -> tuple[str, bool] | None:
+        """The formula of a cell as stored (without '=') and whether it is an array
+        formula's, or None (FORMULATEXT)."""
+        key = (sheet, row, col)
+        if key in self.formula_texts:
+            return self.formula_texts[key], False
+        if self.has_formula(sheet, row, col):
+            for (name, r1, c1), (text, (r2, c2)) in self.array_formulas.items():
+                if name == sheet and r1 <= row <= r2 and c1 <= col <= c2:
+                    return text, True
+        return None
+
     def has_formula(self, sheet: str, row: int, col: int) -> bool:
         """Does the cell hold a formula (its own, an array formula's, one that does not
         parse)? (ISFORMULA.)"""
@@ -435,6 +447,9 @@ class SheetResolver:
 
     def has_formula(self, sheet, row, col) -> bool:
         return self.store.has_formula(self._sheet(sheet), row, col)
+
+    def formula_text(self, sheet, row, col) -> tuple[str, bool] | None:
+        return self.store.formula_text(self._sheet(sheet), row, col)
 
     def sheets_between(self, first: str, last: str) -> list[str] | None:
         return self.store.sheets_between(first, last)

@@ -19,7 +19,7 @@ from workbook_gen.formula.scalar import Evaluator, evaluate
 
 # functions that use a reference's position or size, never its cells' values
 REFERENCE_ONLY = frozenset({"ROW", "COLUMN", "ROWS", "COLUMNS", "ISREF", "AREAS",
-                            "ISFORMULA"})
+                            "ISFORMULA", "FORMULATEXT", "SHEET", "SHEETS"})
 
 
 @dataclass
