@@ -183,7 +183,7 @@ def test_unsupported_function_is_reported_by_cell(tmp_path):
     book = xlsxwriter.Workbook(path)
     sheet = book.add_worksheet()
     sheet.write_number("A1", 1)
-    sheet.write_formula("B1", '=WEBSERVICE("http://example.com/"&A1)', None, 1)
+    sheet.write_formula("B1", '=_xlfn.WEBSERVICE("http://example.com/"&A1)', None, 1)
     sheet.write_formula("C1", "=B1*2", None, 2)       # reads B1's cached value: checked
     sheet.write_formula("D1", "=A1+1", None, 2)       # independent: checked
     book.close()
@@ -206,7 +206,7 @@ def test_reader_of_an_unrecomputable_cell_is_checked_against_its_cached_value(tm
     path = tmp_path / "webservice.xlsx"
     book = xlsxwriter.Workbook(path)
     sheet = book.add_worksheet()
-    sheet.write_formula("B1", '=WEBSERVICE("http://example.com/")', None, 21)
+    sheet.write_formula("B1", '=_xlfn.WEBSERVICE("http://example.com/")', None, 21)
     sheet.write_formula("C1", "=B1*2", None, 42)
     sheet.write_formula("C2", "=B1*2", None, 40)      # stale: disagrees
     sheet.write_formula("C3", "=C2+1", None, 43)      # follows from B1 through C2

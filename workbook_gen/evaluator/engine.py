@@ -52,6 +52,7 @@ from workbook_gen.evaluator.units import Unit, evaluate_unit, rects, shapes_of, 
 from workbook_gen.evaluator.vector import NotVectorizable, compile_block
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
+from workbook_gen.formula.functions import availability
 from workbook_gen.formula.parser import parse
 from workbook_gen.formula.scalar import evaluate, unsupported_functions
 from workbook_gen.xlerror import ExcelError
@@ -108,8 +109,12 @@ class Evaluation:
     operands_scale: Mapping[Cell, float]
     cycles: list[list[Cell]] = field(default_factory=list)
     unsupported: dict[Cell, list[str]] = field(default_factory=dict)
-    # cells among ``unsupported`` whose evaluation took no branch calling one: recomputed
+    # cells among ``unsupported`` whose evaluation took no branch calling one, or that
+    # call only unknown names (``unknown``) and cache #NAME? (the value of an unknown
+    # name; an add-in's or a macro's function would give another): recomputed
     avoided: set[Cell] = field(default_factory=set)
+    unknown: dict[Cell, str] = field(default_factory=dict)  # calling only names Excel
+    # lacks: the reason they are not checked
     syntax_errors: dict[Cell, str] = field(default_factory=dict)
     volatile: dict[Cell, list[str]] = field(default_factory=dict)
     external: list[Cell] = field(default_factory=list)
@@ -191,7 +196,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     units += _array_units(arrays or {}, book, result, taint, store)
     for cell in result.external:
         _source(result, taint, cell, cell, "external reference")
-    _report_functions(units, result, name_table)
+    _report_functions(units, result, name_table, dialect)
     taint.flush()
 
     result.seconds["grouping"] = time.perf_counter() - clock
@@ -229,8 +234,12 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
             by_contract = (saved is not None and units[u].area in (None, head[1:])
                            and saved.cached.get(head) is not None
                            and _changing(result, head))
-            if head in result.unsupported and not by_contract and _guarded(units[u]):
-                _try_avoiding(units[u], store, name_table, dialect, result)
+            if head in result.unsupported and not by_contract:
+                if (head in result.unknown and saved is not None
+                        and saved.cached.get(head) is ExcelError.NAME):
+                    result.avoided.add(head)
+                elif _guarded(units[u]):
+                    _try_avoiding(units[u], store, name_table, dialect, result)
             if taint or shapes[u][1] or head in result.unsupported or head in result.volatile:
                 _spread(units[u], shapes[u], taint, result, by_contract)
             if by_contract:
@@ -337,35 +346,55 @@ def _array_units(arrays, book: BookInfo, result: Evaluation, taint: Taint,
     return units
 
 
-def _unsupported(node: ast.Node, names: Names, sheet: str, depth: int = 0) -> set[str]:
-    """The functions a formula calls that the evaluator lacks, looking into the defined
-    names holding a LAMBDA that it calls by name (those are not unsupported)."""
-    out = set()
+def _unsupported(node: ast.Node, names: Names, sheet: str, dialect: str,
+                 depth: int = 0) -> set[str]:
+    """The functions a formula calls that the evaluator lacks (or that the application
+    lacks: a future function without its prefix), looking into the defined names holding
+    a LAMBDA that it calls by name (those are not unsupported)."""
+    out = {n.name for n in ast.walk(node) if isinstance(n, ast.Func)
+           and availability.unavailable(n.name, n.prefix, dialect)}
     for name in unsupported_functions(node):
         tree = names.node(name, None, sheet)
         while isinstance(tree, ast.Paren):
             tree = tree.inner
         if isinstance(tree, ast.Func) and tree.name == "LAMBDA" and depth < 8:
-            out |= _unsupported(tree, names, sheet, depth + 1) - {name}
+            out |= _unsupported(tree, names, sheet, dialect, depth + 1) - {name}
         else:
             out.add(name)
     return out
 
 
-def _report_functions(units: list[Unit], result: Evaluation, names: Names) -> None:
+def _report_functions(units: list[Unit], result: Evaluation, names: Names,
+                      dialect: str) -> None:
     for u in units:
         called = {n.name for n in ast.walk(u.node) if isinstance(n, ast.Func)}
         if not called:
             continue
-        bad = sorted(_unsupported(u.node, names, u.sheet))
+        bad = sorted(_unsupported(u.node, names, u.sheet, dialect))
         volatile = sorted(called & VOLATILE)
         if not bad and not volatile:
             continue
+        unknown = _unknown_reason(u.node, bad, dialect)
         for cell in u.cells():
             if bad:
                 result.unsupported[cell] = bad
+            if unknown:
+                result.unknown[cell] = unknown
             if volatile:
                 result.volatile[cell] = volatile
+
+
+def _unknown_reason(node: ast.Node, bad: list[str], dialect: str) -> str | None:
+    """Why a formula whose unsupported calls are all of names the application does not
+    know (an add-in's or a macro's, if any; a future function without its prefix) is not
+    checked, or None if some call is of a function the application knows."""
+    bare = {n.name for n in ast.walk(node) if isinstance(n, ast.Func)
+            and availability.unavailable(n.name, n.prefix, dialect)}
+    if not bad or not all(n in bare or not availability.known(n, fx.SUPPORTED) for n in bad):
+        return None
+    names = ", ".join(f"{n} (stored without its _xlfn. prefix)" if n in bare else n
+                      for n in bad)
+    return f"unknown function {names}: #NAME? unless an add-in or a macro defines it"
 
 
 def _guarded(unit) -> bool:
@@ -421,6 +450,8 @@ def _unit_reason(unit: Unit, result: Evaluation, bad_names: list[str],
     """Why a unit cannot be recomputed at all, or None."""
     cell = (unit.sheet, unit.first, unit.col)
     if cell in result.unsupported and cell not in result.avoided:
+        if cell in result.unknown:
+            return result.unknown[cell]
         return "unsupported function " + ", ".join(result.unsupported[cell])
     changing = _changing(result, cell)
     if changing and not by_contract:
