@@ -67,7 +67,19 @@ class AuditInputs:
                         {s.name: frozenset(s.hidden_rows) for s in self.book.sheets
                          if s.hidden_rows},
                         charset="mac_roman" if "macintosh" in (self.book.application or
-                                                               "").lower() else "cp1252")
+                                                               "").lower() else "cp1252",
+                        all_sheets=self._all_sheets())
+
+    def _all_sheets(self) -> list[str]:
+        """Every sheet's name in the workbook's order (worksheets know their position,
+        the others fill the remaining places in the order listed)."""
+        count = len(self.book.sheets) + len(self.book.other_sheets)
+        places: list[str | None] = [None] * count
+        for sheet in self.book.sheets:
+            if 0 <= sheet.index < count:
+                places[sheet.index] = sheet.name
+        others = iter(name for name, _ in self.book.other_sheets)
+        return [name if name is not None else next(others, "") for name in places]
 
     @property
     def formula_count(self) -> int:

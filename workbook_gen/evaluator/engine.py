@@ -157,6 +157,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     store.unreadable = {s.lower() for s in book.unreadable}
     store.hidden = {store.sheet(s): rows for s, rows in book.hidden_rows.items()}
     store.charset = book.charset
+    store.all_sheets = book.all_sheets or store.order
     store.formula_texts, store.array_formulas = formulas, arrays or {}
     store.unparsed = uncheckable or {}
     store.put_constants(constants)

@@ -84,6 +84,7 @@ class Store:
         self.extent: dict[str, list[int]] = {}
         self.hidden: dict[str, frozenset[int]] = {}  # sheet -> its hidden rows
         self.charset = "cp1252"  # CHAR and CODE's character set (BookInfo.charset)
+        self.all_sheets: list[str] = list(self.order)  # every sheet in order (SHEET, SHEETS)
         self.formula_texts: Mapping[tuple[str, int, int], str] = {}  # for subtotal_cells
         self.array_formulas: Mapping[tuple[str, int, int], tuple] = {}  # (text, (r2, c2))
         self._subtotals: dict[str, list[tuple[int, int]]] | None = None
@@ -450,6 +451,16 @@ class SheetResolver:
 
     def formula_text(self, sheet, row, col) -> tuple[str, bool] | None:
         return self.store.formula_text(self._sheet(sheet), row, col)
+
+    def sheet_number(self, sheet: str | None) -> int | None:
+        """The 1-based place of a sheet (None: this one) among all the workbook's sheets,
+        its name matched regardless of case; None if there is no such sheet."""
+        folded = (self.sheet if sheet is None else sheet).casefold()
+        return next((i + 1 for i, name in enumerate(self.store.all_sheets)
+                     if name.casefold() == folded), None)
+
+    def sheet_count(self) -> int:
+        return len(self.store.all_sheets)
 
     def sheets_between(self, first: str, last: str) -> list[str] | None:
         return self.store.sheets_between(first, last)
