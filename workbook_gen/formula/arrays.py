@@ -10,6 +10,7 @@ shorter array is #N/A. :func:`spread` lays the result over the formula's cells.
 
 from __future__ import annotations
 
+from workbook_gen.formula.functions.availability import unavailable
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
 from workbook_gen.formula.functions import lambdas
@@ -100,7 +101,7 @@ class ArrayEvaluator(Evaluator):
 
     def func(self, node: ast.Func):
         entry = fx.REGISTRY.get(node.name)
-        if entry is None:
+        if entry is None or unavailable(node.name, node.prefix, self.dialect):
             return super().func(node)
         if node.name in ("IF", "IFERROR", "IFNA"):
             return self._conditional(node)

@@ -289,3 +289,25 @@ def _nominal(ctx, effect, n):
         return xs
     r, k = xs[0], int(xs[1])
     return ExcelError.NUM if r <= 0 or k < 1 else _safe(lambda: k * ((1 + r) ** (1 / k) - 1))
+
+
+@register("RRI", "finance", 3, 3)
+def _rri(ctx, nper, pv, fv):
+    """The equivalent interest rate for the growth of ``pv`` to ``fv`` in ``nper``
+    periods: ``(fv/pv)^(1/nper) - 1``, computed as Excel does through exp and log (RRI(0.5,
+    3, 4) is 0.7777777777777775 in Excel, one ulp under the power's); #NUM! for
+    ``nper <= 0`` or ``pv = 0`` (ironcalc RRI.xlsx)."""
+    xs = _nums(nper, pv, fv)
+    if isinstance(xs, ExcelError):
+        return xs
+    n, p, f = xs
+    if n <= 0 or p == 0:
+        return ExcelError.NUM
+    ratio = f / p
+    if ratio == 0:
+        return -1.0
+    if ratio < 0:
+        from workbook_gen.formula.functions.math import power
+        root = power(ratio, 1 / n)
+        return root if isinstance(root, ExcelError) else c.result(root - 1)
+    return _safe(lambda: math.exp(math.log(ratio) / n) - 1)
