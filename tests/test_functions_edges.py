@@ -19,7 +19,7 @@ CORPUS = "/work/shared/corpus/xlsx/"
 # (file, the functions whose cells are compared, at least this many cells)
 CASES = [
     ("ironcalc__PRICE_YIELD.xlsx", ("PRICE", "YIELD", "ODDFPRICE", "ODDFYIELD", "ODDLPRICE",
-                                    "ODDLYIELD"), 150),
+                                    "ODDLYIELD"), 120),
 ]
 
 
