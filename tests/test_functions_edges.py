@@ -20,6 +20,7 @@ CORPUS = "/work/shared/corpus/xlsx/"
 CASES = [
     ("ironcalc__PRICE_YIELD.xlsx", ("PRICE", "YIELD", "ODDFPRICE", "ODDFYIELD", "ODDLPRICE",
                                     "ODDLYIELD"), 120),
+    ("ironcalc__DAYS_DAYS360.xlsx", ("DAYS360",), 40),
 ]
 
 
