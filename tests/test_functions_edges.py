@@ -21,6 +21,7 @@ CASES = [
     ("ironcalc__PRICE_YIELD.xlsx", ("PRICE", "YIELD", "ODDFPRICE", "ODDFYIELD", "ODDLPRICE",
                                     "ODDLYIELD"), 120),
     ("ironcalc__DAYS_DAYS360.xlsx", ("DAYS360",), 40),
+    ("ironcalc__COMPLEXs.xlsx", ("IMCOT", "IMCSC", "IMTAN", "IMSEC"), 60),
 ]
 
 
@@ -31,7 +32,8 @@ def same(a, b, tol=1e-9) -> bool:
 
 
 def _calls(formula: str, names) -> bool:
-    return any(re.search(rf"(?<![\w.]){re.escape(n)}\(", formula.upper()) for n in names)
+    text = formula.upper().replace("_XLFN.", "")
+    return any(re.search(rf"(?<![\w.]){re.escape(n)}\(", text) for n in names)
 
 
 @pytest.mark.parametrize("name,functions,least", CASES, ids=[c[0] for c in CASES])
