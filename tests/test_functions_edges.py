@@ -21,6 +21,7 @@ CASES = [
     ("ironcalc__PRICE_YIELD.xlsx", ("PRICE", "YIELD", "ODDFPRICE", "ODDFYIELD", "ODDLPRICE",
                                     "ODDLYIELD"), 120),
     ("ironcalc__DAYS_DAYS360.xlsx", ("DAYS360",), 40),
+    ("ironcalc__PMT.xlsx", ("PMT", "PV", "FV", "NPER"), 200),
     ("ironcalc__COMPLEXs.xlsx", ("IMCOT", "IMCSC", "IMTAN", "IMSEC"), 60),
 ]
 

@@ -172,6 +172,9 @@ FINANCE = [
     "XIRR(Data!$I$1:$I$8,Data!$J$1:$J$8)", "XIRR({-10,#N/A,1},{3,#REF!,7})",
     "IRR(Data!$D$1:$D$2)",
     "DDB(2400,300,10,2)", "EFFECT(0.0525,4)", "NOMINAL(0.053543,4)",
+    # a rate below -1 (Excel's cached values in test_functions_edges.py; at -1 Excel's #NUM!
+    # is LibreOffice's -0), a negative growth to a fractional power
+    "PMT(-3,5,100,300,1)", "PMT(-3,5,100)", "PMT(-1,1,-100)", "PMT(-2,2.5,100)",
 ]
 ENG = [
     'CONVERT(1,"lbm","kg")', 'CONVERT(68,"F","C")', 'CONVERT(2.5,"ft","sec")',
