@@ -22,6 +22,7 @@ CASES = [
                                     "ODDLYIELD"), 120),
     ("ironcalc__DAYS_DAYS360.xlsx", ("DAYS360",), 40),
     ("ironcalc__PMT.xlsx", ("PMT", "PV", "FV", "NPER"), 200),
+    ("ironcalc__MMULT.xlsx", ("MMULT",), 20),
     ("ironcalc__COMPLEXs.xlsx", ("IMCOT", "IMCSC", "IMTAN", "IMSEC"), 60),
 ]
 
@@ -44,9 +45,13 @@ def test_excel_cached_values(name, functions, least):
         pytest.fail(f"the corpus is missing: {path}")
     inputs = read_inputs(path)
     result = evaluate_cells(inputs.formulas, inputs.constants, inputs.book.defined_names,
-                            dialect="excel")
+                            dialect="excel", book=inputs.book_info(), arrays=inputs.arrays)
+    cells = dict(inputs.formulas)
+    for (sheet, r0, c0), (formula, (r1, c1)) in inputs.arrays.items():  # array formulas
+        cells.update({(sheet, r, col): formula for r in range(r0, r1 + 1)
+                      for col in range(c0, c1 + 1)})
     wrong, checked = [], 0
-    for key, formula in inputs.formulas.items():
+    for key, formula in cells.items():
         if not _calls(formula, functions) or key not in inputs.cached:
             continue
         checked += 1
