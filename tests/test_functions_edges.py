@@ -23,6 +23,7 @@ CASES = [
     ("ironcalc__DAYS_DAYS360.xlsx", ("DAYS360",), 40),
     ("ironcalc__PMT.xlsx", ("PMT", "PV", "FV", "NPER"), 200),
     ("ironcalc__MMULT.xlsx", ("MMULT",), 20),
+    ("ironcalc__link_test.xlsx", ("HYPERLINK",), 1),
     ("ironcalc__COMPLEXs.xlsx", ("IMCOT", "IMCSC", "IMTAN", "IMSEC"), 60),
 ]
 

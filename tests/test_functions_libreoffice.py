@@ -134,6 +134,8 @@ TEXT = [
     "N(TRUE)", 'NUMBERVALUE("1.234,5",",",".")',
 ]
 INFO = [
+    # an empty friendly name shows 0 (Excel's cached value in test_functions_edges.py)
+    'HYPERLINK("https://"&Data!C4,Data!C4)', 'HYPERLINK("x",)', 'HYPERLINK("x",Data!A1)',
     "ISNUMBER(Data!A1)", "ISNUMBER(Data!C3)", "ISTEXT(Data!C3)", "ISBLANK(Data!C4)",
     "ISBLANK(Data!C3)", "ISNA(Data!D1)", "ISNA(Data!D2)", "ISERR(Data!D1)", "ISERR(Data!D2)",
     "ISERROR(Data!D2)", "ISLOGICAL(Data!C2)", "ISNONTEXT(Data!C3)", "ISREF(Data!A1)",
