@@ -62,3 +62,20 @@ def test_excel_cached_values(name, functions, least):
                          f"ours {result.values[key]!r}")
     assert not wrong, "\n".join(wrong)
     assert checked >= least, checked
+
+
+def test_xnpv_sums_in_order_as_excel():
+    """XNPV at the rate Excel cached for XIRR (sheetjs formula_stress_test.xlsx Finance!B11)
+    gives the XNPV Excel cached (B12) to the last bit: the terms summed in order, whose
+    cancellation leaves -6.2E-06 of terms near 1E+04."""
+    from workbook_gen.formula import DictResolver, evaluate, parse
+    path = CORPUS + "sheetjs__formula_stress_test.xlsx"
+    if not os.path.isfile(path):
+        pytest.fail(f"the corpus is missing: {path}")
+    inputs = read_inputs(path)
+    assert inputs.formulas[("Finance", 12, 2)] == "XNPV(B11,E10:H10,E11:H11)"
+    values = {f"{col}{r}": inputs.constants[("Finance", r, c)]
+              for r in (10, 11) for col, c in zip("EFGH", range(5, 9))}
+    values["B11"] = inputs.cached[("Finance", 11, 2)]
+    got = evaluate(parse("=XNPV(B11,E10:H10,E11:H11)"), DictResolver(values), dialect="excel")
+    assert got == inputs.cached[("Finance", 12, 2)], got

@@ -232,7 +232,12 @@ def _rate_argument(x, excel: bool):
 
 
 def _xnpv(r, vs, ds):
-    return fsum([v / (1 + r) ** ((d - ds[0]) / 365.0) for v, d in zip(vs, ds)])
+    """Summed in order, as Excel does: at Excel's own XIRR rate the sheetjs
+    formula_stress_test.xlsx's XNPV (Finance!B12, -6.211546860868111E-06) to the last bit."""
+    total = 0.0
+    for v, d in zip(vs, ds):
+        total += v / (1 + r) ** ((d - ds[0]) / 365.0)
+    return total
 
 
 @register("XNPV", "finance", 3, 3, ("scalar", "range", "range"))
