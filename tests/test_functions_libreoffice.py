@@ -84,6 +84,13 @@ LOOKUP = [
     "ISFORMULA(Data!D1)", "ISFORMULA(Data!A1)", "ISFORMULA(Data!Z99)", "ISFORMULA(Data!C1:D2)",
 ]
 STATS = [
+    # criteria: "" matches empty cells and a formula's "", "=" empty cells only, "<>" all
+    # but empty cells (Data!D3 is =""); a boolean is 1 in LibreOffice's dialect only
+    'COUNTIF(Data!$D$3:$D$5,"")', 'COUNTIF(Data!$D$3:$D$5,"=")', 'COUNTIF(Data!$D$3:$D$5,"<>")',
+    'COUNTIFS(Data!$D$3:$D$5,"<>",Data!$A$3:$A$5,">0")', 'SUMIF(Data!$D$3:$D$5,"=",Data!$A$3:$A$5)',
+    f'COUNTIF({MIX},"=")', f'COUNTIF({MIX},"<>")', f'COUNTIF({MIX},TRUE)', f'COUNTIF({MIX},"TRUE")',
+    f'COUNTIF({MIX},"<>1")', f'COUNTIF({MIX},"3")', f'COUNTIF({MIX},3)', f'COUNTIF({WRD},"p?ar")',
+    f'COUNTIF({WRD},"x~*y")', f'COUNTIF({WRD},"<>*an*")', f'SUMIF({MIX},"<>1",{NUM})',
     # arrays of different sizes, one with an error; PROB's upper limit an empty cell
     "SUMPRODUCT(Data!$D$1:$D$2,Data!$A$1:$A$3)", "PROB({1,2,3},{0.2,0.3,0.5},1,Data!$K$1)",
     # Excel's Z.TEST rules are tested on Mac Excel's cells (test_excel_mac_cells.py)
@@ -275,6 +282,7 @@ def _write_book(path):
         data.cell(r + 1, 5, DATES[r])
     data["D1"] = "=NA()"
     data["D2"] = "=1/0"
+    data["D3"] = '=""'
     for r, (k, v) in enumerate(TABLE, start=1):
         data.cell(r, 6, k)
         data.cell(r, 7, v)
