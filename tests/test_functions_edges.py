@@ -24,6 +24,7 @@ CASES = [
     ("ironcalc__PMT.xlsx", ("PMT", "PV", "FV", "NPER"), 200),
     ("ironcalc__MMULT.xlsx", ("MMULT",), 20),
     ("ironcalc__link_test.xlsx", ("HYPERLINK",), 1),
+    ("formulas__test.xlsx", ("CHISQ.TEST", "CHITEST", "BETA.INV", "BETAINV"), 20),
     ("ironcalc__COMPLEXs.xlsx", ("IMCOT", "IMCSC", "IMTAN", "IMSEC"), 60),
 ]
 

@@ -91,6 +91,10 @@ STATS = [
     f'COUNTIF({MIX},"=")', f'COUNTIF({MIX},"<>")', f'COUNTIF({MIX},TRUE)', f'COUNTIF({MIX},"TRUE")',
     f'COUNTIF({MIX},"<>1")', f'COUNTIF({MIX},"3")', f'COUNTIF({MIX},3)', f'COUNTIF({WRD},"p?ar")',
     f'COUNTIF({WRD},"x~*y")', f'COUNTIF({WRD},"<>*an*")', f'SUMIF({MIX},"<>1",{NUM})',
+    # Excel's rules on Mac Excel's cells (test_functions_edges.py): a probability of 1,
+    # areas of one size and two shapes
+    "BETAINV(1,3,2)", "BETAINV(0,3,2)", "CHITEST({10,0.1;10,3.2},{0.7;0.7;0.7;0.7})",
+    "CHITEST({1,2,3},{1,2})",
     # arrays of different sizes, one with an error; PROB's upper limit an empty cell
     "SUMPRODUCT(Data!$D$1:$D$2,Data!$A$1:$A$3)", "PROB({1,2,3},{0.2,0.3,0.5},1,Data!$K$1)",
     # Excel's Z.TEST rules are tested on Mac Excel's cells (test_excel_mac_cells.py)
