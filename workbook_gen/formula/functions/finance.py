@@ -242,11 +242,16 @@ def _xnpv(r, vs, ds):
 
 @register("XNPV", "finance", 3, 3, ("scalar", "range", "range"))
 def _xnpv_fn(ctx, rate, values, dates):
+    """A rate of 0 or less is #NUM! (Mac Excel 16, formulas__test.xlsx FINANCIAL!S56, U56,
+    X56: -0.1, 0 and an empty cell); LibreOffice 7.4 (measured) refuses -1 or less only,
+    with #VALUE!."""
     r = _rate_argument(rate, _excel(ctx))
     flows = _flows(values, dates, _excel(ctx))
     for x in (r, flows):
         if isinstance(x, ExcelError):
             return x
+    if r <= (0 if _excel(ctx) else -1):
+        return ExcelError.NUM if _excel(ctx) else ExcelError.VALUE
     return _safe(_xnpv, r, *flows)
 
 
