@@ -26,7 +26,10 @@ def _shape(v) -> tuple[int, int]:
 
 
 def _multi(v) -> bool:
-    return isinstance(v, Range) and v.shape != (1, 1)
+    """An array to map over: any array but a single cell's reference (an array of one,
+    {1}, maps too: INDEX({2,3;4,5},{1}) is the one value 2, filling an array formula's
+    cells, in Mac Excel 16's formulas__test.xlsx LOOKUP!AO54:AP54)."""
+    return isinstance(v, Range) and (v.shape != (1, 1) or v.ref is None)
 
 
 def element(v, i: int, j: int):
