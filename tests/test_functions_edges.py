@@ -25,6 +25,8 @@ CASES = [
     ("ironcalc__MMULT.xlsx", ("MMULT",), 20),
     ("ironcalc__link_test.xlsx", ("HYPERLINK",), 1),
     ("formulas__test.xlsx", ("CHISQ.TEST", "CHITEST", "BETA.INV", "BETAINV"), 20),
+    # XLOOKUP mapped over its lookup value and modes, its arrays whole; a mode rounded down
+    ("formulas__test.xlsx", ("XLOOKUP", "XMATCH"), 200),
     # XNPV's rate: FINANCIAL!S56:Z56 (its array formulas and its XNPV at the XIRR of R54,
     # whose last digits are Excel's iteration's, left out)
     ("formulas__test.xlsx", ("XNPV",), 8, [("FINANCIAL", 56, col) for col in range(19, 27)]),
