@@ -181,10 +181,6 @@ def _end_of_feb(y: int, m: int, d: int) -> bool:
     return m == 2 and d == (29 if y == 1900 else calendar.monthrange(y, 2)[1])
 
 
-def _last_of_feb(d: dt.date) -> bool:
-    return d.month == 2 and d.day == calendar.monthrange(d.year, 2)[1]
-
-
 def yearfrac(s: float, e: float, basis: int) -> float | ExcelError:
     if s > e:
         s, e = e, s
@@ -236,25 +232,43 @@ def _days(ctx, end, start):
     return se if isinstance(se, ExcelError) else float(se[1] - se[0])
 
 
+def _days360_ymd(x: float, lo: bool):
+    """DAYS360's (year, month, day) of a serial: the time of day rounded to the second
+    first (Excel: 46000.999999 is 46001), serial 0 the day 0 of January 1900 and 60 the
+    29 February 1900 (the Excel-saved ironcalc DAYS_DAYS360.xlsx). LibreOffice (``lo``)
+    truncates, and its serial n is 1899-12-30 plus n days."""
+    if not lo:
+        return from_serial(math.floor(round(x * 86400.0) / 86400.0))
+    if isinstance(from_serial(x), ExcelError):
+        return ExcelError.NUM
+    d = _EPOCH + dt.timedelta(days=math.floor(x))
+    return d.year, d.month, d.day
+
+
 @register("DAYS360", "date", 2, 3)
 def _days360(ctx, a, b, european=False):
-    se = _two_dates(a, b)
+    x, y = serial_arg(a), serial_arg(b)
     eu = c.to_bool(european)
-    for x in (se, eu):
-        if isinstance(x, ExcelError):
-            return x
-    d1, d2 = _ymd_date(from_serial(se[0])), _ymd_date(from_serial(se[1]))
-    t1, t2 = d1.day, d2.day
+    for v in (x, y, eu):
+        if isinstance(v, ExcelError):
+            return v
+    lo = ctx is not None and ctx.dialect == "libreoffice"
+    d1, d2 = _days360_ymd(x, lo), _days360_ymd(y, lo)
+    for d in (d1, d2):
+        if isinstance(d, ExcelError):
+            return d
+    (y1, m1, t1), (y2, m2, t2) = d1, d2
     if eu:
         t1, t2 = min(t1, 30), min(t2, 30)
     else:
-        if _last_of_feb(d1):
+        feb_end = m1 == 2 and t1 == calendar.monthrange(y1, 2)[1]
+        if _end_of_feb(y1, m1, t1) if not lo else feb_end:
             t1 = 30
         if t1 == 31:
             t1 = 30
         if t2 == 31 and t1 >= 30:
             t2 = 30
-    return float((d2.year - d1.year) * 360 + (d2.month - d1.month) * 30 + t2 - t1)
+    return float((y2 - y1) * 360 + (m2 - m1) * 30 + t2 - t1)
 
 
 @register("DATEDIF", "date", 3, 3)

@@ -97,10 +97,14 @@ def _t(ctx, v):
     return v if isinstance(v, (str, ExcelError)) else ""
 
 
+_NOT_GIVEN = object()
+
+
 @register("HYPERLINK", "info", 1, 2)
-def _hyperlink(ctx, link, friendly=None):
-    """The text the cell shows: the friendly name, else the link."""
-    shown = link if friendly is None else friendly
+def _hyperlink(ctx, link, friendly=_NOT_GIVEN):
+    """The text the cell shows: the friendly name, else the link; an empty cell shows 0
+    (Excel, ironcalc link_test.xlsx: HYPERLINK("https://"&E21,E21) with E21 empty)."""
+    shown = link if friendly is _NOT_GIVEN else friendly
     return 0.0 if shown is None else shown
 
 

@@ -9,6 +9,8 @@ Excel's results on pycel's lookup.xlsx show).
 
 from __future__ import annotations
 
+import math
+
 from workbook_gen.formula.functions import coerce as c
 from workbook_gen.formula.functions.reference import union_area
 from workbook_gen.formula.functions.registry import register
@@ -361,7 +363,8 @@ def _modes(match_mode, search_mode):
     for x in (m, s):
         if isinstance(x, ExcelError):
             return x
-    m, s = int(m), int(s)
+    m, s = math.floor(m), math.floor(s)  # rounded down: a search mode of -1.1 is -2 (Mac
+    # Excel 16, formulas__test.xlsx LOOKUP!AH162:AW162 as AH166:AW166)
     if m not in (-1, 0, 1, 2, 3) or s not in (-2, -1, 1, 2) or (m >= 2 and s in (-2, 2)):
         return ExcelError.VALUE  # (wildcards or a regex with a binary search: #VALUE!)
     return m, s
@@ -383,7 +386,7 @@ def _xmatch(ctx, lookup, where, match_mode=0.0, search_mode=1.0):
     return ExcelError.NA if i is None else float(i + 1)
 
 
-@register("XLOOKUP", "lookup", 3, 6, ("scalar", "range", "range", "lazy"))
+@register("XLOOKUP", "lookup", 3, 6, ("scalar", "range", "range", "lazy", "scalar", "scalar"))
 def _xlookup(ctx, lookup, where, result, if_not_found=None, match_mode=None,
              search_mode=None):
     lookup = ctx.scalar(lookup())
