@@ -27,6 +27,7 @@ not: a function it lacks) is "not computed".
 from __future__ import annotations
 
 import argparse
+import datetime as dt
 import json
 import math
 import os
@@ -119,7 +120,8 @@ def cells_runner(path: str) -> dict:
             volatile += 1
         else:
             cells.append([key[0], key[1], key[2], _cell_name(key), encode(cached)])
-    return {"cells": cells, "volatile": volatile, "no_value": no_value}
+    return {"cells": cells, "volatile": volatile, "no_value": no_value,
+            "date1904": bool(inputs.book.date1904)}
 
 
 def ours_runner(path: str, cells: list) -> list:
@@ -137,7 +139,12 @@ def ours_runner(path: str, cells: list) -> list:
     return out
 
 
-def formualizer_runner(path: str, cells: list) -> list:
+def _serial(value, date1904: bool) -> float:
+    from openpyxl.utils.datetime import CALENDAR_MAC_1904, CALENDAR_WINDOWS_1900, to_excel
+    return float(to_excel(value, CALENDAR_MAC_1904 if date1904 else CALENDAR_WINDOWS_1900))
+
+
+def formualizer_runner(path: str, cells: list, date1904: bool = False) -> list:
     import formualizer
     book = formualizer.load_workbook(path)
     book.evaluate_all()
@@ -154,6 +161,8 @@ def formualizer_runner(path: str, cells: list) -> list:
                 else {"error": f"#FZ:{v}"}
         elif isinstance(v, (int, float)) and not isinstance(v, bool):
             v = float(v)
+        elif isinstance(v, (dt.datetime, dt.date, dt.time, dt.timedelta)):
+            v = _serial(v, date1904)  # formualizer gives a date-formatted number as a date
         elif not (v is None or isinstance(v, (bool, str))):
             v = {"error": f"#FZ:{type(v).__name__}"}
         out.append(v)
@@ -195,11 +204,14 @@ def child_main(engine: str, path: str, cells_file: str | None, timeout: float) -
     if engine == "cells":
         result = cells_runner(path)
     else:
-        cells = json.loads(Path(cells_file).read_text(encoding="utf-8"))
-        runner = {"ours": ours_runner, "formualizer": formualizer_runner,
-                  "ironcalc": ironcalc_runner}.get(engine)
-        result = (libreoffice_runner(path, cells, timeout) if engine == "libreoffice"
-                  else runner(path, cells))
+        given = json.loads(Path(cells_file).read_text(encoding="utf-8"))
+        cells = given["cells"]
+        if engine == "libreoffice":
+            result = libreoffice_runner(path, cells, timeout)
+        elif engine == "formualizer":
+            result = formualizer_runner(path, cells, given["date1904"])
+        else:
+            result = {"ours": ours_runner, "ironcalc": ironcalc_runner}[engine](path, cells)
     sys.stdout.write(json.dumps(result) + "\n")
 
 
@@ -238,7 +250,7 @@ def measure_file(path: Path, engines, timeout: float, tmp: Path) -> dict:
         return {"file": path.name, "cells": 0, "note": f"cells not read: {note}"}
     cells = found["cells"]
     cells_file = tmp / "cells.json"
-    cells_file.write_text(json.dumps(cells), encoding="utf-8")
+    cells_file.write_text(json.dumps(found), encoding="utf-8")
     row = {"file": path.name, "cells": len(cells), "volatile": found["volatile"],
            "no_value": found["no_value"]}
     for engine in engines:
