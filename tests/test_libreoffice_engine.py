@@ -180,9 +180,10 @@ def test_date_and_time_formatted_cells_come_back_as_serial_numbers(libreoffice, 
     sheet.write_formula("A2", "=A1+7", date, WRONG)
     sheet.write_formula("A3", "=TIME(6,0,0)", time, WRONG)
     sheet.write_formula("A4", "=DATE(2009,5,11)+TIME(18,0,0)", date, WRONG)
+    sheet.write_formula("A5", "=2958465+1", date, WRONG)  # past 9999-12-31: still a number
     wb.close()
     got = lo.recalculated_values(tmp_path / "dates.xlsx")["Table"]
-    assert got == {"A1": 39944.0, "A2": 39951.0, "A3": 0.25, "A4": 39944.75}
+    assert got == {"A1": 39944.0, "A2": 39951.0, "A3": 0.25, "A4": 39944.75, "A5": 2958466.0}
 
 
 # --- (4) failures are clean WorkbookGenErrors ------------------------------------------

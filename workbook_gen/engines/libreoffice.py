@@ -197,6 +197,9 @@ def read_formula_values(path: Path | str) -> dict[str, dict[str, object]]:
     path = Path(path)
     formulas = _formula_cells(path)
     wb = openpyxl.load_workbook(path, read_only=True, data_only=True)
+    # numbers stay numbers: openpyxl would read one in a date format as a datetime (and
+    # a serial past 9999-12-31 as an error); _cell_value converts back if it still does
+    wb._date_formats, wb._timedelta_formats = set(), set()
     try:
         result: dict[str, dict[str, object]] = {}
         for ws in wb.worksheets:

@@ -33,6 +33,14 @@ LIBREOFFICE_DIFFERENCES: tuple[Difference, ...] = (
     Difference("text argument of an aggregate", 'SUM("3",4)', 7.0, ExcelError.VALUE),
     Difference("a boolean compared with a number", "TRUE>1", True, False),
     Difference("a boolean joined to text", '"x"&TRUE', "xTRUE", "x1"),
+    Difference("zero to a negative power (^ and POWER)", "0^-1", ExcelError.DIV0,
+               ExcelError.NUM),
+    Difference("FIND and SEARCH of an empty text", 'FIND("","abc")', 1.0, ExcelError.VALUE),
+    Difference("CODE of an empty text", 'CODE("")', ExcelError.VALUE, 0.0),
+    Difference("an error as the criterion of COUNTIF, SUMIF, ...", "COUNTIF(A1:A3,NA())",
+               0.0, ExcelError.NA),
+    Difference("SUBSTITUTE of an empty text at instance 0", 'SUBSTITUTE("abc","","X",0)',
+               "abc", ExcelError.VALUE),
 )
 
 
@@ -62,6 +70,8 @@ LIBREOFFICE_ERRORS: dict[str, dict[ExcelError, ExcelError]] = {
         "BIN2HEX", "BIN2OCT", "OCT2HEX", "SQRT", "COMBIN", "PERMUT", "PERCENTILE",
         "PERCENTILE.INC", "PERCENTILE.EXC", "QUARTILE", "QUARTILE.INC", "QUARTILE.EXC")},
     "QUOTIENT": {ExcelError.DIV0: ExcelError.VALUE},
+    # measured by the differential test (tests/differential.py): CEILING(5,-2)
+    "CEILING": _INVALID, "FLOOR": _INVALID, "MEDIAN": _INVALID,
     "MODE": {ExcelError.NA: ExcelError.VALUE},
     "MODE.SNGL": {ExcelError.NA: ExcelError.VALUE},
     "CONVERT": {ExcelError.NA: ExcelError.VALUE},
@@ -109,6 +119,8 @@ def libreoffice_result(func: str, args) -> Value | None:
         x, y = args
         if x == 0 and y == 0:
             return 1.0
+        if x == 0 and y < 0:
+            return ExcelError.NUM
         if x < 0 and y != math.floor(y):
             return _odd_root(x, y)
     return None

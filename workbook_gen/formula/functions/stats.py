@@ -167,10 +167,19 @@ def _matches(pairs, ctx=None) -> list[bool] | ExcelError:
             shape = area.shape
         elif area.shape != shape:
             return ExcelError.VALUE
-        pred = c.criterion(_criterion_value(ctx, crit))
+        crit = _criterion_value(ctx, crit)
+        cells = area.flat()
+        if ctx is not None and ctx.dialect == "libreoffice":
+            # no boolean type there: TRUE is 1 in the range and as the criterion; an error
+            # as the criterion is the result (measured, tests/differential.py)
+            if isinstance(crit, ExcelError):
+                return crit
+            crit = float(crit) if isinstance(crit, bool) else crit
+            cells = [float(v) if isinstance(v, bool) else v for v in cells]
+        pred = c.criterion(crit)
         if isinstance(pred, ExcelError):
             return pred
-        hits = [pred(v) for v in area.flat()]
+        hits = [pred(v) for v in cells]
         mask = hits if mask is None else [a and b for a, b in zip(mask, hits)]
     return mask
 

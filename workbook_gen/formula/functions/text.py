@@ -135,6 +135,10 @@ def _exact(ctx, a, b):
     return ts if isinstance(ts, ExcelError) else ts[0] == ts[1]
 
 
+def _libreoffice(ctx) -> bool:
+    return getattr(ctx, "dialect", ctx) == "libreoffice"
+
+
 def _find(case: bool):
     def fn(ctx, needle, hay, start=_ABSENT):
         ts = _texts(needle, hay)
@@ -144,7 +148,7 @@ def _find(case: bool):
         if isinstance(s, ExcelError):
             return s
         n, h = ts
-        if s < 1 or s > len(h) + 1:
+        if s < 1 or s > len(h) + 1 or (not n and _libreoffice(ctx)):
             return ExcelError.VALUE
         if case:
             i = h.find(n, s - 1)
@@ -166,7 +170,7 @@ def _substitute(ctx, v, old, new, which=None):
     if isinstance(ts, ExcelError):
         return ts
     t, o, n = ts
-    if not o:
+    if not o and (which is None or not _libreoffice(ctx)):
         return t
     if which is None:
         return t.replace(o, n)
@@ -175,6 +179,8 @@ def _substitute(ctx, v, old, new, which=None):
         return k
     if k < 1:
         return ExcelError.VALUE
+    if not o:  # (LibreOffice checks the instance first)
+        return t
     i = -1
     for _ in range(k):
         i = t.find(o, i + 1)
@@ -220,7 +226,7 @@ def _code(ctx, v):
     if isinstance(t, ExcelError):
         return t
     if not t:
-        return ExcelError.VALUE
+        return 0.0 if _libreoffice(ctx) else ExcelError.VALUE
     try:
         return float(t[0].encode(_charset(ctx))[0])
     except UnicodeEncodeError:
