@@ -322,6 +322,10 @@ def main() -> int:
         for i, f in enumerate(files, 1):
             row = measure_file(f, engines, args.timeout, Path(tmp))
             rows.append(row)
+            if args.json:  # after every file: a run cut short keeps what it measured
+                record.write(args.json, {"engines": engines, "timeout": args.timeout,
+                                         "files_planned": len(files),
+                                         "totals": totals(rows, engines), "files": rows})
             print(f"  [{i}/{len(files)}] {f.name[:48]:<48} {row['cells']:>6} cells  "
                   + "  ".join(f"{e} {row[e]['r']}/{row[e]['c']}/{row[e]['n']}"
                               for e in engines if e in row)
@@ -333,7 +337,7 @@ def main() -> int:
     print_table(total, engines)
     if args.json:
         record.write(args.json, {"engines": engines, "timeout": args.timeout,
-                                 "totals": total, "files": rows})
+                                 "files_planned": len(files), "totals": total, "files": rows})
     return 0
 
 
