@@ -36,6 +36,8 @@ LIBREOFFICE_DIFFERENCES: tuple[Difference, ...] = (
     Difference("zero to a negative power (^ and POWER)", "0^-1", ExcelError.DIV0,
                ExcelError.NUM),
     Difference("FIND and SEARCH of an empty text", 'FIND("","abc")', 1.0, ExcelError.VALUE),
+    Difference("ROUND's digits beyond a 16-bit integer (ROUNDUP, ROUNDDOWN, TRUNC too)",
+               "ROUND(10,32768)", 10.0, ExcelError.VALUE),
     Difference("CODE of an empty text", 'CODE("")', ExcelError.VALUE, 0.0),
     Difference("an error as the criterion of COUNTIF, SUMIF, ...", "COUNTIF(A1:A3,NA())",
                0.0, ExcelError.NA),
@@ -102,7 +104,8 @@ def libreoffice_error(name: str, result, args=()):
     return LIBREOFFICE_ERRORS[name][result]
 
 
-NUMERIC_DEVIATIONS = frozenset({"SQRT", "ATAN2", "POWER", "LN"})
+_DIGITS = frozenset({"ROUND", "ROUNDUP", "ROUNDDOWN", "TRUNC"})
+NUMERIC_DEVIATIONS = frozenset({"SQRT", "ATAN2", "POWER", "LN"}) | _DIGITS
 
 
 def libreoffice_result(func: str, args) -> Value | None:
@@ -115,6 +118,8 @@ def libreoffice_result(func: str, args) -> Value | None:
         return 0.0
     if name == "LN" and len(args) == 1 and args[0] == 0:
         return ExcelError.VALUE
+    if name in _DIGITS and len(args) == 2 and not -32768 <= math.trunc(args[1]) <= 32767:
+        return ExcelError.VALUE  # its digits are a 16-bit integer (ROUND(10,32768))
     if name == "POWER" and len(args) == 2:
         x, y = args
         if x == 0 and y == 0:
