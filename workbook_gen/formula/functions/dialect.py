@@ -38,6 +38,7 @@ LIBREOFFICE_DIFFERENCES: tuple[Difference, ...] = (
     Difference("FIND and SEARCH of an empty text", 'FIND("","abc")', 1.0, ExcelError.VALUE),
     Difference("ROUND's digits beyond a 16-bit integer (ROUNDUP, ROUNDDOWN, TRUNC too)",
                "ROUND(10,32768)", 10.0, ExcelError.VALUE),
+    Difference("ISEVEN and ISODD of a numeric text", 'ISEVEN("4")', True, ExcelError.VALUE),
     Difference("CODE of an empty text", 'CODE("")', ExcelError.VALUE, 0.0),
     Difference("an error as the criterion of COUNTIF, SUMIF, ...", "COUNTIF(A1:A3,NA())",
                0.0, ExcelError.NA),

@@ -58,8 +58,8 @@ def _isformula(ctx, v):
 
 
 def _parity(ctx, v, odd):
-    if isinstance(v, bool):
-        return ExcelError.VALUE
+    if isinstance(v, bool) or (isinstance(v, str) and ctx.dialect == "libreoffice"):
+        return ExcelError.VALUE  # LibreOffice: any text too (ISEVEN("4"), measured)
     x = c.integer(v)
     if isinstance(x, ExcelError):
         return x

@@ -148,7 +148,9 @@ def _find(case: bool):
         if isinstance(s, ExcelError):
             return s
         n, h = ts
-        if s < 1 or s > len(h) + 1 or (not n and _libreoffice(ctx)):
+        # Microsoft: a start past the text's length is #VALUE! (SEARCH("*","") too; an
+        # empty find_text matches at the start, even just past the end)
+        if s < 1 or s > len(h) + 1 or (not n and _libreoffice(ctx)) or (n and s > len(h)):
             return ExcelError.VALUE
         if case:
             i = h.find(n, s - 1)
