@@ -264,7 +264,9 @@ LIBREOFFICE_CASES = [
     ("=FLOOR(5,-2)", VALUE, NUM),
     ('=CODE("")', 0.0, VALUE),
     ('=ISEVEN("4")', VALUE, True),  # Excel: pycel__information.xlsx ISEVEN of "1" is FALSE
-    ('=SEARCH("*","")', VALUE, VALUE),  # Microsoft: start_num past within_text's length
+    ('=SEARCH("*","")', VALUE, VALUE),
+    ('=MATCH("4",A1:A3,0)', 3.0, NA),  # LibreOffice: a numeric text finds the number
+  # Microsoft: start_num past within_text's length
     ('=SEARCH("b*","abc",3)', VALUE, VALUE),
     ("=ROUND(10,32767)", 10.0, 10.0),
     ("=ROUND(10,32768)", VALUE, 10.0),

@@ -9,6 +9,7 @@ aggregate is #VALUE!), and the operators' (``TRUE>1`` is FALSE, ``"x"&TRUE`` is 
 from __future__ import annotations
 
 import math
+import re
 from typing import NamedTuple
 
 from workbook_gen.formula.functions import coerce as c
@@ -39,6 +40,11 @@ LIBREOFFICE_DIFFERENCES: tuple[Difference, ...] = (
     Difference("ROUND's digits beyond a 16-bit integer (ROUNDUP, ROUNDDOWN, TRUNC too)",
                "ROUND(10,32768)", 10.0, ExcelError.VALUE),
     Difference("ISEVEN and ISODD of a numeric text", 'ISEVEN("4")', True, ExcelError.VALUE),
+    Difference("a numeric text or a boolean in an exact lookup", 'MATCH("10",{10},0)',
+               ExcelError.NA, 1.0),
+    Difference("ISNUMBER of a TRUE cell", "ISNUMBER(A1) with A1=TRUE", False, True),
+    Difference("LEFT and RIGHT of a negative count above -1", 'LEFT("ab",-0.5)', "",
+               ExcelError.VALUE),
     Difference("CODE of an empty text", 'CODE("")', ExcelError.VALUE, 0.0),
     Difference("an error as the criterion of COUNTIF, SUMIF, ...", "COUNTIF(A1:A3,NA())",
                0.0, ExcelError.NA),
@@ -74,7 +80,8 @@ LIBREOFFICE_ERRORS: dict[str, dict[ExcelError, ExcelError]] = {
         "PERCENTILE.INC", "PERCENTILE.EXC", "QUARTILE", "QUARTILE.INC", "QUARTILE.EXC")},
     "QUOTIENT": {ExcelError.DIV0: ExcelError.VALUE},
     # measured by the differential test (tests/differential.py): CEILING(5,-2)
-    "CEILING": _INVALID, "FLOOR": _INVALID, "MEDIAN": _INVALID,
+    "CEILING": _INVALID, "MEDIAN": _INVALID,
+    "FLOOR": {ExcelError.NUM: ExcelError.VALUE, ExcelError.DIV0: ExcelError.VALUE},
     "MODE": {ExcelError.NA: ExcelError.VALUE},
     "MODE.SNGL": {ExcelError.NA: ExcelError.VALUE},
     "CONVERT": {ExcelError.NA: ExcelError.VALUE},
@@ -140,3 +147,27 @@ def numeric_deviation(name: str, args: list) -> Value | None:
     if any(isinstance(x, ExcelError) for x in xs):
         return None
     return libreoffice_result(name, xs)
+
+
+_PLAIN_NUMBER = re.compile(r"-?(0|[1-9][0-9]*)(\.[0-9]+)?")
+
+
+def lookup_plain(v):
+    """A value as LibreOffice's exact lookups compare it: a boolean is its number and a
+    plain numeric text the number (MATCH("10",{10},0) is 1 there; not "007", " 3 " or
+    "1e2"; measured by tests/differential.py)."""
+    if isinstance(v, bool):
+        return float(v)
+    if isinstance(v, str) and _PLAIN_NUMBER.fullmatch(v):
+        return float(v)
+    return v
+
+
+def exact_lookup(ctx, lookup, values: list, first: bool = False):
+    """(lookup, values) as an exact MATCH (``first``: VLOOKUP's rows, by their first
+    cell) compares them in ``ctx``'s dialect: unchanged but in LibreOffice's."""
+    if getattr(ctx, "dialect", ctx) != "libreoffice":
+        return lookup, values
+    if first:
+        return lookup_plain(lookup), [(lookup_plain(r[0]), *r[1:]) for r in values]
+    return lookup_plain(lookup), [lookup_plain(v) for v in values]

@@ -46,7 +46,8 @@ def _side(take_left: bool):
         for x in (t, k):
             if isinstance(x, ExcelError):
                 return x
-        if k < 0:
+        if k < 0 or (_libreoffice(ctx) and n not in (_ABSENT, None)
+                     and c.to_number(n) < 0):  # LibreOffice: -0.5 too (measured)
             return ExcelError.VALUE
         return t[:k] if take_left else (t[max(len(t) - k, 0):] if k else "")
     return fn
