@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 
 from workbook_gen.formula.functions import coerce as c
+from workbook_gen.formula.functions.dialect import exact_lookup
 from workbook_gen.formula.functions.reference import union_area
 from workbook_gen.formula.functions.registry import register
 from workbook_gen.formula.values import Range, Ref
@@ -210,6 +211,7 @@ def _match(ctx, lookup, area, kind=1.0):
     if lookup is None and kind == 0:
         return ExcelError.NA
     mode = 0 if kind == 0 else (1 if kind > 0 else -1)
+    lookup, values = exact_lookup(ctx, lookup, values) if mode == 0 else (lookup, values)
     if mode == 0 and type(lookup) is float and c.as_area(area).numbers() is not None:
         try:  # a number among plain numbers: list.index compares exactly, as find()
             return float(values.index(lookup) + 1)
@@ -274,6 +276,7 @@ def _table_lookup(ctx, lookup, table, index, approx, by_rows: bool):
         return ExcelError.VALUE
     if not rows or n > len(rows[0]):
         return ExcelError.REF
+    lookup, rows = (lookup, rows) if approx else exact_lookup(ctx, lookup, rows, first=True)
     if not approx and not by_rows and _exact_pattern(lookup) is None and lookup is not None:
         i = _exact_index(rows).get(_key(lookup))  # the first equal key: find()'s answer
     else:
