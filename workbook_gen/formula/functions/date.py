@@ -17,7 +17,7 @@ from workbook_gen.formula.functions import coerce as c
 from workbook_gen.formula.functions.datetext import parse_date_text
 from workbook_gen.formula.functions.registry import register
 from workbook_gen.formula.functions.serials import (  # noqa: F401  (re-exported)
-    from_serial, max_serial, to_serial, weekday,
+    from_serial, max_serial, null_date_plus, to_serial, weekday,
 )
 from workbook_gen.xlerror import ExcelError
 
@@ -241,7 +241,7 @@ def _days360_ymd(x: float, lo: bool):
         return from_serial(math.floor(round(x * 86400.0) / 86400.0))
     if isinstance(from_serial(x), ExcelError):
         return ExcelError.NUM
-    d = _EPOCH + dt.timedelta(days=math.floor(x))
+    d = null_date_plus(math.floor(x))
     return d.year, d.month, d.day
 
 

@@ -78,6 +78,12 @@ def from_serial(x: float) -> tuple[int, int, int] | ExcelError:
     return (d.year, d.month, d.day)
 
 
+def null_date_plus(n: int) -> dt.date:
+    """LibreOffice's day of serial ``n``: its null date (1899-12-30, or 1904-01-01 in the
+    1904 system) plus ``n`` days, with no 29 February 1900."""
+    return _EPOCH + dt.timedelta(days=n + offset())
+
+
 def weekday(n: float) -> int:
     """The weekday of serial ``n``, Monday 0 ... Sunday 6, counted from the serials (the
     1900 system's first two months included)."""

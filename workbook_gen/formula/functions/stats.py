@@ -193,6 +193,8 @@ def _matches(pairs, ctx=None) -> list[bool] | ExcelError:
         crit = _criterion_value(ctx, crit)
         values = area.flat()
         if ctx is not None and ctx.dialect == "libreoffice":  # no boolean type: TRUE is 1
+            if isinstance(crit, ExcelError):  # an error criterion is the result (measured,
+                return crit                   # tests/differential.py)
             crit = _lo_number(crit)
             values = _lo_values(crit, values)
         pred = c.criterion(crit)
