@@ -14,7 +14,8 @@ before it; placeholders before the numerator's run, apart from it, take the inte
 * A zero numerator with an integer part blanks the fraction, keeping its width
   (``# ?/?`` of 1 is "1    "); the integer then shows at least one digit.
 
-Measured against SheetJS ssf's test/fraction.json and oddities.json (Excel's outputs).
+Measured against SheetJS ssf's test/fraction.json and oddities.json (Excel's outputs);
+[MS-OI29500] 2.1.713 d: ``/`` is a fraction only between number symbols.
 """
 
 from __future__ import annotations
