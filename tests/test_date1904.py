@@ -56,7 +56,7 @@ CASES = {  # formula -> what it exercises (each differs in the 1900 system)
     "=NETWORKDAYS(40000,40100)": "NETWORKDAYS", "=WORKDAY(40000,25)": "WORKDAY",
     "=WEEKNUM(40000)": "WEEKNUM", "=_xlfn.ISOWEEKNUM(40000)": "ISOWEEKNUM",
     "=DAYS360(10000,40000)": "DAYS360", "=YEARFRAC(10000,40000,1)": "YEARFRAC",
-    '=DATEDIF(10000,40000,"md")': "DATEDIF",
+    '=DATEDIF(10000,40000,"md")': "DATEDIF", "=DATE(1900,1,1500)": "days before 1904",
 }
 
 

@@ -15,6 +15,7 @@ from pathlib import Path
 
 import openpyxl
 import pytest
+from lo_sheet import recalculated_sheet
 
 from workbook_gen import audit
 from workbook_gen.engines.libreoffice import recalculate
@@ -82,6 +83,26 @@ def test_number_formats_agree_with_libreoffice(recalculated):
         theirs = "" if theirs is None else theirs
         if _ours(float(v), f) != theirs:
             wrong.append((v, f, theirs, _ours(float(v), f)))
+    assert wrong == []
+
+
+DATES = [45000.25, 45123.75, 36526.5, 61.125, 48000.5]  # March 1900 to 2^32 s (LibreOffice)
+DATE_FORMATS = [  # (LibreOffice counts dates before March 1900 on the true calendar and
+    # truncates fractions of a second; Excel keeps its 29 February 1900 and rounds)
+    "[$-409]mmmm d, yyyy", "dddd", "[h]:mm:ss", "mm:ss.0", "h:mm AM/PM",
+    "yyyy-mm-dd hh:mm:ss", "d-mmm-yy", '"Week of" mmm d', "[Red]hh:mm", "hh:mm:ss a/p",
+    "[mm]:ss", "dd/mm/yyyy h:mm", "mmmmm yy", "h \\h m \\m",
+]
+
+
+def test_date_formats_agree_with_libreoffice(libreoffice, tmp_path):
+    cells = {}
+    pairs = list(itertools.product(DATES, DATE_FORMATS))
+    for i, (v, f) in enumerate(pairs, 1):
+        cells[f"A{i}"], cells[f"B{i}"], cells[f"C{i}"] = v, f, f"=TEXT(A{i},B{i})"
+    ws = openpyxl.load_workbook(recalculated_sheet(tmp_path, "D", cells), data_only=True)["D"]
+    wrong = [(v, f, ws.cell(i, 3).value, _ours(v, f)) for i, (v, f) in enumerate(pairs, 1)
+             if _ours(v, f) != ws.cell(i, 3).value]
     assert wrong == []
 
 

@@ -1,7 +1,6 @@
-"""Dates and times as Excel's serial numbers (the workbook's date system): DATE, YEAR, MONTH, DAY, TIME,
-HOUR, MINUTE, SECOND, TODAY/NOW (volatile), EDATE, EOMONTH, YEARFRAC, WEEKDAY (WEEKNUM and
-ISOWEEKNUM in :mod:`.weeks`),
-DAYS, DAYS360, DATEDIF, DATEVALUE, TIMEVALUE, NETWORKDAYS, WORKDAY.
+"""Dates and times as Excel's serial numbers: DATE, YEAR, MONTH, DAY, TIME, HOUR, MINUTE,
+SECOND, TODAY/NOW (volatile), EDATE, EOMONTH, YEARFRAC, WEEKDAY (WEEKNUM and ISOWEEKNUM in
+:mod:`.weeks`), DAYS, DAYS360, DATEDIF, DATEVALUE, TIMEVALUE, NETWORKDAYS, WORKDAY.
 
 Serial numbers and calendar dates convert in :mod:`.serials` (the 1900 system, with its 29
 February 1900 that never was, or the 1904 system of a workbook saved with ``date1904``).
@@ -20,6 +19,7 @@ from workbook_gen.formula.functions.serials import (  # noqa: F401  (re-exported
     from_serial, max_serial, null_date_plus, to_serial, weekday,
 )
 from workbook_gen.xlerror import ExcelError
+
 
 def _date(x) -> tuple[int, int, int] | ExcelError:
     n = serial_arg(x)

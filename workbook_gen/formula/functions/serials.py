@@ -28,6 +28,7 @@ import math
 from workbook_gen.xlerror import ExcelError
 
 _EPOCH = dt.date(1899, 12, 30)
+_EPOCH_1904 = dt.date(1904, 1, 1)
 OFFSET_1904 = 1462  # days from serial 0 of 1904 back to the 1900 system's serial of that day
 MAX_SERIAL_1900 = 2958465  # 9999-12-31 in the 1900 system
 
@@ -59,9 +60,12 @@ def max_serial() -> int:
 
 
 def to_serial(d: dt.date) -> float:
-    """The serial of a calendar day (negative before the 1904 system's epoch)."""
+    """The serial of a calendar day; in the 1904 system days before 1904 count back on the
+    true calendar (negative: DATE(1900,1,1500) is 1904-02-09, serial 39)."""
+    if _DATE1904.get():
+        return float((d - _EPOCH_1904).days)
     n = (d - _EPOCH).days
-    return float((n if n >= 61 else n - 1) - offset())
+    return float(n if n >= 61 else n - 1)
 
 
 def from_serial(x: float) -> tuple[int, int, int] | ExcelError:

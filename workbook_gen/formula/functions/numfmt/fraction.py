@@ -14,11 +14,13 @@ before it; placeholders before the numerator's run, apart from it, take the inte
 * A zero numerator with an integer part blanks the fraction, keeping its width
   (``# ?/?`` of 1 is "1    "); the integer then shows at least one digit.
 
-Measured against SheetJS ssf's test/fraction.json and oddities.json (Excel's outputs).
+Measured against SheetJS ssf's test/fraction.json and oddities.json (Excel's outputs);
+[MS-OI29500] 2.1.713 d: ``/`` is a fraction only between number symbols.
 """
 
 from __future__ import annotations
 
+import functools
 import math
 from fractions import Fraction
 
@@ -30,7 +32,8 @@ def _digit(tok: str) -> bool:
     return len(tok) == 1 and tok.isdigit()
 
 
-def layout(tokens: list[str]):
+@functools.lru_cache(maxsize=512)
+def layout(tokens: tuple[str, ...]):
     """(integer placeholders, numerator run, slash, denominator run) of a fraction
     section, as token indices, or None when it is not one."""
     slash = next((i for i, t in enumerate(tokens) if t == "/"), None)
@@ -53,10 +56,10 @@ def layout(tokens: list[str]):
     if not den or not num:
         return None
     ints = [k for k in range(i + 1) if tokens[k] in PLACEHOLDER]
-    return ints, num, slash, den
+    return tuple(ints), tuple(num), slash, tuple(den)
 
 
-def is_fraction(tokens: list[str]) -> bool:
+def is_fraction(tokens: tuple[str, ...]) -> bool:
     return layout(tokens) is not None
 
 
@@ -81,7 +84,7 @@ def convergent(x: Fraction, max_den: int) -> tuple[int, int]:
 _CLOSE = Fraction(1, 10 ** 13)
 
 
-def value(x: float, tokens: list[str]) -> tuple[int, int, int]:
+def value(x: float, tokens: tuple[str, ...]) -> tuple[int, int, int]:
     """(whole, numerator, denominator) that the fraction section shows for ``x`` >= 0."""
     ints, _, _, den = layout(tokens)
     den_text = "".join(tokens[k] for k in den)
@@ -101,7 +104,7 @@ def _fixed(den_text: str) -> bool:
     return den_text[0] in "123456789" and den_text.isdigit()
 
 
-def format_fraction(x: float, tokens: list[str]) -> str:
+def format_fraction(x: float, tokens: tuple[str, ...]) -> str:
     """The fraction section ``tokens`` applied to ``x`` >= 0."""
     ints, num, slash, den = layout(tokens)
     fixed = _fixed("".join(tokens[k] for k in den))

@@ -18,7 +18,9 @@
   the format invalid (#VALUE!).
 
 Measured on NPOI's NumberFormatApproxTests.xlsx and formulas' test.xlsx (EXTRA!A27:A33),
-both saved by Excel, and SheetJS ssf's test/exp.tsv (Excel's outputs).
+both saved by Excel, and SheetJS ssf's test/exp.tsv (Excel's outputs). ([MS-OI29500]
+2.1.713 says Office takes only E+ and E- as scientific; Excel's TEXT, as cached in the
+NPOI workbook, takes e+ and e- alike.)
 """
 
 from __future__ import annotations
