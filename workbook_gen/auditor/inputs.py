@@ -67,7 +67,8 @@ class AuditInputs:
                         {s.name: frozenset(s.hidden_rows) for s in self.book.sheets
                          if s.hidden_rows},
                         charset="mac_roman" if "macintosh" in (self.book.application or
-                                                               "").lower() else "cp1252")
+                                                               "").lower() else "cp1252",
+                        olap=self.book.olap)
 
     @property
     def formula_count(self) -> int:

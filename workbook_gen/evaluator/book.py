@@ -41,6 +41,8 @@ class BookInfo:
     # the character set of CHAR and CODE (Microsoft's CHAR page: Windows' ANSI set, cp1252;
     # the Macintosh character set in Excel for Mac)
     charset: str = "cp1252"
+    # the cube functions' cache of each connection (xlsx.olap), by case-folded name
+    olap: dict = field(default_factory=dict)
 
     def table(self, name: str, sheet: str, row: int, col: int) -> Table | None:
         """The table called ``name``, or ("" ) the one holding cell (sheet, row, col)."""

@@ -16,7 +16,10 @@ Documented choices:
 - every cell that cannot be recomputed, and every cell that reads one (directly or
   through others), is in ``not_checked`` with the reason (:mod:`taint`);
 - a formula that does not parse gets ``#NAME?`` and its message in ``syntax_errors``;
-- an external reference (``[1]Sheet!A1``) gives ``#REF!`` and the cell is in ``external``;
+- an external reference (``[1]Sheet!A1``) reads the values the file caches of the other
+  workbook (``book.external``); the cell is in ``external``, and not checked where the
+  cache lacks a cell it reads (``fx.Unanswered``, as a cube function the file's OLAP cache
+  does not answer); one that does not parse gives ``#REF!``;
 - an unsupported function gives ``#NAME?`` where it is evaluated; a volatile function
   (NOW, RAND, OFFSET, INDIRECT, ...) is evaluated and its cells listed in ``volatile``;
   given ``saved`` (the cached values and the file's last save), a cell whose value
@@ -147,7 +150,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     store = Store(sheets, book.sheets)
     store.unreadable = {s.lower() for s in book.unreadable}
     store.hidden = {store.sheet(s): rows for s, rows in book.hidden_rows.items()}
-    store.charset = book.charset
+    store.charset, store.olap = book.charset, book.olap
     store.formula_texts, store.array_formulas = formulas, arrays or {}
     store.unparsed = uncheckable or {}
     store.put_constants(constants)
@@ -184,8 +187,6 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
             _source(result, taint, cell, cell, f"formula syntax: {message}")
     units = _units(runs, vectorize, store, result)
     units += _array_units(arrays or {}, book, result, taint, store)
-    for cell in result.external:
-        _source(result, taint, cell, cell, "external reference")
     _report_functions(units, result)
 
     result.seconds["grouping"] = time.perf_counter() - clock
@@ -226,6 +227,10 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
             clock = time.perf_counter()
             try:
                 evaluate_unit(units[u], store, name_table, dialect)
+            except fx.Unanswered as exc:  # read from a cache the file keeps, which lacks it
+                for cell in units[u].cells():
+                    store.put(*cell, ExcelError.NA)
+                    _source(result, taint, cell, cell, str(exc))
             except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
                     AttributeError, RecursionError) as exc:  # a defect must not lose the file
                 log.warning("evaluator failure at %s: %r", _where(units[u].cells()[0]), exc)
@@ -276,20 +281,24 @@ def _runs(formulas, vectorize: bool) -> tuple[list[Run], dict]:
 
 
 def _external(node: ast.Node) -> bool:
-    return any(isinstance(n, (ast.CellRef, ast.RangeRef)) and (n.sheet or "").startswith("[")
-               for n in ast.walk(node))
+    return any(isinstance(n, (ast.CellRef, ast.RangeRef, ast.Name))
+               and (n.sheet or "").startswith("[") for n in ast.walk(node))
+
+
+def _cached_outside(node: ast.Node) -> bool:
+    """Does the formula read what the file only caches (a cube, another workbook)?"""
+    return _external(node) or any(isinstance(n, ast.Func) and n.name in fx.CACHED_OUTSIDE
+                                  for n in ast.walk(node))
 
 
 def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -> list[Unit]:
     units = []
     for run in runs:
         if _external(run.node):
-            for r in range(run.first, run.last + 1):
-                result.external.append((run.sheet, r, run.col))
-                store.put(run.sheet, r, run.col, EXTERNAL_VALUE)
-            continue
+            result.external.extend((run.sheet, r, run.col) for r in range(run.first, run.last + 1))
         unit = Unit(run.sheet, run.col, run.first, run.last, run.node)
-        if run.last > run.first and vol.calls(run.node):  # checked cell by cell
+        if run.last > run.first and (vol.calls(run.node) or _cached_outside(run.node)):
+            # checked cell by cell (a cell the cache does not answer is not checked alone)
             units.extend(singles(unit))
             continue
         if vectorize and run.last > run.first:
@@ -413,6 +422,8 @@ def _cycle(members: list[Unit], shaped: list, taint: Taint, result: Evaluation,
             else:
                 found = cycles.run(members, Unit.cells, store, lambda unit, view: evaluate_unit(
                     unit, store, names, dialect, view=view))
+        except fx.Unanswered as exc:  # what the file does not cache: the component too
+            log.info("not checked in a cycle at %s: %s", _where(cells[0]), exc)
         except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
                 AttributeError, RecursionError) as exc:
             log.warning("evaluator failure in a cycle at %s: %r", _where(cells[0]), exc)
@@ -464,6 +475,8 @@ def _settle(unit: Unit, store: Store, names: Names, dialect: str, clock: vol.Clo
         try:
             outcome = vol.check(unit.node, cached, lambda tree: evaluate(
                 tree, resolver, dialect=dialect, cell=cell), clock)
+        except fx.Unanswered as exc:
+            outcome = vol.Outcome("unknown", str(exc))
         except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
                 AttributeError, RecursionError) as exc:
             outcome = vol.Outcome("unknown", f"evaluator failure: {type(exc).__name__}: {exc}")

@@ -84,6 +84,7 @@ class Store:
         self.extent: dict[str, list[int]] = {}
         self.hidden: dict[str, frozenset[int]] = {}  # sheet -> its hidden rows
         self.charset = "cp1252"  # CHAR and CODE's character set (BookInfo.charset)
+        self.olap: dict = {}  # the cube functions' caches (BookInfo.olap)
         self.formula_texts: Mapping[tuple[str, int, int], str] = {}  # for subtotal_cells
         self.array_formulas: Mapping[tuple[str, int, int], tuple] = {}  # (text, (r2, c2))
         self._subtotals: dict[str, list[tuple[int, int]]] | None = None
@@ -428,6 +429,10 @@ class SheetResolver:
     def charset(self) -> str:
         """The workbook's character set for CHAR and CODE ("cp1252" or "mac_roman")."""
         return self.store.charset
+
+    def olap(self, connection: str):
+        """The cube functions' cache of a connection (xlsx.olap.OlapCache), or None."""
+        return self.store.olap.get(connection.casefold())
 
     def subtotal_cells(self, sheet) -> list[tuple[int, int]]:
         """(row, col) of a sheet's cells holding SUBTOTAL or AGGREGATE (left out by them)."""

@@ -222,6 +222,8 @@ class Workbook:
     iterate: bool = False  # calcPr iterate="1": iterative calculation of circular references
     vba_project: str | None = None  # the part holding macros (xl/vbaProject.bin), never run
     application: str | None = None  # docProps/app.xml's Application: the program that saved it
+    # the cube functions' cache of each connection (xlsx.olap), by case-folded name
+    olap: dict = field(default_factory=dict)
 
     @property
     def sheet_names(self) -> list[str]:

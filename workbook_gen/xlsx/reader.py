@@ -22,6 +22,7 @@ from workbook_gen.errors import WorkbookReadError
 from workbook_gen.xlsx.apart import read_apart
 from workbook_gen.xlsx.limits import MAX_CELLS, MAX_RATIO, MAX_UNCOMPRESSED, Package
 from workbook_gen.xlsx.model import ExternalLink, Sheet, TableDef, Workbook
+from workbook_gen.xlsx.olap import read_olap
 from workbook_gen.xlsx.sheetdata import _LOCAL, _text_of, read_sheet
 
 log = logging.getLogger(__name__)
@@ -97,6 +98,7 @@ def _read(pkg: Package, path: str, max_cells: int, ready, prepare) -> Workbook:
         for n, el in enumerate(_children(_child(root, "externalReferences"), "externalReference")):
             part = rels.get(_rid(el), (None, None))[1]
             book.external_links.append(_external_link(pkg, n + 1, part))
+        book.olap = read_olap(pkg, root, rels, _rid)
         book.vba_project = next((p for k, p in rels.values() if k == "vbaProject" and p
                                  and not p.startswith("external:")), None)
         sst_part = next((p for k, p in rels.values() if k == "sharedStrings" and p
