@@ -68,7 +68,7 @@ class AuditInputs:
                          if s.hidden_rows},
                         charset="mac_roman" if "macintosh" in (self.book.application or
                                                                "").lower() else "cp1252",
-                        olap=self.book.olap)
+                        olap=self.book.olap, external=self.book.external_links)
 
     @property
     def formula_count(self) -> int:

@@ -43,6 +43,8 @@ class BookInfo:
     charset: str = "cp1252"
     # the cube functions' cache of each connection (xlsx.olap), by case-folded name
     olap: dict = field(default_factory=dict)
+    # the links to other workbooks with their cached cells (xlsx.model.ExternalLink)
+    external: list = field(default_factory=list)
 
     def table(self, name: str, sheet: str, row: int, col: int) -> Table | None:
         """The table called ``name``, or ("" ) the one holding cell (sheet, row, col)."""

@@ -46,6 +46,7 @@ import numpy as np
 from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.evaluator import cycles, graph, volatile as vol
 from workbook_gen.evaluator.book import BookInfo, resolve
+from workbook_gen.evaluator.external import ExternalBooks
 from workbook_gen.evaluator.taint import Taint
 from workbook_gen.evaluator.grouping import Grouped, Run, group_formulas
 from workbook_gen.evaluator.store import Names, SheetResolver, Store, value_scale
@@ -151,6 +152,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     store.unreadable = {s.lower() for s in book.unreadable}
     store.hidden = {store.sheet(s): rows for s, rows in book.hidden_rows.items()}
     store.charset, store.olap = book.charset, book.olap
+    store.external = ExternalBooks(book.external)
     store.formula_texts, store.array_formulas = formulas, arrays or {}
     store.unparsed = uncheckable or {}
     store.put_constants(constants)

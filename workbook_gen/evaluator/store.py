@@ -18,6 +18,7 @@ from itertools import compress, repeat
 import numpy as np
 
 from workbook_gen.errors import FormulaSyntaxError
+from workbook_gen.evaluator.external import ExternalBooks
 from workbook_gen.evaluator.keys import column_groups, pick
 from workbook_gen.formula import ast
 from workbook_gen.formula.parser import parse
@@ -85,6 +86,7 @@ class Store:
         self.hidden: dict[str, frozenset[int]] = {}  # sheet -> its hidden rows
         self.charset = "cp1252"  # CHAR and CODE's character set (BookInfo.charset)
         self.olap: dict = {}  # the cube functions' caches (BookInfo.olap)
+        self.external = ExternalBooks()  # what the file caches of other workbooks
         self.formula_texts: Mapping[tuple[str, int, int], str] = {}  # for subtotal_cells
         self.array_formulas: Mapping[tuple[str, int, int], tuple] = {}  # (text, (r2, c2))
         self._subtotals: dict[str, list[tuple[int, int]]] | None = None
@@ -386,6 +388,8 @@ class Names:
         """The tree of ``name`` as written in a formula of sheet ``home``
         (``sheet``: the qualifier of ``Sheet2!Name``)."""
         key = name.upper()
+        if sheet is not None and sheet[:1] == "[":  # another workbook's name: not one of ours
+            return None
         if sheet is not None:
             scope = self.local.get(sheet.lower(), {})
             return scope.get(key, self.nodes.get(key))
@@ -417,9 +421,13 @@ class SheetResolver:
         return self.sheet if sheet is None else self.store.sheet(sheet)
 
     def cell(self, sheet, row, col):
+        if sheet is not None and sheet[:1] == "[":  # another workbook: the file's cache
+            return self.store.external.cell(sheet, row, col)
         return self.store.get(self._sheet(sheet), row, col)
 
     def range(self, sheet, row1, col1, row2, col2):
+        if sheet is not None and sheet[:1] == "[":
+            return self.store.external.rect(sheet, row1, col1, row2, col2)
         return self.store.rect(self._sheet(sheet), row1, col1, row2, col2)
 
     def hidden_rows(self, sheet) -> frozenset[int]:
@@ -445,10 +453,15 @@ class SheetResolver:
         return self.store.sheets_between(first, last)
 
     def range_scale(self, sheet, row1, col1, row2, col2) -> float:
+        if sheet is not None and sheet[:1] == "[":
+            rows = self.range(sheet, row1, col1, row2, col2).rows
+            return max((value_scale(v) for row in rows for v in row), default=0.0)
         return self.store.rect_scale(self._sheet(sheet), row1, col1, row2, col2)
 
     def name(self, name, sheet):
         node = self.names.node(name, sheet, self.sheet)
+        if node is None and sheet is not None and sheet[:1] == "[":  # another workbook's
+            node = self.store.external.name(sheet, name)
         if node is None or self.depth >= self.MAX_NAME_DEPTH:
             return ExcelError.NAME
         from workbook_gen.formula.scalar import Evaluator  # the reference semantics

@@ -203,12 +203,17 @@ class Sheet:
 
 @dataclass(slots=True)
 class ExternalLink:
-    """A link to another workbook, reported and never followed."""
+    """A link to another workbook, never followed: what the file caches of it (the values
+    of the cells its formulas read, as Excel last read them: ``<sheetDataSet>``)."""
 
     index: int  # the n of [n]Sheet!A1 in formula text
     part: str
     target: str | None  # the other workbook's path or URL as stored
     sheet_names: list[str] = field(default_factory=list)
+    # sheet position (sheetId) -> {(row, col): value} of the cells cached
+    cells: dict[int, dict[tuple[int, int], Value]] = field(default_factory=dict)
+    # the other workbook's defined names: (name, sheet position or None) -> refersTo text
+    names: dict[tuple[str, int | None], str] = field(default_factory=dict)
 
 
 @dataclass

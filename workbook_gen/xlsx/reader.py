@@ -211,7 +211,31 @@ def _external_link(pkg: Package, index: int, part: str | None) -> ExternalLink:
             link.target = target.removeprefix("external:") if target else None
         elif local == "sheetName" and el.get("val") is not None:
             link.sheet_names.append(el.get("val", ""))
+        elif local == "definedName" and el.get("name") and el.get("refersTo") is not None:
+            sheet_id = el.get("sheetId", "")
+            link.names[(el.get("name", "").casefold(),
+                        int(sheet_id) if sheet_id.isdigit() else None)] = el.get("refersTo", "")
+        elif local == "sheetData" and el.get("sheetId", "").isdigit():
+            link.cells[int(el.get("sheetId", ""))] = _external_cells(el)
     return link
+
+
+def _external_cells(sheet_data: Element) -> dict[tuple[int, int], object]:
+    """{(row, col): value} of one sheet's cached cells (``<cell r t><v>``)."""
+    from workbook_gen.xlsx.sheetdata import _split_ref, _value
+    out: dict[tuple[int, int], object] = {}
+    for el in sheet_data.iter():
+        if el.tag.rpartition("}")[2] != "cell" or not el.get("r"):
+            continue
+        v = next((c.text for c in el if c.tag.rpartition("}")[2] == "v"), None)
+        kind = el.get("t", "n")
+        try:
+            value = None if v is None else _value(
+                "str" if kind in ("s", "inlineStr") else kind, v, None, [])
+            out[_split_ref(el.get("r", ""))] = value
+        except (ValueError, IndexError):
+            continue  # a cell the cache garbles: absent, so not answered
+    return out
 
 
 def _shared_strings(pkg: Package, part: str, limit: int) -> list[str]:
