@@ -242,7 +242,8 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
                                     vectorize=vectorize, uncheckable=inputs.uncheckable(),
                                     dialect=semantics, book=inputs.book_info(),
                                     arrays=inputs.arrays, saved=clock,
-                                    iterate=inputs.book.iterate, grouped=inputs.grouped)
+                                    iterate=inputs.book.iterate, grouped=inputs.grouped,
+                                    tables=inputs.data_tables)
     except WorkbookReadError as exc:  # the evaluator's refusal (cost), named by file
         aside.cancel()
         raise WorkbookReadError(f"{path}: {exc}") from None

@@ -37,14 +37,14 @@ import dataclasses
 import logging
 import re
 import time
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from operator import itemgetter
 
 import numpy as np
 
 from workbook_gen.errors import FormulaSyntaxError
-from workbook_gen.evaluator import cycles, graph, volatile as vol
+from workbook_gen.evaluator import cycles, graph, volatile as vol, whatif
 from workbook_gen.evaluator.book import BookInfo, resolve
 from workbook_gen.evaluator.external import ExternalBooks
 from workbook_gen.evaluator.taint import Taint
@@ -131,7 +131,8 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
                    dialect: str = "excel", book: BookInfo | None = None,
                    arrays: Mapping[Cell, tuple[str, tuple[int, int]]] | None = None,
                    saved: vol.Clock | None = None, iterate: bool = False,
-                   grouped: Grouped | None = None) -> Evaluation:
+                   grouped: Grouped | None = None,
+                   tables: Sequence[whatif.DataTable] = ()) -> Evaluation:
     """Recompute every formula (texts without '=') of a workbook; see the module doc.
 
     ``uncheckable``: cells among ``constants`` that are formulas the caller could not
@@ -141,7 +142,8 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     they fill are in ``values``. ``saved``: check volatile cells by contract (see above).
     ``iterate``: the workbook enables iterative calculation (cells on a circular reference
     are then not checked). ``grouped``: the runs of exactly ``formulas``, grouped
-    already (with ``vectorize``)."""
+    already (with ``vectorize``). ``tables``: data tables (:mod:`whatif`), recomputed
+    last (what reads their cells reads the values among ``constants``)."""
     if dialect not in fx.registry.DIALECTS:
         raise ValueError(f"unknown dialect {dialect!r}")
     book = book or BookInfo()
@@ -165,6 +167,9 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
             keys.update(dict.fromkeys((sheet, r, c) for r in range(row, r2 + 1)
                                       for c in range(col, c2 + 1)))
             store.note(sheet, r2, c2)
+    if tables:
+        keys = dict(keys)
+        keys.update(dict.fromkeys(c for t in tables for c in t.cells()))
     result = Evaluation(CellMap(keys, store.get), CellMap(keys, store.scale),
                         store=store, bad_names=dict(name_table.errors))
     taint = Taint()
@@ -245,6 +250,14 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     result.seconds.update(spent)
     if result.cycles:
         _show_circular(store, cycles.shown(dialect))
+    for table in tables:
+        done, why = whatif.table_values(table, tables, store, name_table, dialect, lambda k: (
+            resolve(parse(formulas[k]), book, *k)), result.not_checked)
+        for cell, value in (done or dict.fromkeys(table.cells())).items():
+            if done is not None:
+                store.put(*cell, value, value_scale(value))
+            else:
+                _source(result, taint, cell, cell, why)
     for u in units:
         if u.block is not None:
             result.groups.vector_groups += 1

@@ -30,6 +30,7 @@ class Cell:
     shared_master: str | None = None  # ref of the master (itself on the master)
     array_ref: str | None = None  # range of an array formula, on its master cell
     array_master: str | None = None  # on the other cells an array formula fills
+    data_table: dict | None = None  # a data table's <f> attributes (r1, r2, dt2D, dtr, del1, del2)
 
     @property
     def has_formula(self) -> bool:
