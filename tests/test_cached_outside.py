@@ -187,3 +187,147 @@ def test_cube_functions_on_a_small_cache_and_what_it_does_not_hold(tmp_path):
     assert skipped["S!F2"].startswith("CUBEMEMBERPROPERTY: the file's OLAP cache holds no "
                                       "property 'Colour' of [Product].[Cat].&[1]")
     assert set(skipped) == {"S!A2", "S!B2", "S!C2", "S!D2", "S!F2"}
+
+
+# ---------------------------------------------------------------- other workbooks' cells
+
+@pytest.mark.parametrize("name,checked", [
+    ("npoi__ref-56737.xlsx", 7), ("npoi__ref2-56737.xlsx", 10), ("npoi__xinstall.xlsx", 2)])
+def test_external_references_agree_with_excel_from_the_link_cache(name, checked):
+    path = CORPUS / name
+    if not path.exists():
+        pytest.skip("corpus not present")
+    report = audit(path)
+    # every formula there reads another workbook ([1]Uses!$A$1, [1]Defines!NR_To_A1,
+    # [1]!NR_Global_B2, '[1]Params Tab 1'!$B$1): all answered by the cache, as Excel
+    # cached them
+    assert (report.formula_cells, report.cells_checked, report.mismatches,
+            report.not_checked) == (checked, checked, [], {})
+
+
+def test_external_cells_the_cache_lacks_are_not_checked():
+    report = audit(CORPUS / "formulas__test.xlsx")
+    cells = _cells(CORPUS / "formulas__test.xlsx", "xl/worksheets/sheet17.xml")
+    # B17 =[1]Sheet1!$A$1+1 (cached 3), B18 =[1]Sheet1!$A$1+[1]Sheet1!$A$2 (4), O13 =m
+    # (a name [1]Sheet1!$A$1: 2): the link caches A1 = A2 = 2
+    assert [cells[r] for r in ("B17", "B18", "O13")] == [
+        ("[1]Sheet1!$A$1+1", "3"), ("[1]Sheet1!$A$1+[1]Sheet1!$A$2", "4"), ("m", "2")]
+    for ref in ("B17", "B18", "O13"):
+        assert f"CORE!{ref}" not in report.not_checked
+        assert f"CORE!{ref}" not in {m.cell for m in report.mismatches}
+    assert report.not_checked["CORE!P17"] == (
+        "external reference [2]MISSING!A1: the cell is not in the file's cache of MISSING")
+    assert report.not_checked["CORE!P16"] == (
+        "external name [2]!A: not in the file's cache of MISSING")
+
+
+def _linked_book(tmp_path: Path, sheet: str) -> Path:
+    """A workbook linking to prices.xlsx, whose cached cells are Prices!A1 = 3, A2 = 4,
+    B1 = "kg" and the name Rate (Prices!$A$2)."""
+    workbook = (f'<workbook xmlns="{MAIN}" xmlns:r="{REL}"><sheets><sheet name="S" sheetId="1" '
+                'r:id="rId1"/></sheets><externalReferences><externalReference r:id="rId9"/>'
+                "</externalReferences></workbook>")
+    link = (f'<externalLink xmlns="{MAIN}" xmlns:r="{REL}"><externalBook r:id="rId1">'
+            '<sheetNames><sheetName val="Other"/><sheetName val="Prices"/></sheetNames>'
+            "<definedNames><definedName name=\"Rate\" refersTo=\"=Prices!$A$2\"/>"
+            "</definedNames><sheetDataSet><sheetData sheetId=\"0\"/><sheetData sheetId=\"1\">"
+            '<row r="1"><cell r="A1"><v>3</v></cell><cell r="B1" t="str"><v>kg</v></cell>'
+            '</row><row r="2"><cell r="A2"><v>4</v></cell></row></sheetData></sheetDataSet>'
+            "</externalBook></externalLink>")
+    link_rels = (f'<Relationships xmlns="{PKG}"><Relationship Id="rId1" Type="{REL}/'
+                 'externalLinkPath" Target="prices.xlsx" TargetMode="External"/>'
+                 "</Relationships>")
+    return _package(tmp_path / "linked.xlsx", {"S": sheet}, workbook=workbook,
+                    extra={"xl/externalLinks/externalLink1.xml": link,
+                           "xl/externalLinks/_rels/externalLink1.xml.rels": link_rels},
+                    extra_rels=f'<Relationship Id="rId9" Type="{REL}/externalLink" '
+                               'Target="externalLinks/externalLink1.xml"/>')
+
+
+def test_external_references_on_a_small_cache(tmp_path):
+    sheet = ('<row r="1">' + _f("A1", "[1]Prices!A1*2", "6") + _f("B1", "SUM([1]Prices!A1:A2)", "7")
+             + _f("C1", "[1]!Rate+[1]Prices!$A$1", "7")
+             + _f("D1", "'[1]Prices'!B1&\"!\"", "kg!", "str")
+             + _f("E1", "[1]Prices!A1*3", "10")  # Excel would cache 9: a true disagreement
+             + '</row><row r="2">'
+             + _f("A2", "[1]Prices!A9", "0") + _f("B2", "SUM([1]Prices!A1:A3)", "7")
+             + _f("C2", "[1]Missing!A1", "1") + _f("D2", "[2]Prices!A1", "1")
+             + _f("E2", "[1]Other!A1", "1") + _f("F2", "[1]!Nothing", "1") + "</row>")
+    path = _linked_book(tmp_path, sheet)
+    [link] = read_workbook(path).external_links
+    assert link.cells == {0: {}, 1: {(1, 1): 3.0, (1, 2): "kg", (2, 1): 4.0}}
+    report = audit(path)
+    assert [(m.cell, m.cached, m.recomputed) for m in report.mismatches] == [("S!E1", 10.0, 9.0)]
+    assert report.cells_checked == 5
+    assert report.not_checked == {
+        "S!A2": "external reference [1]Prices!A9: the cell is not in the file's cache of "
+                "prices.xlsx",
+        "S!B2": "external reference [1]Prices!A3: the cell is not in the file's cache of "
+                "prices.xlsx",
+        "S!C2": "external reference [1]Missing: prices.xlsx has no sheet 'Missing' in the "
+                "file's cache",
+        "S!D2": "external reference [2]Prices: the file lists no such workbook",
+        "S!E2": "external reference [1]Other!A1: the cell is not in the file's cache of "
+                "prices.xlsx",
+        "S!F2": "external name [1]!Nothing: not in the file's cache of prices.xlsx"}
+
+
+@pytest.mark.parametrize("text", ["=[1]Sheet1!A1", "=[1]Sheet1!$A$1:$B$2+1", "=[12]!Rate",
+                                  "=[1]Defines!NR_To_A1", "=SUM([1]Data!A:A)",
+                                  "='[1]My sheet'!B2"])
+def test_external_references_parse_and_render_back(text):
+    tokens = tokenize(text)
+    assert "".join(t.text for t in tokens) == text
+    assert any(t.text.startswith(("[1]", "[12]", "'[1]")) for t in tokens)
+    parse(text)
+
+
+# --------------------------------------------------------------------------- data tables
+
+def test_data_tables_agree_with_excel():
+    if not DATA_TABLES.exists():
+        pytest.skip("corpus not present")
+    report = audit(DATA_TABLES)
+    # 9 formulas and 9 tables (45 cells), each compared with the value Excel cached; a
+    # table whose input cell was deleted is #REF! in every cell (as all five are cached)
+    assert (report.formula_cells, report.cells_checked, report.mismatches,
+            report.not_checked) == (18, 54, [], {})
+
+
+def test_a_data_table_cell_is_recomputed_not_read_back(tmp_path):
+    # '1D Row'!C5: formula C3 =A1*10 with A1 := B5 (2): 20. Cached as 21 it disagrees.
+    path = _tampered(DATA_TABLES, tmp_path / "dt.xlsx", "xl/worksheets/sheet1.xml",
+                     '<c r="C5"><v>20</v>', '<c r="C5"><v>21</v>')
+    [m] = audit(path).mismatches
+    assert (m.cell, m.formula, m.cached, m.recomputed) == ("'1D Row'!C5", "{=TABLE(,A1)}",
+                                                           21.0, 20.0)
+
+
+def _table_book(tmp_path: Path, cells: str, table: str) -> Path:
+    return _package(tmp_path / "table.xlsx", {"S": cells.replace("TABLE", table)})
+
+
+def test_a_two_dimensional_table_through_a_chain_of_formulas(tmp_path):
+    # B1 rate, B2 years; D1 =B1*B2 (between the inputs and the formula), A4 =D1+1:
+    # rows 5-6 vary the rate (column input B1), columns B-C the years (row input B2)
+    rows = ('<row r="1"><c r="B1"><v>0.5</v></c>' + _f("D1", "B1*B2", "1") + "</row>"
+            '<row r="2"><c r="B2"><v>2</v></c></row>'
+            '<row r="4">' + _f("A4", "D1+1", "2") + '<c r="B4"><v>10</v></c><c r="C4"><v>20</v>'
+            "</c></row>"
+            '<row r="5"><c r="A5"><v>1</v></c><c r="B5"><f t="dataTable" ref="B5:C6" dt2D="1" '
+            'dtr="1" r1="B2" r2="B1"/><v>11</v></c><c r="C5"><v>21</v></c></row>'
+            '<row r="6"><c r="A6"><v>3</v></c><c r="B6"><v>31</v></c><c r="C6"><v>61</v></c>'
+            '</row><row r="7">' + _f("A7", "SUM(B5:C6)", "124") + "</row>")
+    report = audit(_package(tmp_path / "t.xlsx", {"S": rows}))
+    assert report.mismatches == [] and report.not_checked == {}
+    assert report.cells_checked == 4 + 3  # the table's cells, D1, A4, A7
+
+
+def test_a_data_table_whose_chain_calls_rand_is_not_checked(tmp_path):
+    rows = ('<row r="1"><c r="A1"><v>1</v></c></row>'
+            '<row r="3">' + _f("C3", "A1*RAND()", "0.5") + "</row>"
+            '<row r="4"><c r="B4"><v>2</v></c><c r="C4"><f t="dataTable" ref="C4:C4" '
+            'dt2D="0" dtr="0" r1="A1"/><v>1.2</v></c></row>')
+    report = audit(_package(tmp_path / "t.xlsx", {"S": rows}))
+    assert report.not_checked["S!C4"] == ("data table: its formula reads S!C3, which calls "
+                                          "RAND")
