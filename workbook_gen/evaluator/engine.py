@@ -250,14 +250,9 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     result.seconds.update(spent)
     if result.cycles:
         _show_circular(store, cycles.shown(dialect))
-    for table in tables:
-        done, why = whatif.table_values(table, tables, store, name_table, dialect, lambda k: (
-            resolve(parse(formulas[k]), book, *k)), result.not_checked)
-        for cell, value in (done or dict.fromkeys(table.cells())).items():
-            if done is not None:
-                store.put(*cell, value, value_scale(value))
-            else:
-                _source(result, taint, cell, cell, why)
+    whatif.put_tables(tables, store, name_table, dialect,
+                      lambda k: resolve(parse(formulas[k]), book, *k), result.not_checked,
+                      lambda cell, why: _source(result, taint, cell, cell, why))
     for u in units:
         if u.block is not None:
             result.groups.vector_groups += 1

@@ -28,7 +28,7 @@ from __future__ import annotations
 import bisect
 from dataclasses import dataclass
 
-from workbook_gen.evaluator.store import SheetResolver
+from workbook_gen.evaluator.store import SheetResolver, value_scale
 from workbook_gen.formula import ast
 from workbook_gen.formula.functions import Unanswered
 from workbook_gen.formula.printer import column_letters
@@ -217,6 +217,18 @@ def evaluate_table(table: DataTable, tables, store, names, dialect: str, prepare
     return {(s, r, c): run.result(r, c) for s, r, c in table.cells()}
 
 
+def put_tables(tables, store, names, dialect: str, prepare, not_checked, skip) -> None:
+    """Recompute data tables into ``store``; ``skip(cell, why)`` for the cells of a table
+    that cannot be."""
+    for table in tables:
+        done, why = table_values(table, tables, store, names, dialect, prepare, not_checked)
+        for cell in table.cells():
+            if done is None:
+                skip(cell, why)
+            else:
+                store.put(*cell, done[cell], value_scale(done[cell]))
+
+
 def table_values(table: DataTable, tables, store, names, dialect: str, prepare,
                  not_checked) -> tuple[dict | None, str]:
     """``(values, "")``, or ``(None, why)`` where the table cannot be recomputed."""
@@ -229,4 +241,4 @@ def table_values(table: DataTable, tables, store, names, dialect: str, prepare,
         return None, f"evaluator failure: {type(exc).__name__}: {exc}"
 
 
-__all__ = ["DataTable", "evaluate_table", "table_values"]
+__all__ = ["DataTable", "evaluate_table", "put_tables", "table_values"]

@@ -38,6 +38,9 @@ class CubeMember(str):
         self.members = members
         return self
 
+    def __reduce__(self):  # (pickled between the audit's processes)
+        return CubeMember, (str(self), self.members)
+
 
 def _cache(ctx, name: str, connection):
     if isinstance(connection, ExcelError):
