@@ -303,10 +303,6 @@ def test_a_data_table_cell_is_recomputed_not_read_back(tmp_path):
                                                            21.0, 20.0)
 
 
-def _table_book(tmp_path: Path, cells: str, table: str) -> Path:
-    return _package(tmp_path / "table.xlsx", {"S": cells.replace("TABLE", table)})
-
-
 def test_a_two_dimensional_table_through_a_chain_of_formulas(tmp_path):
     # B1 rate, B2 years; D1 =B1*B2 (between the inputs and the formula), A4 =D1+1:
     # rows 5-6 vary the rate (column input B1), columns B-C the years (row input B2)
