@@ -85,14 +85,18 @@ def test_cube_members_and_values_agree_with_excel_from_the_olap_cache(connection
     # cached #N/A there, which says nothing either way
     assert cells["D391"][1] == "#N/A"
     assert skipped["Sheet1!D391"] == (
-        "CUBEVALUE: the tuple ([Measures].[Sales Amount], [Product].[Product Categories]."
-        "[All Products]) is not in the file's OLAP cache")
+        "CUBEVALUE: the tuple is not in the file's OLAP cache: ([Measures].[Sales Amount], "
+        "[Product].[Product Categories].[All Products])")
+    # the summary groups the reasons by what is missing, not by cell
+    assert [n for _, n in report.not_checked_reasons()] == [350, 35, 1]
+    assert report.not_checked_reasons()[2][0] == (
+        "CUBEVALUE: the tuple is not in the file's OLAP cache")
     # the properties are asked by short name; Excel cached #N/A for every one of them
     assert {cells[r][1] for r in properties} == {"#N/A"}
-    assert skipped["Sheet1!B3"].startswith(
-        "CUBEMEMBERPROPERTY: the file's OLAP cache holds no property 'Category' of "
-        "[Product].[Product Categories].[Subcategory].&[26] (it holds: [Product].[Product "
-        "Categories].[Subcategory].[Category])")
+    assert skipped["Sheet1!B3"] == (
+        "CUBEMEMBERPROPERTY: no property 'Category' in the file's OLAP cache (it holds "
+        "[Product].[Product Categories].[Subcategory].[Category]): "
+        "[Product].[Product Categories].[Subcategory].&[26]")
 
 
 def test_a_cube_value_is_read_from_the_tuple_cache_not_from_the_cell(tmp_path):
@@ -178,14 +182,15 @@ def test_cube_functions_on_a_small_cache_and_what_it_does_not_hold(tmp_path):
     assert report.mismatches == []
     assert report.cells_checked == 7  # A1 B1 C1 D1 E1 F1 E2
     skipped = report.not_checked
-    assert skipped["S!A2"] == ("CUBEVALUE: the tuple ([Measures].[Sales Amount], "
-                               "[Product].[Cat].&[2]) is not in the file's OLAP cache")
+    assert skipped["S!A2"] == ("CUBEVALUE: the tuple is not in the file's OLAP cache: "
+                               "([Measures].[Sales Amount], [Product].[Cat].&[2])")
     assert skipped["S!B2"] == f"depends on S!A2: {skipped['S!A2']}"
-    assert skipped["S!C2"] == ("CUBEMEMBER: the member expression '[Product].[Cat].&[9]' is "
-                               "not in the file's OLAP cache")
-    assert skipped["S!D2"] == "CUBEMEMBER: the file keeps no OLAP cache for connection 'Other'"
-    assert skipped["S!F2"].startswith("CUBEMEMBERPROPERTY: the file's OLAP cache holds no "
-                                      "property 'Colour' of [Product].[Cat].&[1]")
+    assert skipped["S!C2"] == ("CUBEMEMBER: a member expression not in the file's OLAP cache: "
+                               "'[Product].[Cat].&[9]'")
+    assert skipped["S!D2"] == "CUBEMEMBER: no OLAP cache in the file for connection 'Other'"
+    assert skipped["S!F2"] == ("CUBEMEMBERPROPERTY: no property 'Colour' in the file's OLAP "
+                               "cache (it holds [Product].[Cat].[Name].[Category]): "
+                               "[Product].[Cat].&[1]")
     assert set(skipped) == {"S!A2", "S!B2", "S!C2", "S!D2", "S!F2"}
 
 
@@ -216,9 +221,9 @@ def test_external_cells_the_cache_lacks_are_not_checked():
         assert f"CORE!{ref}" not in report.not_checked
         assert f"CORE!{ref}" not in {m.cell for m in report.mismatches}
     assert report.not_checked["CORE!P17"] == (
-        "external reference [2]MISSING!A1: the cell is not in the file's cache of MISSING")
+        "external reference: a cell not in the file's cache of MISSING: [2]MISSING!A1")
     assert report.not_checked["CORE!P16"] == (
-        "external name [2]!A: not in the file's cache of MISSING")
+        "external name: not in the file's cache of MISSING: [2]!A")
 
 
 def _linked_book(tmp_path: Path, sheet: str) -> Path:
@@ -259,17 +264,15 @@ def test_external_references_on_a_small_cache(tmp_path):
     report = audit(path)
     assert [(m.cell, m.cached, m.recomputed) for m in report.mismatches] == [("S!E1", 10.0, 9.0)]
     assert report.cells_checked == 5
+    cache = "a cell not in the file's cache of prices.xlsx"
     assert report.not_checked == {
-        "S!A2": "external reference [1]Prices!A9: the cell is not in the file's cache of "
-                "prices.xlsx",
-        "S!B2": "external reference [1]Prices!A3: the cell is not in the file's cache of "
-                "prices.xlsx",
-        "S!C2": "external reference [1]Missing: prices.xlsx has no sheet 'Missing' in the "
-                "file's cache",
-        "S!D2": "external reference [2]Prices: the file lists no such workbook",
-        "S!E2": "external reference [1]Other!A1: the cell is not in the file's cache of "
-                "prices.xlsx",
-        "S!F2": "external name [1]!Nothing: not in the file's cache of prices.xlsx"}
+        "S!A2": f"external reference: {cache}: [1]Prices!A9",
+        "S!B2": f"external reference: {cache}: [1]Prices!A3",
+        "S!C2": "external reference: no such sheet in the file's cache of prices.xlsx: "
+                "[1]Missing",
+        "S!D2": "external reference: the file lists no such workbook: [2]Prices",
+        "S!E2": f"external reference: {cache}: [1]Other!A1",
+        "S!F2": "external name: not in the file's cache of prices.xlsx: [1]!Nothing"}
 
 
 @pytest.mark.parametrize("text", ["=[1]Sheet1!A1", "=[1]Sheet1!$A$1:$B$2+1", "=[12]!Rate",
@@ -325,5 +328,5 @@ def test_a_data_table_whose_chain_calls_rand_is_not_checked(tmp_path):
             '<row r="4"><c r="B4"><v>2</v></c><c r="C4"><f t="dataTable" ref="C4:C4" '
             'dt2D="0" dtr="0" r1="A1"/><v>1.2</v></c></row>')
     report = audit(_package(tmp_path / "t.xlsx", {"S": rows}))
-    assert report.not_checked["S!C4"] == ("data table: its formula reads S!C3, which calls "
-                                          "RAND")
+    assert report.not_checked["S!C4"] == ("data table: its formula reads a cell calling "
+                                          "RAND: S!C3")

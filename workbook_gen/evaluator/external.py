@@ -37,15 +37,15 @@ class ExternalBooks:
         m = _BOOK.fullmatch(sheet)
         link = self.links.get(int(m.group(1))) if m else None
         if link is None:
-            raise Unanswered(f"external reference {sheet}: the file lists no such workbook")
+            raise Unanswered(f"external reference: the file lists no such workbook: {sheet}")
         name = m.group(2)
         folded = [s.casefold() for s in link.sheet_names]
         if name.casefold() not in folded:
-            raise Unanswered(f"external reference {sheet}: {self.book(link)} has no sheet "
-                             f"{name!r} in the file's cache")
+            raise Unanswered(f"external reference: no such sheet in the file's cache of "
+                             f"{self.book(link)}: {sheet}")
         position = folded.index(name.casefold())
         if position not in link.cells:
-            raise Unanswered(f"external reference {sheet}: the file caches no cell of it "
+            raise Unanswered(f"external reference: the file caches no cell of the sheet: {sheet} "
                              f"({self.book(link)})")
         return link, position, link.sheet_names[position]
 
@@ -57,17 +57,17 @@ class ExternalBooks:
         link, position, _ = self._sheet(sheet)
         cells = link.cells[position]
         if (row, col) not in cells:
-            raise Unanswered(f"external reference {sheet}!{column_letters(col)}{row}: the "
-                             f"cell is not in the file's cache of {self.book(link)}")
+            raise Unanswered(f"external reference: a cell not in the file's cache of "
+                             f"{self.book(link)}: {sheet}!{column_letters(col)}{row}")
         return cells[(row, col)]
 
     def rect(self, sheet: str, r1: int, c1: int, r2: int, c2: int) -> Range:
         link, position, _ = self._sheet(sheet)
         cells = link.cells[position]
         if (r2 - r1 + 1) * (c2 - c1 + 1) > len(cells):
-            raise Unanswered(f"external reference {sheet}!{column_letters(c1)}{r1}:"
-                             f"{column_letters(c2)}{r2}: not every cell is in the file's "
-                             f"cache of {self.book(link)}")
+            raise Unanswered(f"external reference: a cell not in the file's cache of "
+                             f"{self.book(link)}: {sheet}!{column_letters(c1)}{r1}:"
+                             f"{column_letters(c2)}{r2}")
         return Range.of([[self.cell(sheet, r, c) for c in range(c1, c2 + 1)]
                          for r in range(r1, r2 + 1)])
 
@@ -77,8 +77,8 @@ class ExternalBooks:
         m = _BOOK.fullmatch(qualifier)
         link = self.links.get(int(m.group(1))) if m else None
         if link is None:
-            raise Unanswered(f"external name {qualifier}!{name}: the file lists no such "
-                             "workbook")
+            raise Unanswered(f"external name: the file lists no such workbook: "
+                             f"{qualifier}!{name}")
         scope = None
         if m.group(2):
             folded = [s.casefold() for s in link.sheet_names]
@@ -88,15 +88,15 @@ class ExternalBooks:
         if text is None and scope is not None:
             text = link.names.get((name.casefold(), None))
         if text is None:
-            raise Unanswered(f"external name {qualifier}!{name}: not in the file's cache of "
-                             f"{self.book(link)}")
+            raise Unanswered(f"external name: not in the file's cache of {self.book(link)}: "
+                             f"{qualifier}!{name}")
         try:
             node = parse(text.lstrip("="))
         except FormulaSyntaxError as exc:
-            raise Unanswered(f"external name {qualifier}!{name}: {exc}") from None
+            raise Unanswered(f"external name: {exc}: {qualifier}!{name}") from None
         book = f"[{link.index}]"
         if isinstance(node, (ast.CellRef, ast.RangeRef)) and node.sheet is not None \
                 and not node.sheet.startswith("["):
             return dataclasses.replace(node, sheet=book + node.sheet)
-        raise Unanswered(f"external name {qualifier}!{name}: {text!r} is not a reference "
-                         "into one sheet")
+        raise Unanswered(f"external name: not a reference into one sheet: "
+                         f"{qualifier}!{name} = {text!r}")

@@ -140,20 +140,20 @@ class _Run:
             self._changed()
             return self.subs[key]
         if key in self.blocked:
-            raise Unanswered(f"data table: its formula reads {_where(key)}, a cell of a "
-                             "data table")
+            raise Unanswered(f"data table: its formula reads a data table's cell: "
+                             f"{_where(key)}")
         if key in self.not_checked:
             raise Unanswered(f"data table: depends on {_where(key)}: {self.not_checked[key]}")
         if key not in self.store.formula_texts:
             if self.store.has_formula(*key):
-                raise Unanswered(f"data table: its formula reads {_where(key)}, a cell of an "
-                                 "array formula")
+                raise Unanswered(f"data table: its formula reads an array formula's "
+                                 f"cell: {_where(key)}")
             return self.store.get(*key)
         if key in self.clean:
             return self.store.get(*key)
         if key in self.memo:
             if self.memo[key] is _UNDER_WAY:
-                raise Unanswered(f"data table: a circular reference through {_where(key)}")
+                raise Unanswered(f"data table: a circular reference: {_where(key)}")
             changed, value = self.memo[key]
             if changed:
                 self._changed()
@@ -172,8 +172,9 @@ class _Run:
         node = self.prepare(key)
         called = {n.name for n in ast.walk(node) if isinstance(n, ast.Func)}
         if called & CHANGING or unsupported_functions(node):
-            raise Unanswered(f"data table: its formula reads {_where(key)}, which calls "
-                             + ", ".join(sorted(called & CHANGING | unsupported_functions(node))))
+            raise Unanswered(f"data table: its formula reads a cell calling "
+                             + ", ".join(sorted(called & CHANGING | unsupported_functions(node)))
+                             + f": {_where(key)}")
         self.memo[key] = _UNDER_WAY
         self.stack.append([False])
         try:

@@ -48,7 +48,7 @@ def _cache(ctx, name: str, connection):
     olap = getattr(ctx.resolver, "olap", None)
     cache = olap(str(connection)) if olap is not None and isinstance(connection, str) else None
     if cache is None:
-        raise Unanswered(f"{name}: the file keeps no OLAP cache for connection {connection!r}")
+        raise Unanswered(f"{name}: no OLAP cache in the file for connection {connection!r}")
     return cache
 
 
@@ -64,10 +64,10 @@ def _members(name: str, cache, arg) -> frozenset | ExcelError:
         elif isinstance(v, str) and v in cache.queries:
             out |= cache.queries[v]
         elif isinstance(v, str):
-            raise Unanswered(f"{name}: the member expression {v!r} is not in the file's "
-                             "OLAP cache")
+            raise Unanswered(f"{name}: a member expression not in the file's OLAP cache: "
+                             f"{v!r}")
         else:
-            raise Unanswered(f"{name}: a member expression that is not text ({v!r})")
+            raise Unanswered(f"{name}: a member expression that is not text: {v!r}")
     return frozenset(out)
 
 
@@ -95,7 +95,7 @@ def _cubemember(ctx, connection, member, caption=None):
     own = cache.queries.get(last) if isinstance(last, str) else None
     shown = cache.caption(sorted(own)[-1]) if own is not None and len(own) == 1 else None
     if shown is None:
-        raise Unanswered(f"CUBEMEMBER: the file's OLAP cache holds no caption of "
+        raise Unanswered(f"CUBEMEMBER: no caption in the file's OLAP cache: "
                          f"{_tuple_text(cache, members)}")
     return CubeMember(shown, members)
 
@@ -113,8 +113,8 @@ def _cubevalue(ctx, connection, *members):
         tuple_ |= found
     key = frozenset(tuple_)
     if key not in cache.entries:
-        raise Unanswered(f"CUBEVALUE: the tuple {_tuple_text(cache, key)} is not in the "
-                         "file's OLAP cache")
+        raise Unanswered(f"CUBEVALUE: the tuple is not in the file's OLAP cache: "
+                         f"{_tuple_text(cache, key)}")
     return cache.entries[key]
 
 
@@ -130,7 +130,7 @@ def _cubememberproperty(ctx, connection, member, prop):
         return prop
     if len(members) != 1 or next(iter(members))[0] != "f":
         raise Unanswered("CUBEMEMBERPROPERTY: the member is not one item of the file's "
-                         "OLAP cache")
+                         f"OLAP cache: {_tuple_text(cache, members)}")
     _, index, item = next(iter(members))
     level = cache.fields[index]
     holders = [f for f in cache.fields
@@ -139,7 +139,6 @@ def _cubememberproperty(ctx, connection, member, prop):
     props = level.items[item][2]
     if not named or named[0] >= len(props) or props[named[0]] >= len(holders[named[0]].items):
         held = ", ".join(f.name for f in holders) or "none"
-        raise Unanswered(f"CUBEMEMBERPROPERTY: the file's OLAP cache holds no property "
-                         f"{str(prop)!r} of {cache.unique_name(( 'f', index, item))} "
-                         f"(it holds: {held})")
+        raise Unanswered(f"CUBEMEMBERPROPERTY: no property {str(prop)!r} in the file's OLAP "
+                         f"cache (it holds {held}): {cache.unique_name(('f', index, item))}")
     return holders[named[0]].items[props[named[0]]][0]
