@@ -292,7 +292,7 @@ def _runs(formulas, vectorize: bool) -> tuple[list[Run], dict]:
 
 def _external(node: ast.Node) -> bool:
     return any(isinstance(n, (ast.CellRef, ast.RangeRef, ast.Name))
-               and (n.sheet or "").startswith("[") for n in ast.walk(node))
+               and "]" in (n.sheet or "") for n in ast.walk(node))
 
 
 def _cached_outside(node: ast.Node) -> bool:

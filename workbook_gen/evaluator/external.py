@@ -36,7 +36,7 @@ class ExternalBooks:
         """(link, sheet position, sheet name) of a ``[n]Sheet`` qualifier."""
         m = _BOOK.fullmatch(sheet)
         link = self.links.get(int(m.group(1))) if m else None
-        if link is None:
+        if link is None:  # ([n] past the file's links, or a path: 'C:\dir\[Book.xlsx]Sheet1')
             raise Unanswered(f"external reference: the file lists no such workbook: {sheet}")
         name = m.group(2)
         folded = [s.casefold() for s in link.sheet_names]

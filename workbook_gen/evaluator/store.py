@@ -388,7 +388,7 @@ class Names:
         """The tree of ``name`` as written in a formula of sheet ``home``
         (``sheet``: the qualifier of ``Sheet2!Name``)."""
         key = name.upper()
-        if sheet is not None and sheet[:1] == "[":  # another workbook's name: not one of ours
+        if sheet is not None and "]" in sheet:  # another workbook's name: not one of ours
             return None
         if sheet is not None:
             scope = self.local.get(sheet.lower(), {})
@@ -421,12 +421,12 @@ class SheetResolver:
         return self.sheet if sheet is None else self.store.sheet(sheet)
 
     def cell(self, sheet, row, col):
-        if sheet is not None and sheet[:1] == "[":  # another workbook: the file's cache
+        if sheet is not None and "]" in sheet:  # another workbook: the file's cache
             return self.store.external.cell(sheet, row, col)
         return self.store.get(self._sheet(sheet), row, col)
 
     def range(self, sheet, row1, col1, row2, col2):
-        if sheet is not None and sheet[:1] == "[":
+        if sheet is not None and "]" in sheet:
             return self.store.external.rect(sheet, row1, col1, row2, col2)
         return self.store.rect(self._sheet(sheet), row1, col1, row2, col2)
 
@@ -453,7 +453,7 @@ class SheetResolver:
         return self.store.sheets_between(first, last)
 
     def range_scale(self, sheet, row1, col1, row2, col2) -> float:
-        if sheet is not None and sheet[:1] == "[":
+        if sheet is not None and "]" in sheet:
             rows = self.range(sheet, row1, col1, row2, col2).rows
             return max((value_scale(v) for row in rows for v in row), default=0.0)
         return self.store.rect_scale(self._sheet(sheet), row1, col1, row2, col2)
