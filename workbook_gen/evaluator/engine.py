@@ -295,19 +295,19 @@ def _external(node: ast.Node) -> bool:
                and "]" in (n.sheet or "") for n in ast.walk(node))
 
 
-def _cached_outside(node: ast.Node) -> bool:
-    """Does the formula read what the file only caches (a cube, another workbook)?"""
-    return _external(node) or any(isinstance(n, ast.Func) and n.name in fx.CACHED_OUTSIDE
-                                  for n in ast.walk(node))
+def _cube(node: ast.Node) -> bool:
+    """Does the formula call a function the file's OLAP cache answers?"""
+    return any(isinstance(n, ast.Func) and n.name in fx.CACHED_OUTSIDE for n in ast.walk(node))
 
 
 def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -> list[Unit]:
     units = []
     for run in runs:
-        if _external(run.node):
+        outside = _external(run.node)
+        if outside:
             result.external.extend((run.sheet, r, run.col) for r in range(run.first, run.last + 1))
         unit = Unit(run.sheet, run.col, run.first, run.last, run.node)
-        if run.last > run.first and (vol.calls(run.node) or _cached_outside(run.node)):
+        if run.last > run.first and (vol.calls(run.node) or outside or _cube(run.node)):
             # checked cell by cell (a cell the cache does not answer is not checked alone)
             units.extend(singles(unit))
             continue
