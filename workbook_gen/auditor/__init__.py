@@ -29,7 +29,7 @@ from ..evaluator.relnames import at_cell, relative_names
 from ..evaluator.store import FLOAT, type_mask, value_scale
 from ..evaluator.volatile import Clock
 from ..formula import ast, parse
-from ..formula.functions import dialect_of
+from ..formula.functions import Unanswered as fx_unanswered, dialect_of
 from ..forked import Forked
 from ..formula.scalar import evaluate as evaluate_scalar
 from ..xlerror import ExcelError
@@ -92,7 +92,8 @@ def _libreoffice_explains(inputs: AuditInputs, key, value_of, cached) -> bool:
     resolver.has_formula = lambda sheet, row, col: inputs.is_formula((sheet or key[0], row, col))
     try:
         value = evaluate_scalar(node, resolver, dialect="libreoffice")
-    except (ArithmeticError, ValueError, TypeError, IndexError, KeyError, RecursionError):
+    except (ArithmeticError, ValueError, TypeError, IndexError, KeyError, RecursionError,
+            fx_unanswered):
         return False  # the re-check is a courtesy: a defect in it must not lose the file
     return compare(cached, value, 0.0).agree
 
@@ -250,7 +251,8 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
                                     vectorize=vectorize, uncheckable=inputs.uncheckable(),
                                     dialect=semantics, book=inputs.book_info(),
                                     arrays=inputs.arrays, saved=clock,
-                                    iterate=inputs.book.iterate, grouped=inputs.grouped)
+                                    iterate=inputs.book.iterate, grouped=inputs.grouped,
+                                    tables=inputs.data_tables)
     except WorkbookReadError as exc:  # the evaluator's refusal (cost), named by file
         aside.cancel()
         raise WorkbookReadError(f"{path}: {exc}") from None

@@ -31,6 +31,9 @@ class AuditInputs:
     _names: dict[str, Key] | None = None
     array_master: dict[Key, Key] = field(default_factory=dict)  # array cell -> its master
     grouped: Grouped | None = None  # the formulas' runs, when read_inputs grouped them
+    # data tables (evaluator.whatif.DataTable); cached holds every cell they fill
+    data_tables: list = field(default_factory=list)
+    table_of: dict[Key, object] = field(default_factory=dict)  # table cell -> its table
     grouping_seconds: float = 0.0
 
     def uncheckable(self) -> dict[Key, str]:
@@ -42,6 +45,8 @@ class AuditInputs:
         """The formula of a cell; for a cell an array formula fills, the array's."""
         if key in self.formulas:
             return self.formulas[key]
+        if key in self.table_of:  # as Excel shows a data table's cells
+            return "{=" + self.table_of[key].text() + "}"
         master = self.array_master.get(key)
         return "{=" + self.arrays[master][0] + "}" if master in self.arrays else ""
 
@@ -81,7 +86,8 @@ class AuditInputs:
                         all_sheets=self._all_sheets(),
                         charset="mac_roman" if "macintosh" in (self.book.application or
                                                                "").lower() else "cp1252",
-                        date1904=self.book.date1904)
+                        date1904=self.book.date1904,
+                        olap=self.book.olap, external=self.book.external_links)
 
     def _all_sheets(self) -> list[str]:
         """Every sheet's name in the workbook's order: the worksheets at their positions
@@ -99,10 +105,10 @@ class AuditInputs:
         # array masters, and the cells of an array's area that the file gives an empty <f/>
         masters = sum(1 for k in self.array_cells
                       if self.book.sheet(k[0]).cell(k[1], k[2]).has_formula)
-        return len(self.formulas) + len(self.broken) + masters
+        return len(self.formulas) + len(self.broken) + masters + len(self.data_tables)
 
     def is_formula(self, key: Key) -> bool:
-        if key in self.formulas or key in self.broken:
+        if key in self.formulas or key in self.broken or key in self.table_of:
             return True
         cell = self.book.sheet(key[0]).cell(key[1], key[2])
         return cell is not None and cell.has_formula
@@ -135,6 +141,16 @@ def _array(inputs: AuditInputs, sheet, cell, key: Key) -> None:
             inputs.array_master[(sheet.name, r, c)] = key
 
 
+def _data_table(inputs: AuditInputs, cell, key: Key) -> None:
+    from ..evaluator.whatif import DataTable
+    from ..formula.tokenizer import CELL_PARTS, column_number
+    last = CELL_PARTS.fullmatch((cell.array_ref or cell.ref).replace("$", "").split(":")[-1])
+    if last is not None:
+        area = (max(cell.row, int(last.group(4))), max(cell.col, column_number(last.group(2))))
+        inputs.data_tables.append(DataTable.of(key[0], cell.row, cell.col, area,
+                                               cell.data_table))
+
+
 def read_inputs(path: str | Path, group: bool = False) -> AuditInputs:
     """The formulas, cached values and constants of the workbook at ``path``; with
     ``group``, also the formulas' runs (``inputs.grouped``), each sheet's grouped as soon
@@ -159,6 +175,10 @@ def read_inputs(path: str | Path, group: bool = False) -> AuditInputs:
             inputs.grouping_seconds += seconds
 
     inputs.book = read_workbook(path, ready=take, prepare=_grouped if group else None)
+    for table in inputs.data_tables:  # (every sheet read: the cells they fill are known)
+        for key in table.cells():
+            inputs.table_of[key] = table
+            inputs.cached[key] = inputs.constants.get(key)
     return inputs
 
 
@@ -208,6 +228,8 @@ def _sheet_inputs(inputs: AuditInputs, sheet, cells=None, chunks=None) -> None:
             if cell.is_array:
                 _array(inputs, sheet, cell, key)
             continue
+        if kind == "dataTable" and cell.data_table is not None:
+            _data_table(inputs, cell, key)
         source = sheet.formula_source(cell) if cell.has_formula else None
         if source is None:
             inputs.constants[key] = cell.value

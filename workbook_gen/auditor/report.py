@@ -13,6 +13,9 @@ from .structure import Finding
 MAX_LISTED = 20  # disagreeing cells listed per column in the terminal (--verbose)
 WORST = 5  # disagreeing cells shown in the default summary
 
+# reasons of what the file only caches (a cube, another workbook, a data table)
+_CACHED_OUTSIDE = ("CUBE", "external reference", "external name", "data table")
+
 
 @dataclass
 class Mismatch:
@@ -86,6 +89,8 @@ class AuditReport:
         for reason in self.not_checked.values():
             if reason.startswith("depends on"):
                 key = "depend on a cell not checked"
+            elif reason.startswith(_CACHED_OUTSIDE):  # "what: why: which cells"
+                key = ": ".join(reason.split(": ")[:2])
             elif reason.startswith(("formula syntax", "circular reference", "defined name")):
                 key = reason.split(" at position")[0].split(" (")[0].split(" '")[0]
                 key = key if len(key) < 70 else key[:67] + "..."

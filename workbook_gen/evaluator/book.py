@@ -56,6 +56,10 @@ class BookInfo:
         if self._names is None or len(self._names[0]) != len(self.tables):
             self._names = (tuple(self.tables), frozenset(t.name.casefold() for t in self.tables))
         return name.casefold() in self._names[1]
+    # the cube functions' cache of each connection (xlsx.olap), by case-folded name
+    olap: dict = field(default_factory=dict)
+    # the links to other workbooks with their cached cells (xlsx.model.ExternalLink)
+    external: list = field(default_factory=list)
 
     def table(self, name: str, sheet: str, row: int, col: int) -> Table | None:
         """The table called ``name``, or ("" ) the one holding cell (sheet, row, col)."""

@@ -18,7 +18,10 @@ Documented choices:
   such a cell with a cached value holds it for its readers, which are then checked (the
   consistency rule of :mod:`taint`);
 - a formula that does not parse gets ``#NAME?`` and its message in ``syntax_errors``;
-- an external reference (``[1]Sheet!A1``) gives ``#REF!`` and the cell is in ``external``;
+- an external reference (``[1]Sheet!A1``) reads the values the file caches of the other
+  workbook (``book.external``); the cell is in ``external``, and not checked where the
+  cache lacks a cell it reads (``fx.Unanswered``, as a cube function the file's OLAP cache
+  does not answer); one that does not parse gives ``#REF!``;
 - an unsupported function gives ``#NAME?`` where it is evaluated; a volatile function
   (NOW, RAND, OFFSET, INDIRECT, ...) is evaluated and its cells listed in ``volatile``;
   given ``saved`` (the cached values and the file's last save), a cell whose value
@@ -36,15 +39,16 @@ import dataclasses
 import logging
 import re
 import time
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from operator import itemgetter
 
 import numpy as np
 
 from workbook_gen.errors import FormulaSyntaxError
-from workbook_gen.evaluator import cycles, graph, volatile as vol
+from workbook_gen.evaluator import cycles, graph, volatile as vol, whatif
 from workbook_gen.evaluator.book import BookInfo, resolve, resolve_fixed
+from workbook_gen.evaluator.external import ExternalBooks
 from workbook_gen.evaluator.relnames import NameInliner
 from workbook_gen.evaluator.taint import Taint
 from workbook_gen.evaluator.grouping import Grouped, Run, group_formulas
@@ -140,8 +144,8 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
                    saved: vol.Clock | None = None, iterate: bool = False,
                    grouped: Grouped | None = None,
                    texts: Mapping[Cell, str] | None = None,
-                   array_texts: Mapping[Cell, tuple[str, tuple[int, int]]] | None = None
-                   ) -> Evaluation:
+                   array_texts: Mapping[Cell, tuple[str, tuple[int, int]]] | None = None,
+                   tables: Sequence[whatif.DataTable] = ()) -> Evaluation:
     """Recompute every formula (texts without '=') of a workbook; see the module doc.
 
     ``uncheckable``: cells among ``constants`` that are formulas the caller could not
@@ -154,17 +158,20 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     already (with ``vectorize``). ``texts``, ``array_texts``: the texts of every formula
     and array formula of the workbook, where some are among ``constants`` (their cached
     values taken as they are): SUBTOTAL, ISFORMULA and spill references (ANCHORARRAY)
-    still see them as formulas."""
+    still see them as formulas. ``tables``: data tables (:mod:`whatif`), recomputed
+    last (what reads their cells reads the values among ``constants``)."""
     if dialect not in fx.registry.DIALECTS:
         raise ValueError(f"unknown dialect {dialect!r}")
     book = book or BookInfo()
     with date_system(book.date1904):  # every serial in the workbook's date system
         return _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
-                               book, arrays, saved, iterate, grouped, texts, array_texts)
+                               book, arrays, saved, iterate, grouped, texts, array_texts,
+                               tables)
 
 
 def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect, book,
-                    arrays, saved, iterate, grouped, texts, array_texts) -> Evaluation:
+                    arrays, saved, iterate, grouped, texts, array_texts,
+                    tables) -> Evaluation:
     sheets = set(map(itemgetter(0), formulas)) | set(map(itemgetter(0), constants))
     sheets |= set(book.sheets)
     sheets |= set(book.unreadable)
@@ -172,7 +179,8 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
     store.unreadable = {s.lower() for s in book.unreadable}
     store.hidden = {store.sheet(s): rows for s, rows in book.hidden_rows.items()}
     store.filtered = {store.sheet(s): rows for s, rows in book.filtered_rows.items()}
-    store.charset = book.charset
+    store.charset, store.olap = book.charset, book.olap
+    store.external = ExternalBooks(book.external)
     store.all_sheets = list(book.all_sheets or book.sheets)
     store.formula_texts, store.array_formulas = texts or formulas, arrays or array_texts or {}
     store.unparsed = uncheckable or {}
@@ -187,6 +195,9 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
             keys.update(dict.fromkeys((sheet, r, c) for r in range(row, r2 + 1)
                                       for c in range(col, c2 + 1)))
             store.note(sheet, r2, c2)
+    if tables:
+        keys = dict(keys)
+        keys.update(dict.fromkeys(c for t in tables for c in t.cells()))
     result = Evaluation(CellMap(keys, store.get), CellMap(keys, store.scale),
                         store=store, bad_names=dict(name_table.errors))
     taint = Taint(None if saved is None else saved.cached,
@@ -212,8 +223,6 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
             _source(result, taint, cell, cell, f"formula syntax: {message}")
     units = _units(runs, vectorize, store, result)
     units += _array_units(arrays or {}, book, result, taint, store, inliner)
-    for cell in result.external:
-        _source(result, taint, cell, cell, "external reference")
     _report_functions(units, result, name_table, dialect)
     taint.flush()
 
@@ -267,6 +276,10 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
             clock = time.perf_counter()
             try:
                 evaluate_unit(units[u], store, name_table, dialect)
+            except fx.Unanswered as exc:  # read from a cache the file keeps, which lacks it
+                for cell in units[u].cells():
+                    store.put(*cell, ExcelError.NA)
+                    _source(result, taint, cell, cell, str(exc))
             except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
                     AttributeError, RecursionError) as exc:  # a defect must not lose the file
                 log.warning("evaluator failure at %s: %r", _where(units[u].cells()[0]), exc)
@@ -280,6 +293,9 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
     result.seconds.update(spent)
     if result.cycles:
         _show_circular(store, cycles.shown(dialect))
+    whatif.put_tables(tables, store, name_table, dialect,
+                      lambda k: resolve(parse(formulas[k]), book, *k), result.not_checked,
+                      lambda cell, why: _source(result, taint, cell, cell, why))
     for u in units:
         if u.block is not None:
             result.groups.vector_groups += 1
@@ -322,20 +338,25 @@ def _runs(formulas, vectorize: bool) -> tuple[list[Run], dict]:
 
 
 def _external(node: ast.Node) -> bool:
-    return any(isinstance(n, (ast.CellRef, ast.RangeRef)) and (n.sheet or "").startswith("[")
-               for n in ast.walk(node))
+    return any(isinstance(n, (ast.CellRef, ast.RangeRef, ast.Name))
+               and "]" in (n.sheet or "") for n in ast.walk(node))
+
+
+def _cube(node: ast.Node) -> bool:
+    """Does the formula call a function the file's OLAP cache answers?"""
+    return any(isinstance(n, ast.Func) and n.name in fx.CACHED_OUTSIDE for n in ast.walk(node))
 
 
 def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -> list[Unit]:
     units = []
     for run in runs:
-        if _external(run.node):
-            for r in range(run.first, run.last + 1):
-                result.external.append((run.sheet, r, run.col))
-                store.put(run.sheet, r, run.col, EXTERNAL_VALUE)
-            continue
+        outside = _external(run.node)
+        if outside:
+            result.external.extend((run.sheet, r, run.col) for r in range(run.first, run.last + 1))
         unit = Unit(run.sheet, run.col, run.first, run.last, run.node)
-        if run.last > run.first and (vol.calls(run.node) or _guarded(run)):  # cell by cell
+        if run.last > run.first and (vol.calls(run.node) or _guarded(run) or outside
+                                     or _cube(run.node)):
+            # checked cell by cell (a cell the cache does not answer is not checked alone)
             units.extend(singles(unit))
             continue
         if vectorize and run.last > run.first:
@@ -531,6 +552,8 @@ def _cycle(members: list[Unit], shaped: list, taint: Taint, result: Evaluation,
             else:
                 found = cycles.run(members, Unit.cells, store, lambda unit, view: evaluate_unit(
                     unit, store, names, dialect, view=view))
+        except fx.Unanswered as exc:  # what the file does not cache: the component too
+            log.info("not checked in a cycle at %s: %s", _where(cells[0]), exc)
         except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
                 AttributeError, RecursionError) as exc:
             log.warning("evaluator failure in a cycle at %s: %r", _where(cells[0]), exc)
@@ -584,6 +607,8 @@ def _settle(unit: Unit, store: Store, names: Names, dialect: str, clock: vol.Clo
         try:
             outcome = vol.check(unit.node, cached, lambda tree: evaluate(
                 tree, resolver, dialect=dialect, cell=cell), clock)
+        except fx.Unanswered as exc:
+            outcome = vol.Outcome("unknown", str(exc))
         except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
                 AttributeError, RecursionError) as exc:
             outcome = vol.Outcome("unknown", f"evaluator failure: {type(exc).__name__}: {exc}")

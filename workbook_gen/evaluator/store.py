@@ -18,6 +18,7 @@ from itertools import compress, repeat
 import numpy as np
 
 from workbook_gen.errors import FormulaSyntaxError
+from workbook_gen.evaluator.external import ExternalBooks
 from workbook_gen.evaluator.keys import column_groups, pick
 from workbook_gen.formula import ast
 from workbook_gen.formula.parser import parse
@@ -86,6 +87,8 @@ class Store:
         self.filtered: dict[str, frozenset[int]] = {}  # sheet -> the rows a filter hid
         self.charset = "cp1252"  # CHAR and CODE's character set (BookInfo.charset)
         self.all_sheets: list[str] = list(self.order)  # every sheet in order (SHEET, SHEETS)
+        self.olap: dict = {}  # the cube functions' caches (BookInfo.olap)
+        self.external = ExternalBooks()  # what the file caches of other workbooks
         self.formula_texts: Mapping[tuple[str, int, int], str] = {}  # for subtotal_cells
         self.array_formulas: Mapping[tuple[str, int, int], tuple] = {}  # (text, (r2, c2))
         self._subtotals: dict[str, list[tuple[int, int]]] | None = None
@@ -399,6 +402,8 @@ class Names:
         """The tree of ``name`` as written in a formula of sheet ``home``
         (``sheet``: the qualifier of ``Sheet2!Name``)."""
         key = name.upper()
+        if sheet is not None and "]" in sheet:  # another workbook's name: not one of ours
+            return None
         if sheet is not None:
             scope = self.local.get(sheet.lower(), {})
             return scope.get(key, self.nodes.get(key))
@@ -430,9 +435,13 @@ class SheetResolver:
         return self.sheet if sheet is None else self.store.sheet(sheet)
 
     def cell(self, sheet, row, col):
+        if sheet is not None and "]" in sheet:  # another workbook: the file's cache
+            return self.store.external.cell(sheet, row, col)
         return self.store.get(self._sheet(sheet), row, col)
 
     def range(self, sheet, row1, col1, row2, col2):
+        if sheet is not None and "]" in sheet:
+            return self.store.external.rect(sheet, row1, col1, row2, col2)
         return self.store.rect(self._sheet(sheet), row1, col1, row2, col2)
 
     def hidden_rows(self, sheet) -> frozenset[int]:
@@ -452,6 +461,10 @@ class SheetResolver:
     def charset(self) -> str:
         """The workbook's character set for CHAR and CODE ("cp1252" or "mac_roman")."""
         return self.store.charset
+
+    def olap(self, connection: str):
+        """The cube functions' cache of a connection (xlsx.olap.OlapCache), or None."""
+        return self.store.olap.get(connection.casefold())
 
     def subtotal_cells(self, sheet) -> list[tuple[int, int]]:
         """(row, col) of a sheet's cells holding SUBTOTAL or AGGREGATE (left out by them)."""
@@ -477,6 +490,9 @@ class SheetResolver:
         return self.store.sheets_between(first, last)
 
     def range_scale(self, sheet, row1, col1, row2, col2) -> float:
+        if sheet is not None and "]" in sheet:
+            rows = self.range(sheet, row1, col1, row2, col2).rows
+            return max((value_scale(v) for row in rows for v in row), default=0.0)
         return self.store.rect_scale(self._sheet(sheet), row1, col1, row2, col2)
 
     def name_node(self, name: str):
@@ -485,6 +501,8 @@ class SheetResolver:
 
     def name(self, name, sheet):
         node = self.names.node(name, sheet, self.sheet)
+        if node is None and sheet is not None and sheet[:1] == "[":  # another workbook's
+            node = self.store.external.name(sheet, name)
         if node is None or self.depth >= self.MAX_NAME_DEPTH:
             return ExcelError.NAME
         from workbook_gen.formula.scalar import Evaluator  # the reference semantics

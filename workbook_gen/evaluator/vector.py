@@ -117,7 +117,7 @@ class _Compiler:
     # -- leaves -------------------------------------------------------------------------
     def _slice(self, ref: ast.CellRef):
         sheet = self.sheet if ref.sheet is None else self.sheet_of(ref.sheet)
-        if sheet.startswith("["):
+        if "]" in sheet:  # another workbook (no sheet name holds "]")
             raise NotVectorizable("external reference")
         a, b = ref.row, ref.row + (self.last - self.first)
         if sheet == self.sheet and ref.col == self.col and a <= self.last and b >= self.first:

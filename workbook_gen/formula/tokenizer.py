@@ -229,11 +229,20 @@ class Tokenizer:
         self._fail("unclosed '['")
 
     def _bracket(self) -> None:
-        if _EXTERNAL_RE.match(self.formula, self.offset):
-            if _THIS_BOOK_RE.match(self.formula, self.offset):
-                m = _WORD_RE.match(self.formula, self.offset + 4)
+        book = _EXTERNAL_RE.match(self.formula, self.offset)
+        if book:
+            at = book.end()
+            if self.formula.startswith("!", at):  # [n]!Name: a name of that workbook
+                m = _WORD_RE.match(self.formula, at + 1)
                 if m is not None:
                     self._add(NAME, self.formula[self.offset:m.end()])
+                    return
+            for regex in (_REF_RE, _COLS_RE, _ROWS_RE, _WORD_RE):  # [n]Sheet!A1, [n]Sheet!Name
+                m = regex.match(self.formula, at)
+                if m and "!" in m.group(0) and (regex is not _WORD_RE or
+                                                not self.formula.startswith("(", m.end())):
+                    self._add(REF if regex is not _WORD_RE else NAME,
+                              self.formula[self.offset:m.end()])
                     return
             self._fail("external reference (to another workbook) at '['")
         self._add(STRUCT, self.formula[self.offset:self._brackets(self.offset)])

@@ -30,6 +30,7 @@ class Cell:
     shared_master: str | None = None  # ref of the master (itself on the master)
     array_ref: str | None = None  # range of an array formula, on its master cell
     array_master: str | None = None  # on the other cells an array formula fills
+    data_table: dict | None = None  # a data table's <f> attributes (r1, r2, dt2D, dtr, del1, del2)
 
     @property
     def has_formula(self) -> bool:
@@ -205,12 +206,17 @@ class Sheet:
 
 @dataclass(slots=True)
 class ExternalLink:
-    """A link to another workbook, reported and never followed."""
+    """A link to another workbook, never followed: what the file caches of it (the values
+    of the cells its formulas read, as Excel last read them: ``<sheetDataSet>``)."""
 
     index: int  # the n of [n]Sheet!A1 in formula text
     part: str
     target: str | None  # the other workbook's path or URL as stored
     sheet_names: list[str] = field(default_factory=list)
+    # sheet position (sheetId) -> {(row, col): value} of the cells cached
+    cells: dict[int, dict[tuple[int, int], Value]] = field(default_factory=dict)
+    # the other workbook's defined names: (name, sheet position or None) -> refersTo text
+    names: dict[tuple[str, int | None], str] = field(default_factory=dict)
 
 
 @dataclass
@@ -224,6 +230,8 @@ class Workbook:
     iterate: bool = False  # calcPr iterate="1": iterative calculation of circular references
     vba_project: str | None = None  # the part holding macros (xl/vbaProject.bin), never run
     application: str | None = None  # docProps/app.xml's Application: the program that saved it
+    # the cube functions' cache of each connection (xlsx.olap), by case-folded name
+    olap: dict = field(default_factory=dict)
 
     @property
     def sheet_names(self) -> list[str]:

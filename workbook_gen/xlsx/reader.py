@@ -23,6 +23,7 @@ from workbook_gen.xlsx.apart import read_apart
 from workbook_gen.xlsx.filters import sheet_filter, table_filter
 from workbook_gen.xlsx.limits import MAX_CELLS, MAX_RATIO, MAX_UNCOMPRESSED, Package
 from workbook_gen.xlsx.model import ExternalLink, Sheet, TableDef, Workbook
+from workbook_gen.xlsx.olap import read_olap
 from workbook_gen.xlsx.sheetdata import _LOCAL, _text_of, read_sheet
 
 log = logging.getLogger(__name__)
@@ -98,6 +99,7 @@ def _read(pkg: Package, path: str, max_cells: int, ready, prepare) -> Workbook:
         for n, el in enumerate(_children(_child(root, "externalReferences"), "externalReference")):
             part = rels.get(_rid(el), (None, None))[1]
             book.external_links.append(_external_link(pkg, n + 1, part))
+        book.olap = read_olap(pkg, root, rels, _rid)
         book.vba_project = next((p for k, p in rels.values() if k == "vbaProject" and p
                                  and not p.startswith("external:")), None)
         sst_part = next((p for k, p in rels.values() if k == "sharedStrings" and p
@@ -214,7 +216,31 @@ def _external_link(pkg: Package, index: int, part: str | None) -> ExternalLink:
             link.target = target.removeprefix("external:") if target else None
         elif local == "sheetName" and el.get("val") is not None:
             link.sheet_names.append(el.get("val", ""))
+        elif local == "definedName" and el.get("name") and el.get("refersTo") is not None:
+            sheet_id = el.get("sheetId", "")
+            link.names[(el.get("name", "").casefold(),
+                        int(sheet_id) if sheet_id.isdigit() else None)] = el.get("refersTo", "")
+        elif local == "sheetData" and el.get("sheetId", "").isdigit():
+            link.cells[int(el.get("sheetId", ""))] = _external_cells(el)
     return link
+
+
+def _external_cells(sheet_data: Element) -> dict[tuple[int, int], object]:
+    """{(row, col): value} of one sheet's cached cells (``<cell r t><v>``)."""
+    from workbook_gen.xlsx.sheetdata import _split_ref, _value
+    out: dict[tuple[int, int], object] = {}
+    for el in sheet_data.iter():
+        if el.tag.rpartition("}")[2] != "cell" or not el.get("r"):
+            continue
+        v = next((c.text for c in el if c.tag.rpartition("}")[2] == "v"), None)
+        kind = el.get("t", "n")
+        try:
+            value = None if v is None else _value(
+                "str" if kind in ("s", "inlineStr") else kind, v, None, [])
+            out[_split_ref(el.get("r", ""))] = value
+        except (ValueError, IndexError):
+            continue  # a cell the cache garbles: absent, so not answered
+    return out
 
 
 def _shared_strings(pkg: Package, part: str, limit: int) -> list[str]:

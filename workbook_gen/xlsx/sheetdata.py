@@ -388,6 +388,10 @@ def _formula_of(cell: Cell, f: dict[str, str], text: str | None,
     elif kind == "array":
         cell.array_ref = f.get("ref") or cell.ref
         arrays.append(cell)
+    elif kind == "dataTable":  # a what-if table: its area, input cells and options
+        cell.array_ref = f.get("ref") or cell.ref
+        cell.data_table = {k: f[k] for k in ("r1", "r2", "dt2D", "dtr", "del1", "del2")
+                           if k in f}
 
 
 def _mark_arrays(sheet: Sheet, arrays: list[Cell]) -> None:

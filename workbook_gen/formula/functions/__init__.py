@@ -21,6 +21,7 @@ from workbook_gen.formula.functions import (  # noqa: F401  (each module registe
     lambdas, dynamic, arrayops, regex,  # (helper corpb: LAMBDA, dynamic arrays, regex)
     bonds, oddbonds,  # (helper corpb3: securities, day-count bases in daycount.py)
     weeks, spill,
+    cube,  # (answered from the file's OLAP cache)
 )
 from workbook_gen.formula.functions.dialect import (
     LIBREOFFICE_DIFFERENCES, Difference, dialect_of, libreoffice_error, libreoffice_result,
@@ -28,7 +29,7 @@ from workbook_gen.formula.functions.dialect import (
 )
 from workbook_gen.formula.functions.math import power
 from workbook_gen.formula.functions.registry import (
-    REGISTRY, Context, Function, RowDependent, register,
+    REGISTRY, Context, Function, RowDependent, Unanswered, register,
 )
 from workbook_gen.formula.functions import registry as _registry
 from workbook_gen.xlerror import ExcelError
@@ -36,8 +37,11 @@ from workbook_gen.xlerror import ExcelError
 SUPPORTED = frozenset(REGISTRY)
 VOLATILE = frozenset(n for n, f in REGISTRY.items() if f.volatile)
 LAZY = frozenset(n for n, f in REGISTRY.items() if f.lazy)
+# functions whose value is read from a cache the file keeps of something outside it
+CACHED_OUTSIDE = cube.FUNCTIONS
 
 __all__ = ["REGISTRY", "SUPPORTED", "VOLATILE", "LAZY", "Context", "Function", "RowDependent",
+           "Unanswered",
            "register",
            "call", "power", "LIBREOFFICE_DIFFERENCES", "Difference", "dialect_of", "libreoffice_result",
            "ExcelError"]

@@ -38,6 +38,12 @@ class RowDependent(Exception):
     once for all rows learns that the part depends on the row after all."""
 
 
+class Unanswered(Exception):
+    """Raised where a value is read from a cache the file keeps of something outside it
+    (an OLAP cube, another workbook) and the file does not hold it: the cell, and what
+    reads it, is "not checked" with ``str(exc)`` as the reason (never a guessed value)."""
+
+
 @dataclass
 class Context:
     """What a function may know about its call.
