@@ -34,6 +34,7 @@ from ..formula.scalar import evaluate as evaluate_scalar
 from ..xlerror import ExcelError
 import numpy as np
 
+from .caught import caught
 from .compare import ColumnStats, compare, compare_numbers
 from .findings import find as find_findings
 from .inputs import AuditInputs, read_inputs
@@ -92,7 +93,8 @@ def _libreoffice_explains(inputs: AuditInputs, key, value_of, cached) -> bool:
                          getattr(value_of, "clip", None))
     resolver.has_formula = lambda sheet, row, col: inputs.is_formula((sheet or key[0], row, col))
     try:
-        value = evaluate_scalar(node, resolver, dialect="libreoffice")
+        with np.errstate(all="ignore"):  # overflow is #NUM! there too (engine._floats_quiet)
+            value = evaluate_scalar(node, resolver, dialect="libreoffice")
     except (ArithmeticError, ValueError, TypeError, IndexError, KeyError, RecursionError):
         return False  # the re-check is a courtesy: a defect in it must not lose the file
     return compare(cached, value, 0.0).agree
@@ -175,7 +177,10 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
     paused = gc.isenabled()
     gc.disable()
     try:
-        return _audit(path, engine, vectorize, progress)
+        with caught() as said:
+            report = _audit(path, engine, vectorize, progress)
+        report.warnings = said
+        return report
     finally:
         if paused:
             gc.enable()
@@ -377,6 +382,7 @@ def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, t
     mismatches = settle(inputs, arrays_once(inputs, mismatches, _cell_name), stale, _cell_name)
     disagreeing += [m.key for m in mismatches if m.stale]
     not_checked = dict(skipped)
+    not_checked.update(inputs.opaque)
     not_checked.update(dict.fromkeys(absent, NO_CACHED_VALUE))
     counts = tally(inputs, keys, disagreeing, not_checked, contract_ok,
                    sum(1 for m in mismatches if m.root))

@@ -74,6 +74,8 @@ class AuditReport:
     counts: Tally | None = None  # the formula cells by verdict (tally.py)
     # no formula cell holds a cached value (openpyxl, pandas): nothing could be verified
     saved_without_values: bool = False
+    # what the audit's own code warned of while it ran (caught.py): message -> times
+    warnings: dict[str, int] = field(default_factory=dict)
 
     @property
     def ok(self) -> bool:
@@ -157,6 +159,7 @@ class AuditReport:
             "semantics": self.semantics,
             "application": self.application,
             "libreoffice_semantics": self.libreoffice_semantics,
+            "warnings": [{"message": k, "count": n} for k, n in self.warnings.items()],
             "vectorized_cells": self.vector_cells,
             "seconds": self.seconds,
             "timings": self.timings,
@@ -310,6 +313,10 @@ def format_report(report: AuditReport, verbose: bool = False) -> str:
         for m in e.mismatches[:MAX_LISTED if verbose else WORST]:
             lines.append(f"    {m.cell}: ={_cut(m.formula)}: {e.engine} {_cut(_show(m.cached))}, "
                          f"ours {_cut(_show(m.recomputed))}")
+    if report.warnings:
+        lines.append(f"  the audit warned {sum(report.warnings.values())} times (its own "
+                     "problem, not the file's): " + "; ".join(
+                         f"{k} (x{n})" for k, n in list(report.warnings.items())[:3]))
     if report.ok and report.saved_without_values:
         verdict = ("  OK: nothing disagrees, but nothing was verified: the file holds no cached "
                    "values (--engine libreoffice compares with LibreOffice's recalculation)")

@@ -48,7 +48,7 @@ def tally(inputs, compared, disagreeing, not_checked, contract_ok, disagreements
     """Count the formula cells: ``compared`` the cells compared with their cached value
     (an array's area cell by cell), ``disagreeing`` those that differ (or would show
     another value if recalculated), ``not_checked`` and ``contract_ok`` formula cells."""
-    counted = set(inputs.formulas) | set(inputs.broken)
+    counted = set(inputs.formulas) | set(inputs.broken) | set(inputs.opaque)
     counted.update(k for k in inputs.array_cells if inputs.is_formula(k))
     fold = inputs.array_master
 
