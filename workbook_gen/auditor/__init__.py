@@ -239,6 +239,11 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
                    evaluation.store.column_values, trees)
     try:
         absent = absent_values(inputs.cached)
+        without = bool(absent) and len(absent) == len(inputs.cached)  # none has a value
+        if absent:  # an empty cell where the formula gives "" shows what it would show
+            values = evaluation.values
+            absent = [k for k in absent if k not in values or k in evaluation.not_checked
+                      or values[k] not in (None, "")]
         mismatches, columns, counts, skipped, explained, max_abs, max_rel = _compare(
             inputs, evaluation, local, semantics, value_of, timings, absent)
         step("compare")
@@ -267,7 +272,7 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
         by_contract={_cell_name(k): o.message for k, o in sorted(evaluation.contract.items())
                      if o.status != "disagrees"},
         application=inputs.book.application, counts=counts,
-        saved_without_values=bool(absent) and len(absent) == len(inputs.cached))
+        saved_without_values=without)
 
 
 def _timed(fn, *args):

@@ -75,7 +75,7 @@ def no_cached_findings(inputs, absent: list[Key], cell_name) -> list:
     cells = sorted(k for k in absent if inputs.is_formula(k))
     if not cells:
         return []
-    if len(absent) == len(inputs.cached):
+    if not any(v is not None for v in inputs.cached.values()):
         writer = inputs.book.application
         return [Finding(cell_name(cells[0]), "no_cached_value",
                         f"none of the {inputs.formula_count} formula cells holds a cached "
