@@ -47,24 +47,31 @@ def absent(cached: dict) -> list[Key]:
 def tally(inputs, compared, disagreeing, not_checked, contract_ok, disagreements: int) -> Tally:
     """Count the formula cells: ``compared`` the cells compared with their cached value
     (an array's area cell by cell), ``disagreeing`` those that differ (or would show
-    another value if recalculated), ``not_checked`` and ``contract_ok`` formula cells."""
-    counted = set(inputs.formulas) | set(inputs.broken) | set(inputs.opaque)
-    counted.update(k for k in inputs.array_cells if inputs.is_formula(k))
+    another value if recalculated), ``not_checked`` and ``contract_ok`` formula cells.
+
+    One set of the compared cells is made; the others are small (no Python code per
+    agreeing cell: a workbook has 200,000 of them)."""
+    area = {k for k in inputs.array_cells if inputs.is_formula(k)}
+
+    def counts(key) -> bool:
+        return (key in inputs.formulas or key in area or key in inputs.broken
+                or key in inputs.opaque)
+
     fold = inputs.array_master
 
-    def units(keys) -> set:  # the cells of an array's area without an <f> of their own
-        out = set(keys)      # count with its anchor
-        if fold:
-            folded = out.intersection(fold).difference(counted)
-            out -= folded
-            out.update(fold[k] for k in folded)
-        return out & counted
+    def unit(key):  # a cell of an array's area without an <f> counts with its anchor
+        return key if counts(key) else fold.get(key)
 
-    skipped = counted.intersection(not_checked)
-    by_contract = counted.intersection(contract_ok) - skipped
-    disagree = units(disagreeing) - skipped
-    agree = units(compared) - disagree - skipped - by_contract
-    return Tally(len(agree), len(disagree), len(skipped), len(by_contract), disagreements)
+    skipped = {k for k in not_checked if counts(k)}
+    by_contract = {k for k in contract_ok if counts(k)} - skipped
+    disagree = {unit(k) for k in disagreeing} - {None} - skipped
+    units = set(compared)
+    if fold:
+        folded = [k for k in fold if k in units and not counts(k)]
+        units.difference_update(folded)
+        units.update(fold[k] for k in folded)
+    agree = len(units) - len(units.intersection(disagree | skipped | by_contract))
+    return Tally(agree, len(disagree), len(skipped), len(by_contract), disagreements)
 
 
 def no_cached_findings(inputs, absent: list[Key], cell_name) -> list:
