@@ -239,7 +239,9 @@ def _disagreements(report: AuditReport, verbose: bool) -> list[str]:
                 "from them" if follow or report.cells_disagree != len(sources) else "")
              + ("; the worst:" if not verbose and len(sources) > WORST else ":")]
     for m in sources[:limit]:
-        where = f" (array {m.area}, {len(m.cells)} of its cells disagree)" if m.area else ""
+        first, _, last = (m.area or "").partition(":")
+        where = (f" (array {m.area}, {len(m.cells)} of its cells disagree)"
+                 if m.area and first != last else "")
         at = f"at {m.at}: " if m.at else ""
         lines.append(f"    {m.cell}{where}: ={m.formula}")
         lines.append(f"      {at}cached {_show(m.cached)}, recomputed {_show(m.recomputed)}"
@@ -271,6 +273,9 @@ def format_report(report: AuditReport, verbose: bool = False) -> str:
     if report.semantics != "excel":
         lines.append(f"  recomputed with {report.semantics}'s semantics: the file was saved by "
                      f"{report.application}")
+    elif report.application and not report.application.lower().startswith("microsoft"):
+        lines.append(f"  recomputed with Excel's semantics: the file was saved by "
+                     f"{report.application}, whose own are not modelled")
     reasons = report.not_checked_reasons()
     if reasons and not report.saved_without_values:
         shown = reasons if verbose else reasons[:3]
