@@ -201,6 +201,24 @@ def test_recalculation_shows_what_the_report_says_it_would(tmp_path):
         assert theirs[sheet][ref] == m.recomputed, m.cell
 
 
+def test_a_label_reading_a_stale_cell_is_listed_with_it():
+    """phpspreadsheet__issue.2301.xlsx: K57's cached "H" is stale (AO56 is empty, so the
+    formula gives "M"); AN56 picks its label from K57 and shows the "H" one. AN56 agrees
+    with the stale K57, but a recalculation shows its "M" label: a follower of K57."""
+    path = corpus("phpspreadsheet__issue.2301.xlsx")
+    cells = {c.get("r"): c for _, c in formula_cells_in_xml(path)}
+    label = cells["AN56"]
+    m_label = re.search(r'K57="M","([^"]*)"', label.findtext(NS + "f")).group(1)
+    report = audit(path)
+    by_cell = {m.cell.split("!")[1]: m for m in report.mismatches}
+    assert by_cell["K57"].root and by_cell["K57"].cached == cells["K57"].findtext(NS + "v")
+    follower = by_cell["AN56"]
+    assert not follower.root and follower.sources == ["'HS1-XYZ'!K57"]
+    assert follower.cached == label.findtext(NS + "v") != m_label
+    assert follower.recomputed == m_label
+    assert report.disagreements == 1
+
+
 # -- counts add up ---------------------------------------------------------------------
 
 COUNTED = [  # arrays, cycles, data tables, volatile contracts, not checked, LibreOffice
@@ -210,6 +228,7 @@ COUNTED = [  # arrays, cycles, data tables, volatile contracts, not checked, Lib
     "ironcalc__weekly_timesheet.xlsx", "ironcalc__yearly_calendar.xlsx",
     "edr__Test_Encoding_Formula_Date_1520.xlsx", "closedxml__named-ranges-global.xlsx",
     "sheetjs__formula_stress_test.xlsx", "poi__stress002.xlsx", "phpspreadsheet__issue.2301.xlsx",
+    "phpspreadsheet__CellMatcher.xlsx", "openxmlsdk__Spreadsheet.xlsx",
 ]
 
 

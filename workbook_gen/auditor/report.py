@@ -245,11 +245,14 @@ def _disagreements(report: AuditReport, verbose: bool) -> list[str]:
         at = f"at {m.at}: " if m.at else ""
         lines.append(f"    {m.cell}{where}: ={m.formula}")
         lines.append(f"      {at}cached {_show(m.cached)}, recomputed {_show(m.recomputed)}"
-                     + (f"; {len(m.followers)} cell{'s' * (len(m.followers) > 1)} follow "
-                        f"from it: {_names(m.followers)}" if m.followers else ""))
+                     + (f"; {len(m.followers)} cell{'s' * (len(m.followers) > 1)} "
+                        f"follow{'s' * (len(m.followers) == 1)} from it: "
+                        f"{_names(m.followers)}" if m.followers else ""))
     if follow:
-        lines.append(f"  {len(follow)} cell{'s' * (len(follow) > 1)} would show another value "
-                     "if recalculated (they follow from a disagreement)"
+        one = len(follow) == 1
+        lines.append(f"  {len(follow)} cell{'s' * (not one)} would show another value if "
+                     f"recalculated ({'it follows' if one else 'they follow'} from a "
+                     "disagreement)"
                      + ("; the first:" if not verbose and len(follow) > WORST else ":"))
         for m in follow[:limit]:
             why = f", because of {_names(m.sources, 3)}" if m.sources else ""
