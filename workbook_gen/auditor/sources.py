@@ -90,7 +90,7 @@ def settle(inputs, mismatches: list[Mismatch], stale: dict[Key, Stale], cell_nam
     aggregates that follow from a disagreement added (see the module's docstring).
 
     ``mismatches`` are one per array formula already (``arrays_once``)."""
-    if len(mismatches) > MAX_ROOT_SEARCH:
+    if not mismatches or len(mismatches) > MAX_ROOT_SEARCH:
         return mismatches
     nodes: dict[Key, Mismatch | Stale] = {m.key: m for m in mismatches}
     for key, s in stale.items():
