@@ -17,6 +17,9 @@ from ..xlsx.model import Workbook
 
 Key = tuple[str, int, int]
 
+DATA_TABLE = ("data table (What-If Analysis): its values are not recomputed; the cells "
+              "that read it read its cached values")
+
 
 @dataclass
 class AuditInputs:
@@ -26,6 +29,9 @@ class AuditInputs:
     constants: dict[Key, object] = field(default_factory=dict)
     array_cells: list[Key] = field(default_factory=list)       # array formulas: not recomputed
     broken: dict[Key, str] = field(default_factory=dict)       # shared formulas that do not expand
+    # formula cells with no text to recompute (a data table's <f t="dataTable"/>, an empty
+    # <f/>): not checked, their readers read their cached values -> why
+    opaque: dict[Key, str] = field(default_factory=dict)
     # array formulas: master -> (text, (last row, last col)); cached holds every cell they fill
     arrays: dict[Key, tuple[str, tuple[int, int]]] = field(default_factory=dict)
     _names: dict[str, Key] | None = None
@@ -105,7 +111,8 @@ class AuditInputs:
         # array masters, and the cells of an array's area that the file gives an empty <f/>
         masters = sum(1 for k in self.array_cells
                       if self.book.sheet(k[0]).cell(k[1], k[2]).has_formula)
-        return len(self.formulas) + len(self.broken) + masters + len(self.data_tables)
+        return (len(self.formulas) + len(self.broken) + len(self.opaque) + masters
+                + len(self.data_tables))
 
     def is_formula(self, key: Key) -> bool:
         if key in self.formulas or key in self.broken or key in self.table_of:
@@ -228,11 +235,16 @@ def _sheet_inputs(inputs: AuditInputs, sheet, cells=None, chunks=None) -> None:
             if cell.is_array:
                 _array(inputs, sheet, cell, key)
             continue
-        if kind == "dataTable" and cell.data_table is not None:
+        if kind == "dataTable" and cell.data_table is not None:  # recomputed (whatif)
             _data_table(inputs, cell, key)
+            inputs.constants[key] = cell.value
+            continue
         source = sheet.formula_source(cell) if cell.has_formula else None
         if source is None:
             inputs.constants[key] = cell.value
+            if cell.has_formula:
+                inputs.opaque[key] = (DATA_TABLE if kind == "dataTable" else
+                                      "the file gives this cell a formula without text")
             continue
         text, origin = source
         if origin != cell.ref:

@@ -9,7 +9,9 @@ several calls run at once: two soffice processes that share a profile collide.
 from __future__ import annotations
 
 import datetime
+import functools
 import logging
+import warnings
 import os
 import shutil
 import signal
@@ -177,6 +179,19 @@ def _cell_value(value: object, data_type: str, epoch=None) -> object:
     return value
 
 
+def _openpyxl_quiet(fn):
+    """Run ``fn`` without openpyxl's warnings about the parts of a file it drops (data
+    validation extensions, conditional formatting, ...), on loading and on reading rows
+    (read-only sheets are parsed as they are read): only values are read here."""
+    @functools.wraps(fn)
+    def quiet(*args, **kwargs):
+        with warnings.catch_warnings():
+            warnings.filterwarnings("ignore", category=UserWarning, module="openpyxl")
+            return fn(*args, **kwargs)
+    return quiet
+
+
+@_openpyxl_quiet
 def _formula_cells(path: Path) -> dict[str, set[str]]:
     wb = openpyxl.load_workbook(path, read_only=True, data_only=False)
     try:
@@ -192,6 +207,7 @@ def _formula_cells(path: Path) -> dict[str, set[str]]:
         wb.close()
 
 
+@_openpyxl_quiet
 def read_formula_values(path: Path | str) -> dict[str, dict[str, object]]:
     """{sheet: {"B2": value}} of every formula cell's cached value in an xlsx file."""
     path = Path(path)

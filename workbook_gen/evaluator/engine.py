@@ -36,6 +36,7 @@ Documented choices:
 from __future__ import annotations
 
 import dataclasses
+import functools
 import logging
 import re
 import time
@@ -136,6 +137,18 @@ class Evaluation:
     runs: list = field(default_factory=list)  # (sheet, col, first, last, tree) of every formula
 
 
+def _floats_quiet(fn):
+    """Run ``fn`` with numpy's floating-point warnings off: an overflow or an invalid
+    operation inside a formula is Excel's #NUM! or #DIV/0!, which the functions return
+    from the infinite or NaN result, not a fault to print (``ironcalc__MMULT.xlsx``)."""
+    @functools.wraps(fn)
+    def quiet(*args, **kwargs):
+        with np.errstate(all="ignore"):
+            return fn(*args, **kwargs)
+    return quiet
+
+
+@_floats_quiet
 def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object],
                    names: Mapping[str, str], *, vectorize: bool = True,
                    uncheckable: Mapping[Cell, str] | None = None,
