@@ -27,6 +27,7 @@ class Outcome:
     recomputed: int
     detail: object      # the first disagreeing cells, or the error's text
     report: object = None  # the AuditReport, for WHOLE_REPORTS only
+    sources: int = 0    # disagreements at their source (an array formula's once)
 
 
 def corpus_files() -> list[Path]:
@@ -51,7 +52,7 @@ def audit_one(path: Path) -> Outcome:
         cls = "fully audited"
     return Outcome(cls, report.formula_cells, recomputed,
                    [m.cell for m in report.mismatches[:3]],
-                   report if path.name in WHOLE_REPORTS else None)
+                   report if path.name in WHOLE_REPORTS else None, report.disagreements)
 
 
 def _one_process() -> None:

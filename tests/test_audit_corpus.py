@@ -33,25 +33,39 @@ import pytest
 # 2026-11-27 18:10: unions with their areas (AREAS, ISFORMULA, INDEX's area_num), Excel's
 # error order in the tests and fits of two arrays, LINEST's #VALUE!: coverage.py 56,894 of
 # 57,344; formulas__test.xlsx 100 -> 36 disagreeing cells
-MIN_FULLY_AUDITED = 66
-MIN_RECOMPUTED_CELLS = 56_880
-MAX_DISAGREEING_FILES = 6
-MAX_FORMULAS_TEST_DISAGREEING = 36  # Mac Excel 16's test of every function
+# 2026-11-27 (issue 20, 166 files: 90 more from IronCalc, NPOI, ExcelDataReader and the
+# Open XML SDK): number formats and the 1904 date system, tables and relative names,
+# filters and spill references, named LAMBDAs, the consistency rule, FORMULATEXT/SHEET,
+# OLAP caches and external links, criteria and edge values, counts that add up
+# (coverage.py: 149 of 166 fully audited, 113,616 of 114,274 evaluated, 30 at the source)
+MIN_FULLY_AUDITED = 149
+MIN_RECOMPUTED_CELLS = 113_600
+MIN_EVALUATED_SHARE = 0.99   # issue 20: at least 99% of the corpus's formula cells
+MAX_SOURCE_DISAGREEMENTS = 30  # issue 20: at most 50, each explained in the README
+MAX_FORMULAS_TEST_DISAGREEING = 12  # Mac Excel 16's test of every function
 MAX_REFUSED = 0
-# files whose cached values are wrong or odd: the audit is right to report them, always
+# the files allowed to disagree, and why (the README's corpus paragraph says the same):
+# the first four hold values no recalculation gives, the last two are where the evaluator
+# still differs from Excel
 KNOWN_DISAGREEMENTS = {
-    "phpspreadsheet__issue.2301.xlsx",   # K57: a stale cached "H" (AO56 is empty: "M")
-    "sheetjs__LONumbers.xlsx",           # LibreOffice 4.1 cached an empty inline string
-    "closedxml__named-ranges-global.xlsx",  # LibreOffice flattened an array formula
-    "closedxml__database.xlsx",  # LibreOffice 3.4's database range "database1" is not in the file
+    "phpspreadsheet__issue.2301.xlsx": "K57: a stale cached 'H' (AO56 is empty: 'M')",
+    "sheetjs__LONumbers.xlsx": "LibreOffice 4.1 cached empty strings for numbers",
+    "closedxml__named-ranges-global.xlsx": "LibreOffice 3.7 flattened an array formula",
+    "closedxml__database.xlsx": "LibreOffice 3.4's database range 'database1' is not in "
+                                "the file",
+    "formulas__test.xlsx": "12 cells where Mac Excel 16 still differs from the evaluator",
+    "sheetjs__formula_stress_test.xlsx": "XNPV B12: Excel's iteration stops at -6.2e-6",
 }
+# files whose cached values are wrong: the audit must always report them
+STALE = {"phpspreadsheet__issue.2301.xlsx", "sheetjs__LONumbers.xlsx",
+         "closedxml__named-ranges-global.xlsx", "closedxml__database.xlsx"}
 
 
 @pytest.fixture(scope="module")
 def corpus_results(corpus_audits):
     results = {name: (o.cls, o.formula_cells, o.recomputed, o.detail)
                for name, o in corpus_audits.items()}
-    assert len(results) >= 76
+    assert len(results) >= 166
     return results
 
 
@@ -72,15 +86,19 @@ def test_fully_audited_files_and_recomputed_cells_only_grow(corpus_results):
     recomputed = sum(r[2] for r in corpus_results.values())
     assert len(fully) >= MIN_FULLY_AUDITED, (len(fully), fully)
     assert recomputed >= MIN_RECOMPUTED_CELLS, (recomputed, cells)
+    assert recomputed >= MIN_EVALUATED_SHARE * cells, (recomputed, cells)
 
 
-def test_disagreeing_files_only_shrink_and_odd_files_stay_reported(corpus_results):
-    disagreeing = set(_names(corpus_results, "disagreements"))
-    assert len(disagreeing) <= MAX_DISAGREEING_FILES, sorted(disagreeing)
-    assert KNOWN_DISAGREEMENTS <= disagreeing, KNOWN_DISAGREEMENTS - disagreeing
+def test_only_known_files_disagree_and_stale_files_stay_reported(corpus_audits):
+    disagreeing = {name for name, o in corpus_audits.items() if o.cls == "disagreements"}
+    assert disagreeing <= set(KNOWN_DISAGREEMENTS), {
+        n: corpus_audits[n].detail for n in disagreeing - set(KNOWN_DISAGREEMENTS)}
+    assert STALE <= disagreeing, STALE - disagreeing
+    sources = {name: o.sources for name, o in corpus_audits.items() if o.sources}
+    assert sum(sources.values()) <= MAX_SOURCE_DISAGREEMENTS, sources
 
 
 def test_formulas_test_disagreements_only_shrink(corpus_audits):
     report = corpus_audits["formulas__test.xlsx"].report
-    assert len(report.mismatches) <= MAX_FORMULAS_TEST_DISAGREEING, \
-        sorted(m.cell for m in report.mismatches)
+    assert report.disagreements <= MAX_FORMULAS_TEST_DISAGREEING, \
+        sorted(m.cell for m in report.mismatches if m.root)
