@@ -52,12 +52,15 @@ def tally(inputs, compared, disagreeing, not_checked, contract_ok, disagreements
     One set of the compared cells is made; the others are small (no Python code per
     agreeing cell: a workbook has 200,000 of them)."""
     area = {k for k in inputs.array_cells if inputs.is_formula(k)}
+    # a data table's results count with its anchor (the one <f t="dataTable"> cell)
+    tables = {cell: (t.sheet, t.row1, t.col1) for t in inputs.data_tables for cell in t.cells()}
+    anchors = set(tables.values())
 
     def counts(key) -> bool:
         return (key in inputs.formulas or key in area or key in inputs.broken
-                or key in inputs.opaque)
+                or key in inputs.opaque or key in anchors)
 
-    fold = inputs.array_master
+    fold = {**inputs.array_master, **tables} if tables else inputs.array_master
 
     def unit(key):  # a cell of an array's area without an <f> counts with its anchor
         return key if counts(key) else fold.get(key)
