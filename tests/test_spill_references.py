@@ -77,7 +77,7 @@ def test_spill_reference_beside_a_range_in_a_plain_formula(tmp_path):
             zout.writestr(item, data)
     report = audit(path)
     assert report.ok and report.not_checked == {}, report.mismatches
-    assert report.formula_cells == 2 and report.cells_checked == 4
+    assert report.formula_cells == 2 and report.cells_checked == 2  # an array counts once
 
 
 def test_sheet_numbers_count_chart_sheets(tmp_path):
@@ -104,3 +104,26 @@ def test_sheet_numbers_count_chart_sheets(tmp_path):
     report = audit(path)
     assert report.not_checked == {}
     assert report.ok and report.cells_checked == 6, report.mismatches
+
+
+def test_randarray_draws_checked_against_the_contract(tmp_path):
+    """Microsoft's RANDARRAY page: whole numbers between min and max with whole_number
+    TRUE. Excel's own draws in ironcalc__DynamicArrays (A19:C21, RANDARRAY(3,3,0,100,TRUE))
+    hold; a cached 7 or 2.5 among die rolls RANDARRAY(2,2,1,6,TRUE) does not."""
+    import xlsxwriter
+    report = audit(CORPUS / "ironcalc__DynamicArrays.xlsx")
+    assert report.not_checked == {} and report.ok
+    assert sum("RANDARRAY" in how for how in report.by_contract.values()) == 9
+    path = tmp_path / "dice.xlsx"
+    wb = xlsxwriter.Workbook(str(path))
+    ws = wb.add_worksheet("S")
+    ws.write_dynamic_array_formula("A1:B2", "=_xlfn.RANDARRAY(2,2,1,6,TRUE)", None, 3)
+    ws.write_number("B1", 7)
+    ws.write_number("A2", 2.5)
+    ws.write_number("B2", 6)
+    wb.close()
+    report = audit(path)
+    assert [(m.cell, m.area, sorted(m.cells)) for m in report.mismatches] == [
+        ("S!A1", "A1:B2", ["S!A2", "S!B1"])]  # the array once, at its anchor
+    assert report.counts.disagree == 1 and report.counts.by_contract == 0
+    assert report.not_checked == {}

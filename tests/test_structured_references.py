@@ -99,6 +99,10 @@ SUMS = {"M1": "=SUM(T[[ lead]])", "M2": "=SUM(T[trail ])", "M3": "=SUM(T['[Not m
         "M9": "=SUM(T)"}  # a bare table name: its data
 
 
+ARRAYS = {"O1": ("O1", "{=SUM(T[ lead]*T[trail ])}"),
+          "P2": ("P2:P4", "{=T['[Not me']]+T[[ lead]]}")}
+
+
 @pytest.fixture(scope="module")
 def recalculated(libreoffice, tmp_path_factory):
     tmp = tmp_path_factory.mktemp("structured")
@@ -112,6 +116,8 @@ def recalculated(libreoffice, tmp_path_factory):
         ws.write_formula(f"J{r}", "=RowLead")
     for ref, formula in SUMS.items():
         ws.write_formula(ref, formula)
+    for ref, (area, formula) in ARRAYS.items():  # structured references in array formulas
+        ws.write_array_formula(area, formula)
     wb.close()
     return recalculate(tmp / "t.xlsx", tmp / "lo")
 
@@ -121,10 +127,12 @@ def test_libreoffice_computed_what_the_cases_mean(recalculated):
     assert [ws[f"I{r}"].value for r in range(2, 5)] == [11, 22, 33]
     assert [ws[f"J{r}"].value for r in range(2, 5)] == [2, 4, 6]
     assert [ws[ref].value for ref in SUMS] == [6, 60, 600, 6000, 12, 66, 60, 15, 6693]
+    assert ws["O1"].value == 1 * 10 + 2 * 20 + 3 * 30
+    assert [ws[f"P{r}"].value for r in range(2, 5)] == [101, 202, 303]
 
 
 def test_column_spellings_and_this_row_in_names_agree_with_libreoffice(recalculated):
     report = audit(recalculated)
     assert report.not_checked == {}
     assert report.ok, [(m.cell, m.formula, m.cached, m.recomputed) for m in report.mismatches]
-    assert report.cells_checked == 6 + len(SUMS)
+    assert report.cells_checked == 6 + len(SUMS) + len(ARRAYS)  # (an array counts once)

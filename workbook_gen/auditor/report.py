@@ -269,7 +269,8 @@ def _disagreements(report: AuditReport, verbose: bool) -> list[str]:
 def format_report(report: AuditReport, verbose: bool = False) -> str:
     """A few lines (counts, reasons, the worst cells, the verdict); ``verbose``: every
     column, every disagreeing cell, every cell not checked and every finding."""
-    contract = (f", {len(report.by_contract)} by contract" if report.by_contract else "")
+    n_contract = report.counts.by_contract if report.counts else len(report.by_contract)
+    contract = f", {n_contract} by contract" if n_contract else ""
     lines = [f"audit of {report.path}",
              f"  {report.formula_cells} formula cells: {report.cells_checked} checked "
              f"({report.cells_agree} agree, {report.cells_disagree} disagree{contract}), "
@@ -290,9 +291,10 @@ def format_report(report: AuditReport, verbose: bool = False) -> str:
         lines.append("  not checked: " + "; ".join(f"{n} {r}" for r, n in shown)
                      + ("; ..." if len(shown) < len(reasons) else ""))
     if report.by_contract:
-        lines.append(f"  {len(report.by_contract)} of the checked cells call TODAY, NOW, RAND or "
-                     "RANDBETWEEN (volatile): checked against the function's contract, not "
-                     "recomputed; their dependents are recomputed from their cached values")
+        lines.append(f"  {len(report.by_contract)} of the checked cells call TODAY, NOW, RAND, "
+                     "RANDBETWEEN or RANDARRAY (volatile): checked against the function's "
+                     "contract, not recomputed; their dependents are recomputed from their "
+                     "cached values")
     if report.libreoffice_semantics:
         lines.append(f"  {report.libreoffice_semantics} cells hold LibreOffice's answer where "
                      f"Excel's differs (e.g. SQRT(-1) is #VALUE! there): accepted")

@@ -66,8 +66,9 @@ def tally(inputs, compared, disagreeing, not_checked, contract_ok, disagreements
         return key if counts(key) else fold.get(key)
 
     skipped = {k for k in not_checked if counts(k)}
-    by_contract = {k for k in contract_ok if counts(k)} - skipped
     disagree = {unit(k) for k in disagreeing} - {None} - skipped
+    # (an array of draws, RANDARRAY, some cells of which break the contract: disagrees)
+    by_contract = {k for k in contract_ok if counts(k)} - skipped - disagree
     units = set(compared)
     if fold:
         folded = [k for k in fold if k in units and not counts(k)]

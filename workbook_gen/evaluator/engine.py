@@ -271,7 +271,8 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
             continue
         for u in component:
             head = (units[u].sheet, units[u].first, units[u].col)
-            by_contract = (saved is not None and units[u].area in (None, head[1:])
+            by_contract = (saved is not None and (units[u].area in (None, head[1:])
+                                                  or vol.draws_array(units[u].node))
                            and saved.cached.get(head) is not None
                            and _changing(result, head))
             if head in result.unsupported and not by_contract:
@@ -609,11 +610,41 @@ def _show_circular(store: Store, shown) -> None:
     store.rect_cache.clear()
 
 
+def _settle_area(unit: Unit, store: Store, names: Names, dialect: str, clock: vol.Clock,
+                 result: Evaluation) -> None:
+    """An array formula that is just RANDARRAY: each cell's cached value checked against
+    the call's contract (vol.check_array), and kept for the dependents to read."""
+    cell = (unit.sheet, unit.first, unit.col)
+    rows = [[clock.cached.get((unit.sheet, r, c)) for c in range(unit.col, unit.area[1] + 1)]
+            for r in range(unit.first, unit.area[0] + 1)]
+    resolver = SheetResolver(store, names, unit.sheet)
+    try:
+        outcomes = vol.check_array(unit.node, rows, lambda tree: evaluate(
+            tree, resolver, dialect=dialect, cell=cell))
+    except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
+            AttributeError, RecursionError) as exc:
+        outcomes = None
+        failure = vol.Outcome("unknown", f"evaluator failure: {type(exc).__name__}: {exc}")
+    for i, r in enumerate(range(unit.first, unit.area[0] + 1)):
+        for j, c in enumerate(range(unit.col, unit.area[1] + 1)):
+            key = (unit.sheet, r, c)
+            if key not in result.not_checked:
+                outcome = failure if outcomes is None else outcomes[i][j]
+                if outcome.status == "unknown":
+                    result.not_checked[key] = outcome.message
+                else:
+                    result.contract[key] = outcome
+            store.put(*key, rows[i][j], value_scale(rows[i][j]))
+
+
 def _settle(unit: Unit, store: Store, names: Names, dialect: str, clock: vol.Clock,
             result: Evaluation) -> None:
     """A single cell calling TODAY/NOW/RAND/RANDBETWEEN: its cached value checked against
     the function's contract, and kept for its dependents to read."""
     cell = (unit.sheet, unit.first, unit.col)
+    if unit.area not in (None, (unit.first, unit.col)):  # an area of draws (RANDARRAY)
+        _settle_area(unit, store, names, dialect, clock, result)
+        return
     cached = clock.cached[cell]
     if cell not in result.not_checked:  # not already a reader of a cell not checked
         resolver = SheetResolver(store, names, unit.sheet)

@@ -1,5 +1,5 @@
-"""Cells whose value changes at every recalculation (TODAY, NOW, RAND, RANDBETWEEN):
-checked against the function's contract instead of recomputed.
+"""Cells whose value changes at every recalculation (TODAY, NOW, RAND, RANDBETWEEN,
+RANDARRAY): checked against the function's contract instead of recomputed.
 
 A cell calling one of them cannot be recomputed: the cached value is from the moment
 (or the draw) of the file's last recalculation. What can be checked is that some value
@@ -11,7 +11,10 @@ the function may return gives the cached value:
   the message says how much earlier;
 - ``NOW()``: a serial at most a day after the last save;
 - ``RAND()``: a number in [0, 1);
-- ``RANDBETWEEN(a, b)``: a whole number in [a, b], ``a`` and ``b`` recomputed.
+- ``RANDBETWEEN(a, b)``: a whole number in [a, b], ``a`` and ``b`` recomputed;
+- ``RANDARRAY(rows, cols, min, max, whole)`` as an array formula on its own
+  (:func:`check_array`): each cell of its area a number in [min, max] (whole with
+  ``whole``), #N/A beyond rows x cols.
 
 A formula that is just the call is checked directly (a value outside the contract is a
 disagreement). A formula around the call (``TODAY()+$A2``, ``(RANDBETWEEN(-50,250)+100)*10``,
@@ -314,3 +317,48 @@ def _solve(f, cached, domain: _Domain):
     slope = (y1 - y0) / (x1 - x0)
     x = x0 + (y - y0) / slope
     return float(round(x)) if domain.whole else x
+
+
+def draws_array(node: ast.Node) -> bool:
+    """Is the formula just a RANDARRAY call (an area of draws, checked cell by cell)?"""
+    node = _bare(node)
+    return isinstance(node, ast.Func) and node.name == "RANDARRAY" and not any(
+        calls(a) for a in node.args)
+
+
+def check_array(node: ast.Node, cached: list[list], evaluate) -> list[list[Outcome]]:
+    """The outcome of each cell of the area a formula that is just ``RANDARRAY(...)``
+    fills (``cached``: the area's cached values, row by row): within the call's rows and
+    columns a draw within its contract (between min and max, whole with whole_number
+    TRUE), #N/A beyond them; an error the arguments make certain is recomputed."""
+    from workbook_gen.formula.functions.randarray import contract
+    call = _bare(node)
+    args = [None if isinstance(a, ast.Missing) else evaluate(a) for a in call.args]
+    found = contract(*args)
+    out = []
+    for i, row in enumerate(cached):
+        outcomes = []
+        for j, value in enumerate(row):
+            if isinstance(found, ExcelError):
+                expect = found if i == 0 and j == 0 else ExcelError.NA
+                outcomes.append(Outcome("agrees" if value is expect else "disagrees",
+                                        f"volatile RANDARRAY returns {found.value} for its "
+                                        "arguments", expect.value))
+                continue
+            n_rows, n_cols, lo, hi, whole = found
+            if i >= n_rows or j >= n_cols:  # beyond the array: #N/A
+                outcomes.append(Outcome("agrees" if value is ExcelError.NA else "disagrees",
+                                        f"beyond RANDARRAY's {n_rows} x {n_cols} array",
+                                        "#N/A"))
+                continue
+            text = (f"a whole number in [{lo:g}, {hi:g}]" if whole
+                    else f"a number in [{lo:.15g}, {hi:.15g}]")
+            x = _number(value)
+            if x is not None and _Domain(lo, hi, whole, text).holds(x):
+                outcomes.append(Outcome("agrees", "volatile RANDARRAY: checked against its "
+                                                  f"contract ({x:.15g} is {text})"))
+            else:
+                outcomes.append(Outcome("disagrees", "volatile RANDARRAY: the cached value "
+                                                     f"is not {text}", text))
+        out.append(outcomes)
+    return out
