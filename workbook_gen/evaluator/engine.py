@@ -43,7 +43,7 @@ from operator import itemgetter
 import numpy as np
 
 from workbook_gen.errors import FormulaSyntaxError
-from workbook_gen.evaluator import cycles, graph, volatile as vol
+from workbook_gen.evaluator import calls, cycles, graph, volatile as vol
 from workbook_gen.evaluator.book import BookInfo, resolve
 from workbook_gen.evaluator.taint import Taint
 from workbook_gen.evaluator.grouping import Grouped, Run, group_formulas
@@ -52,9 +52,8 @@ from workbook_gen.evaluator.units import Unit, evaluate_unit, rects, shapes_of, 
 from workbook_gen.evaluator.vector import NotVectorizable, compile_block
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
-from workbook_gen.formula.functions import availability
 from workbook_gen.formula.parser import parse
-from workbook_gen.formula.scalar import evaluate, unsupported_functions
+from workbook_gen.formula.scalar import evaluate
 from workbook_gen.xlerror import ExcelError
 
 log = logging.getLogger(__name__)
@@ -239,8 +238,10 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
                 if (head in result.unknown and saved is not None
                         and saved.cached.get(head) is ExcelError.NAME):
                     result.avoided.add(head)
-                elif _guarded(units[u]):
-                    _try_avoiding(units[u], store, name_table, dialect, result)
+                elif (units[u].block is None and units[u].area is None
+                      and calls.guarded(units[u].node)
+                      and calls.avoids(units[u].node, head, store, name_table, dialect)):
+                    result.avoided.add(head)  # its branch without them: recomputed
             if taint or shapes[u][1] or head in result.unsupported or head in result.volatile:
                 _spread(units[u], shapes[u], taint, result, by_contract)
             if by_contract:
@@ -314,7 +315,8 @@ def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -
                 store.put(run.sheet, r, run.col, EXTERNAL_VALUE)
             continue
         unit = Unit(run.sheet, run.col, run.first, run.last, run.node)
-        if run.last > run.first and (vol.calls(run.node) or _guarded(run)):  # cell by cell
+        if run.last > run.first and (vol.calls(run.node) or calls.guarded(run.node)):  # (a
+            # volatile contract, or a branch that may avoid an unsupported call: cell by cell)
             units.extend(singles(unit))
             continue
         if vectorize and run.last > run.first:
@@ -347,35 +349,17 @@ def _array_units(arrays, book: BookInfo, result: Evaluation, taint: Taint,
     return units
 
 
-def _unsupported(node: ast.Node, names: Names, sheet: str, dialect: str,
-                 depth: int = 0) -> set[str]:
-    """The functions a formula calls that the evaluator lacks (or that the application
-    lacks: a future function without its prefix), looking into the defined names holding
-    a LAMBDA that it calls by name (those are not unsupported)."""
-    out = {n.name for n in ast.walk(node) if isinstance(n, ast.Func)
-           and availability.unavailable(n.name, n.prefix, dialect)}
-    for name in unsupported_functions(node):
-        tree = names.node(name, None, sheet)
-        while isinstance(tree, ast.Paren):
-            tree = tree.inner
-        if isinstance(tree, ast.Func) and tree.name == "LAMBDA" and depth < 8:
-            out |= _unsupported(tree, names, sheet, dialect, depth + 1) - {name}
-        else:
-            out.add(name)
-    return out
-
-
 def _report_functions(units: list[Unit], result: Evaluation, names: Names,
                       dialect: str) -> None:
     for u in units:
         called = {n.name for n in ast.walk(u.node) if isinstance(n, ast.Func)}
         if not called:
             continue
-        bad = sorted(_unsupported(u.node, names, u.sheet, dialect))
+        bad = sorted(calls.unsupported(u.node, names, u.sheet, dialect))
         volatile = sorted(called & VOLATILE)
         if not bad and not volatile:
             continue
-        unknown = _unknown_reason(u.node, bad, dialect)
+        unknown = calls.unknown_reason(u.node, bad, dialect)
         for cell in u.cells():
             if bad:
                 result.unsupported[cell] = bad
@@ -383,46 +367,6 @@ def _report_functions(units: list[Unit], result: Evaluation, names: Names,
                 result.unknown[cell] = unknown
             if volatile:
                 result.volatile[cell] = volatile
-
-
-def _unknown_reason(node: ast.Node, bad: list[str], dialect: str) -> str | None:
-    """Why a formula whose unsupported calls are all of names the application does not
-    know (an add-in's or a macro's, if any; a future function without its prefix) is not
-    checked, or None if some call is of a function the application knows."""
-    bare = {n.name for n in ast.walk(node) if isinstance(n, ast.Func)
-            and availability.unavailable(n.name, n.prefix, dialect)}
-    if not bad or not all(n in bare or not availability.known(n, fx.SUPPORTED) for n in bad):
-        return None
-    names = ", ".join(f"{n} (stored without its _xlfn. prefix)" if n in bare else n
-                      for n in bad)
-    return f"unknown function {names}: #NAME? unless an add-in or a macro defines it"
-
-
-def _guarded(unit) -> bool:
-    """Does the formula call an unsupported function inside a lazy one (IF, IFERROR,
-    CHOOSE ...), so that a cell may take a branch without it?"""
-    funcs = [n for n in ast.walk(unit.node) if isinstance(n, ast.Func)]
-    return (any(n.name in fx.LAZY for n in funcs)
-            and any(n.name not in fx.REGISTRY for n in funcs))
-
-
-def _try_avoiding(unit: Unit, store: Store, names: Names, dialect: str,
-                  result: Evaluation) -> None:
-    """A single cell whose unsupported call sits in a lazy function's branch: evaluated
-    (as Excel does, the branches not taken are not evaluated); if no unsupported function
-    was reached, its value does not depend on one and the cell is checked."""
-    if unit.block is not None or unit.area is not None:
-        return
-    cell = (unit.sheet, unit.first, unit.col)
-    reached = []
-    try:
-        evaluate(unit.node, SheetResolver(store, names, unit.sheet), dialect=dialect,
-                 on_unsupported=reached.append, cell=cell)
-    except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
-            AttributeError, RecursionError):
-        return
-    if not reached:
-        result.avoided.add(cell)
 
 
 def _where(cell: Cell) -> str:
