@@ -190,7 +190,7 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: st
         saved = Clock(given, saved.saved, saved.agree, saved.date1904)
     return evaluate_cells({k: inputs.formulas[k] for k in keys}, cached, names,
                           dialect=dialect, book=inputs.book_info(), saved=saved,
-                          iterate=inputs.book.iterate)
+                          iterate=inputs.book.iterate, stored=True)
 
 
 def _in_columns(cells: dict, columns: set[tuple[str, int]], leave=()) -> dict:
@@ -241,7 +241,8 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
                                     vectorize=vectorize, uncheckable=inputs.uncheckable(),
                                     dialect=semantics, book=inputs.book_info(),
                                     arrays=inputs.arrays, saved=clock,
-                                    iterate=inputs.book.iterate, grouped=inputs.grouped)
+                                    iterate=inputs.book.iterate, grouped=inputs.grouped,
+                                    stored=True)
     except WorkbookReadError as exc:  # the evaluator's refusal (cost), named by file
         aside.cancel()
         raise WorkbookReadError(f"{path}: {exc}") from None

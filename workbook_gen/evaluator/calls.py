@@ -29,30 +29,37 @@ def _lambda_of(names: Names, name: str, sheet: str) -> ast.Func | None:
     return tree if isinstance(tree, ast.Func) and tree.name == "LAMBDA" else None
 
 
-def unsupported(node: ast.Node, names: Names, sheet: str, dialect: str,
+def unsupported(node: ast.Node, names: Names, sheet: str, dialect: str, stored: bool,
                 depth: int = 0) -> set[str]:
-    """The names of the functions ``node`` calls that cannot be evaluated (see above)."""
+    """The names of the functions ``node`` calls that cannot be evaluated (see above);
+    ``stored``: the formula is as a file stores it."""
     out = {n.name for n in ast.walk(node) if isinstance(n, ast.Func)
-           and availability.unavailable(n.name, n.prefix, dialect)}
+           and availability.unavailable(n.name, n.prefix, dialect, stored)}
     for name in unsupported_functions(node):
         body = _lambda_of(names, name, sheet)
         if body is not None and depth < MAX_LAMBDA_DEPTH:
-            out |= unsupported(body, names, sheet, dialect, depth + 1) - {name}
+            out |= unsupported(body, names, sheet, dialect, stored, depth + 1) - {name}
         else:
             out.add(name)
     return out
 
 
-def unknown_reason(node: ast.Node, bad: list[str], dialect: str) -> str | None:
+def unknown_reason(node: ast.Node, bad: list[str], dialect: str, stored: bool) -> str | None:
     """Why a formula whose unsupported calls (``bad``) are all of names the application
     does not know is not checked, or None if some call is of a function it knows."""
     bare = {n.name for n in ast.walk(node) if isinstance(n, ast.Func)
-            and availability.unavailable(n.name, n.prefix, dialect)}
+            and availability.unavailable(n.name, n.prefix, dialect, stored)}
     if not bad or not all(n in bare or not availability.known(n, fx.SUPPORTED) for n in bad):
         return None
     listed = ", ".join(f"{n} (stored without its _xlfn. prefix)" if n in bare else n
                        for n in bad)
     return f"unknown function {listed}: #NAME? unless an add-in or a macro defines it"
+
+
+def bare_future(node: ast.Node) -> bool:
+    """Does the formula name a future function without its prefix?"""
+    return any(isinstance(n, ast.Func) and not n.prefix and n.name in availability.FUTURE
+               for n in ast.walk(node))
 
 
 def guarded(node: ast.Node) -> bool:

@@ -135,7 +135,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
                    dialect: str = "excel", book: BookInfo | None = None,
                    arrays: Mapping[Cell, tuple[str, tuple[int, int]]] | None = None,
                    saved: vol.Clock | None = None, iterate: bool = False,
-                   grouped: Grouped | None = None) -> Evaluation:
+                   grouped: Grouped | None = None, stored: bool = False) -> Evaluation:
     """Recompute every formula (texts without '=') of a workbook; see the module doc.
 
     ``uncheckable``: cells among ``constants`` that are formulas the caller could not
@@ -145,7 +145,9 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     they fill are in ``values``. ``saved``: check volatile cells by contract (see above).
     ``iterate``: the workbook enables iterative calculation (cells on a circular reference
     are then not checked). ``grouped``: the runs of exactly ``formulas``, grouped
-    already (with ``vectorize``)."""
+    already (with ``vectorize``). ``stored``: the texts are as a file stores them (a
+    future function without its ``_xlfn.`` prefix is then an unknown name in Excel,
+    :mod:`formula.functions.availability`); otherwise as a person types them."""
     if dialect not in fx.registry.DIALECTS:
         raise ValueError(f"unknown dialect {dialect!r}")
     book = book or BookInfo()
@@ -156,6 +158,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     store.unreadable = {s.lower() for s in book.unreadable}
     store.hidden = {store.sheet(s): rows for s, rows in book.hidden_rows.items()}
     store.charset = book.charset
+    store.stored = stored
     store.all_sheets = book.all_sheets or store.order
     store.formula_texts, store.array_formulas = formulas, arrays or {}
     store.unparsed = uncheckable or {}
@@ -196,7 +199,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     units += _array_units(arrays or {}, book, result, taint, store)
     for cell in result.external:
         _source(result, taint, cell, cell, "external reference")
-    _report_functions(units, result, name_table, dialect)
+    _report_functions(units, result, name_table, dialect, stored)
     taint.flush()
 
     result.seconds["grouping"] = time.perf_counter() - clock
@@ -315,8 +318,10 @@ def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -
                 store.put(run.sheet, r, run.col, EXTERNAL_VALUE)
             continue
         unit = Unit(run.sheet, run.col, run.first, run.last, run.node)
-        if run.last > run.first and (vol.calls(run.node) or calls.guarded(run.node)):  # (a
-            # volatile contract, or a branch that may avoid an unsupported call: cell by cell)
+        if run.last > run.first and (vol.calls(run.node) or calls.guarded(run.node)
+                                     or (store.stored and calls.bare_future(run.node))):
+            # (a volatile contract, a branch that may avoid an unsupported call, a future
+            # function without its prefix: cell by cell)
             units.extend(singles(unit))
             continue
         if vectorize and run.last > run.first:
@@ -350,16 +355,16 @@ def _array_units(arrays, book: BookInfo, result: Evaluation, taint: Taint,
 
 
 def _report_functions(units: list[Unit], result: Evaluation, names: Names,
-                      dialect: str) -> None:
+                      dialect: str, stored: bool) -> None:
     for u in units:
         called = {n.name for n in ast.walk(u.node) if isinstance(n, ast.Func)}
         if not called:
             continue
-        bad = sorted(calls.unsupported(u.node, names, u.sheet, dialect))
+        bad = sorted(calls.unsupported(u.node, names, u.sheet, dialect, stored))
         volatile = sorted(called & VOLATILE)
         if not bad and not volatile:
             continue
-        unknown = calls.unknown_reason(u.node, bad, dialect)
+        unknown = calls.unknown_reason(u.node, bad, dialect, stored)
         for cell in u.cells():
             if bad:
                 result.unsupported[cell] = bad

@@ -85,6 +85,7 @@ class Store:
         self.hidden: dict[str, frozenset[int]] = {}  # sheet -> its hidden rows
         self.charset = "cp1252"  # CHAR and CODE's character set (BookInfo.charset)
         self.all_sheets: list[str] = list(self.order)  # every sheet in order (SHEET, SHEETS)
+        self.stored = False  # formulas as a file stores them (availability.unavailable)
         self.formula_texts: Mapping[tuple[str, int, int], str] = {}  # for subtotal_cells
         self.array_formulas: Mapping[tuple[str, int, int], tuple] = {}  # (text, (r2, c2))
         self._subtotals: dict[str, list[tuple[int, int]]] | None = None
@@ -461,6 +462,11 @@ class SheetResolver:
 
     def sheet_count(self) -> int:
         return len(self.store.all_sheets)
+
+    @property
+    def stored(self) -> bool:
+        """Are the formulas as a file stores them (``_xlfn.`` prefixes and all)?"""
+        return self.store.stored
 
     def sheets_between(self, first: str, last: str) -> list[str] | None:
         return self.store.sheets_between(first, last)
