@@ -205,13 +205,16 @@ def test_a_future_function_without_its_prefix_is_an_unknown_name(tmp_path):
     assert report.cells_agree == 4
 
 
-def test_libreoffice_computes_a_future_function_without_its_prefix():
+def test_libreoffice_and_typed_text_compute_a_future_function_without_its_prefix():
     S = "S"
     formulas = {(S, 1, 2): 'MINIFS(A1:A3,A1:A3,">1")'}
     constants = {(S, r, 1): float(r) for r in (1, 2, 3)}
-    assert evaluate_cells(formulas, constants, {}).values[(S, 1, 2)] is ExcelError.NAME
-    lo = evaluate_cells(formulas, constants, {}, dialect="libreoffice")
+    stored = evaluate_cells(formulas, constants, {}, stored=True)
+    assert stored.values[(S, 1, 2)] is ExcelError.NAME
+    lo = evaluate_cells(formulas, constants, {}, dialect="libreoffice", stored=True)
     assert lo.values[(S, 1, 2)] == 2.0
+    typed = evaluate_cells(formulas, constants, {})  # as a person types it
+    assert typed.values[(S, 1, 2)] == 2.0
 
 
 def test_an_unknown_name_that_excel_cached_as_name_error_is_checked():

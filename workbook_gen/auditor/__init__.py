@@ -165,7 +165,7 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: st
     return evaluate_cells({k: inputs.formulas[k] for k in keys}, cached, names,
                           dialect=dialect, book=inputs.book_info(), saved=saved,
                           iterate=inputs.book.iterate, texts=inputs.formulas,
-                          array_texts=inputs.arrays)
+                          array_texts=inputs.arrays, stored=True)
 
 
 def _in_columns(cells: dict, columns: set[tuple[str, int]], leave=()) -> dict:
@@ -220,7 +220,7 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
                                     dialect=semantics, book=inputs.book_info(),
                                     arrays=inputs.arrays, saved=clock,
                                     iterate=inputs.book.iterate, grouped=inputs.grouped,
-                                    tables=inputs.data_tables)
+                                    tables=inputs.data_tables, stored=True)
     except WorkbookReadError as exc:  # the evaluator's refusal (cost), named by file
         aside.cancel()
         raise WorkbookReadError(f"{path}: {exc}") from None

@@ -47,7 +47,7 @@ from operator import itemgetter
 import numpy as np
 
 from workbook_gen.errors import FormulaSyntaxError
-from workbook_gen.evaluator import cycles, graph, volatile as vol, whatif
+from workbook_gen.evaluator import calls, cycles, graph, volatile as vol, whatif
 from workbook_gen.evaluator.book import BookInfo, resolve, resolve_fixed
 from workbook_gen.evaluator.external import ExternalBooks
 from workbook_gen.evaluator.relnames import NameInliner
@@ -59,9 +59,8 @@ from workbook_gen.evaluator.vector import NotVectorizable, compile_block
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
 from workbook_gen.formula.functions.serials import date_system
-from workbook_gen.formula.functions import availability
 from workbook_gen.formula.parser import parse
-from workbook_gen.formula.scalar import evaluate, unsupported_functions
+from workbook_gen.formula.scalar import evaluate
 from workbook_gen.xlerror import ExcelError
 
 log = logging.getLogger(__name__)
@@ -158,7 +157,8 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
                    grouped: Grouped | None = None,
                    texts: Mapping[Cell, str] | None = None,
                    array_texts: Mapping[Cell, tuple[str, tuple[int, int]]] | None = None,
-                   tables: Sequence[whatif.DataTable] = ()) -> Evaluation:
+                   tables: Sequence[whatif.DataTable] = (),
+                   stored: bool = False) -> Evaluation:
     """Recompute every formula (texts without '=') of a workbook; see the module doc.
 
     ``uncheckable``: cells among ``constants`` that are formulas the caller could not
@@ -172,19 +172,22 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     and array formula of the workbook, where some are among ``constants`` (their cached
     values taken as they are): SUBTOTAL, ISFORMULA and spill references (ANCHORARRAY)
     still see them as formulas. ``tables``: data tables (:mod:`whatif`), recomputed
-    last (what reads their cells reads the values among ``constants``)."""
+    last (what reads their cells reads the values among ``constants``). ``stored``: the
+    texts are as a file stores them (a future function without its ``_xlfn.`` prefix is
+    then an unknown name in Excel, :mod:`formula.functions.availability`); otherwise as
+    a person types them."""
     if dialect not in fx.registry.DIALECTS:
         raise ValueError(f"unknown dialect {dialect!r}")
     book = book or BookInfo()
     with date_system(book.date1904):  # every serial in the workbook's date system
         return _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
                                book, arrays, saved, iterate, grouped, texts, array_texts,
-                               tables)
+                               tables, stored)
 
 
 def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect, book,
                     arrays, saved, iterate, grouped, texts, array_texts,
-                    tables) -> Evaluation:
+                    tables, stored) -> Evaluation:
     sheets = set(map(itemgetter(0), formulas)) | set(map(itemgetter(0), constants))
     sheets |= set(book.sheets)
     sheets |= set(book.unreadable)
@@ -194,6 +197,7 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
     store.filtered = {store.sheet(s): rows for s, rows in book.filtered_rows.items()}
     store.charset, store.olap = book.charset, book.olap
     store.external = ExternalBooks(book.external)
+    store.stored = stored
     store.all_sheets = list(book.all_sheets or book.sheets)
     store.formula_texts, store.array_formulas = texts or formulas, arrays or array_texts or {}
     store.unparsed = uncheckable or {}
@@ -236,7 +240,7 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
             _source(result, taint, cell, cell, f"formula syntax: {message}")
     units = _units(runs, vectorize, store, result)
     units += _array_units(arrays or {}, book, result, taint, store, inliner)
-    _report_functions(units, result, name_table, dialect)
+    _report_functions(units, result, name_table, dialect, stored)
     taint.flush()
 
     result.seconds["grouping"] = time.perf_counter() - clock
@@ -279,8 +283,10 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
                 if (head in result.unknown and saved is not None
                         and saved.cached.get(head) is ExcelError.NAME):
                     result.avoided.add(head)
-                elif _guarded(units[u]):
-                    _try_avoiding(units[u], store, name_table, dialect, result)
+                elif (units[u].block is None and units[u].area is None
+                      and calls.guarded(units[u].node)
+                      and calls.avoids(units[u].node, head, store, name_table, dialect)):
+                    result.avoided.add(head)  # its branch without them: recomputed
             if taint or shapes[u][1] or head in result.unsupported or head in result.volatile:
                 _spread(units[u], shapes[u], taint, result, by_contract)
             if by_contract:
@@ -368,9 +374,12 @@ def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -
         if outside:
             result.external.extend((run.sheet, r, run.col) for r in range(run.first, run.last + 1))
         unit = Unit(run.sheet, run.col, run.first, run.last, run.node)
-        if run.last > run.first and (vol.calls(run.node) or _guarded(run) or outside
-                                     or _cube(run.node)):
-            # checked cell by cell (a cell the cache does not answer is not checked alone)
+        if run.last > run.first and (vol.calls(run.node) or calls.guarded(run.node)
+                                     or (store.stored and calls.bare_future(run.node))
+                                     or outside or _cube(run.node)):
+            # (a volatile contract, a branch that may avoid an unsupported call, a future
+            # function without its prefix, a cell an outside cache may not answer: cell
+            # by cell)
             units.extend(singles(unit))
             continue
         if vectorize and run.last > run.first:
@@ -406,35 +415,17 @@ def _array_units(arrays, book: BookInfo, result: Evaluation, taint: Taint,
     return units
 
 
-def _unsupported(node: ast.Node, names: Names, sheet: str, dialect: str,
-                 depth: int = 0) -> set[str]:
-    """The functions a formula calls that the evaluator lacks (or that the application
-    lacks: a future function without its prefix), looking into the defined names holding
-    a LAMBDA that it calls by name (those are not unsupported)."""
-    out = {n.name for n in ast.walk(node) if isinstance(n, ast.Func)
-           and availability.unavailable(n.name, n.prefix, dialect)}
-    for name in unsupported_functions(node):
-        tree = names.node(name, None, sheet)
-        while isinstance(tree, ast.Paren):
-            tree = tree.inner
-        if isinstance(tree, ast.Func) and tree.name == "LAMBDA" and depth < 8:
-            out |= _unsupported(tree, names, sheet, dialect, depth + 1) - {name}
-        else:
-            out.add(name)
-    return out
-
-
 def _report_functions(units: list[Unit], result: Evaluation, names: Names,
-                      dialect: str) -> None:
+                      dialect: str, stored: bool) -> None:
     for u in units:
         called = {n.name for n in ast.walk(u.node) if isinstance(n, ast.Func)}
         if not called:
             continue
-        bad = sorted(_unsupported(u.node, names, u.sheet, dialect))
+        bad = sorted(calls.unsupported(u.node, names, u.sheet, dialect, stored))
         volatile = sorted(called & VOLATILE)
         if not bad and not volatile:
             continue
-        unknown = _unknown_reason(u.node, bad, dialect)
+        unknown = calls.unknown_reason(u.node, bad, dialect, stored)
         for cell in u.cells():
             if bad:
                 result.unsupported[cell] = bad
@@ -442,46 +433,6 @@ def _report_functions(units: list[Unit], result: Evaluation, names: Names,
                 result.unknown[cell] = unknown
             if volatile:
                 result.volatile[cell] = volatile
-
-
-def _unknown_reason(node: ast.Node, bad: list[str], dialect: str) -> str | None:
-    """Why a formula whose unsupported calls are all of names the application does not
-    know (an add-in's or a macro's, if any; a future function without its prefix) is not
-    checked, or None if some call is of a function the application knows."""
-    bare = {n.name for n in ast.walk(node) if isinstance(n, ast.Func)
-            and availability.unavailable(n.name, n.prefix, dialect)}
-    if not bad or not all(n in bare or not availability.known(n, fx.SUPPORTED) for n in bad):
-        return None
-    names = ", ".join(f"{n} (stored without its _xlfn. prefix)" if n in bare else n
-                      for n in bad)
-    return f"unknown function {names}: #NAME? unless an add-in or a macro defines it"
-
-
-def _guarded(unit) -> bool:
-    """Does the formula call an unsupported function inside a lazy one (IF, IFERROR,
-    CHOOSE ...), so that a cell may take a branch without it?"""
-    funcs = [n for n in ast.walk(unit.node) if isinstance(n, ast.Func)]
-    return (any(n.name in fx.LAZY for n in funcs)
-            and any(n.name not in fx.REGISTRY for n in funcs))
-
-
-def _try_avoiding(unit: Unit, store: Store, names: Names, dialect: str,
-                  result: Evaluation) -> None:
-    """A single cell whose unsupported call sits in a lazy function's branch: evaluated
-    (as Excel does, the branches not taken are not evaluated); if no unsupported function
-    was reached, its value does not depend on one and the cell is checked."""
-    if unit.block is not None or unit.area is not None:
-        return
-    cell = (unit.sheet, unit.first, unit.col)
-    reached = []
-    try:
-        evaluate(unit.node, SheetResolver(store, names, unit.sheet), dialect=dialect,
-                 on_unsupported=reached.append, cell=cell)
-    except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
-            AttributeError, RecursionError):
-        return
-    if not reached:
-        result.avoided.add(cell)
 
 
 def _where(cell: Cell) -> str:

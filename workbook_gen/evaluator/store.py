@@ -89,6 +89,7 @@ class Store:
         self.all_sheets: list[str] = list(self.order)  # every sheet in order (SHEET, SHEETS)
         self.olap: dict = {}  # the cube functions' caches (BookInfo.olap)
         self.external = ExternalBooks()  # what the file caches of other workbooks
+        self.stored = False  # formulas as a file stores them (availability.unavailable)
         self.formula_texts: Mapping[tuple[str, int, int], str] = {}  # for subtotal_cells
         self.array_formulas: Mapping[tuple[str, int, int], tuple] = {}  # (text, (r2, c2))
         self._subtotals: dict[str, list[tuple[int, int]]] | None = None
@@ -485,6 +486,11 @@ class SheetResolver:
 
     def sheet_count(self) -> int:
         return len(self.store.all_sheets)
+
+    @property
+    def stored(self) -> bool:
+        """Are the formulas as a file stores them (``_xlfn.`` prefixes and all)?"""
+        return self.store.stored
 
     def sheets_between(self, first: str, last: str) -> list[str] | None:
         return self.store.sheets_between(first, last)

@@ -104,7 +104,8 @@ class ArrayEvaluator(Evaluator):
 
     def func(self, node: ast.Func):
         entry = fx.REGISTRY.get(node.name)
-        if entry is None or unavailable(node.name, node.prefix, self.dialect):
+        if entry is None or unavailable(node.name, node.prefix, self.dialect,
+                                        getattr(self.resolver, "stored", False)):
             return super().func(node)
         if node.name in ("IF", "IFERROR", "IFNA"):
             return self._conditional(node)

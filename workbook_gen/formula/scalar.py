@@ -242,7 +242,8 @@ class Evaluator:
 
     def func(self, node: ast.Func) -> Value | Range:
         entry = fx.REGISTRY.get(node.name)
-        if entry is not None and unavailable(node.name, node.prefix, self.dialect):
+        if entry is not None and unavailable(node.name, node.prefix, self.dialect,
+                                             getattr(self.resolver, "stored", False)):
             entry = None  # a future function without its _xlfn. prefix: an unknown name
         if entry is None:
             called = lambdas.named(self, node)  # a defined name holding a LAMBDA

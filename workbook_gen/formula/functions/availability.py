@@ -46,11 +46,12 @@ SQL.REQUEST
 """.split())
 
 
-def unavailable(name: str, prefix: str, dialect: str) -> bool:
-    """Is a call of ``name`` (upper case, stored with ``prefix``) #NAME? in the dialect's
-    application although the evaluator implements it? (A future function stored without
-    its prefix, in Excel.)"""
-    return dialect == "excel" and not prefix and name in FUTURE
+def unavailable(name: str, prefix: str, dialect: str, stored: bool) -> bool:
+    """Is a call of ``name`` (upper case, written with ``prefix``) #NAME? in the dialect's
+    application although the evaluator implements it? A future function without its
+    prefix in a formula as a file stores it (``stored``), in Excel: a formula as a person
+    types it (Microsoft's examples, the tests) names them without prefixes."""
+    return stored and dialect == "excel" and not prefix and name in FUTURE
 
 
 def known(name: str, implemented) -> bool:
