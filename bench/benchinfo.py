@@ -22,7 +22,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGES = ("workbook-gen", "numpy", "XlsxWriter", "openpyxl", "mpmath", "pandas", "formualizer",
-            "formulas", "dask", "distributed")
+            "formulas", "ironcalc", "dask", "distributed")
 
 
 def _now() -> str:

@@ -183,22 +183,38 @@ def test_unsupported_function_is_reported_by_cell(tmp_path):
     book = xlsxwriter.Workbook(path)
     sheet = book.add_worksheet()
     sheet.write_number("A1", 1)
-    sheet.write_formula("B1", '=WEBSERVICE("http://example.com/"&A1)', None, 1)
-    sheet.write_formula("C1", "=B1*2", None, 2)       # depends on it: not checked
+    sheet.write_formula("B1", '=_xlfn.WEBSERVICE("http://example.com/"&A1)', None, 1)
+    sheet.write_formula("C1", "=B1*2", None, 2)       # reads B1's cached value: checked
     sheet.write_formula("D1", "=A1+1", None, 2)       # independent: checked
     book.close()
     report = audit(path)
     assert report.ok  # a cell not checked never fails the audit on its own
-    assert report.not_checked["Sheet1!B1"] == "unsupported function WEBSERVICE"
-    assert report.not_checked["Sheet1!C1"].startswith("depends on Sheet1!B1")
-    assert (report.cells_agree, report.cells_disagree, report.cells_not_checked) == (1, 0, 2)
+    assert report.not_checked == {"Sheet1!B1": "unsupported function WEBSERVICE"}
+    assert (report.cells_agree, report.cells_disagree, report.cells_not_checked) == (2, 0, 1)
     assert any(f.kind == "unsupported_function" and f.cell == "Sheet1!B1"
                and "WEBSERVICE" in f.message for f in report.findings)
     result = run_cli("audit", str(path))
     assert result.returncode == 0 and len(result.stdout.splitlines()) <= 8, result.stdout
     assert "1 unsupported function WEBSERVICE" in result.stdout
-    verbose = run_cli("audit", str(path), "--verbose").stdout
-    assert "Sheet1!C1: depends on Sheet1!B1" in verbose
+
+
+def test_reader_of_an_unrecomputable_cell_is_checked_against_its_cached_value(tmp_path):
+    """The consistency rule: B1 cannot be recomputed, but its cached value is what Excel
+    computed in the same recalculation as C1's: C1 = B1*2 must give C1's cached value
+    from it, and a C1 that does not is a real disagreement."""
+    import xlsxwriter
+    path = tmp_path / "webservice.xlsx"
+    book = xlsxwriter.Workbook(path)
+    sheet = book.add_worksheet()
+    sheet.write_formula("B1", '=_xlfn.WEBSERVICE("http://example.com/")', None, 21)
+    sheet.write_formula("C1", "=B1*2", None, 42)
+    sheet.write_formula("C2", "=B1*2", None, 40)      # stale: disagrees
+    sheet.write_formula("C3", "=C2+1", None, 43)      # follows from B1 through C2
+    book.close()
+    report = audit(path)
+    assert report.not_checked == {"Sheet1!B1": "unsupported function WEBSERVICE"}
+    assert [m.cell for m in report.mismatches if m.root] == ["Sheet1!C2"]
+    assert report.cells_agree == 2
 
 
 def test_engine_libreoffice_agrees_on_our_workbook(libreoffice, sewing_workbook):

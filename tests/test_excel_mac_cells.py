@@ -169,5 +169,5 @@ def test_t_tails_agree_with_the_integrated_density(x, df):
         points = [x_ + step * (2 ** (k / 2) - 1) for k in range(120)] + [mpmath.inf]
         tail = float(mpmath.quad(lambda t: norm * (1 + t * t / n) ** (-(n + 1) / 2), points))
     for formula, expected in ((f"T.DIST.RT({x},{df})", tail), (f"T.DIST.2T({x},{df})", 2 * tail)):
-        got = evaluate(parse("=" + formula), DictResolver({}), dialect="excel")
+        got = evaluate(parse("=_xlfn." + formula), DictResolver({}), dialect="excel")
         assert got == pytest.approx(expected, rel=1e-9, abs=0), formula  # quad: ~3e-12

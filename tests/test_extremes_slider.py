@@ -69,3 +69,19 @@ def test_exact_angles_give_exact_zeros():
     ev = evaluate(scene_at("sewing_machine", {}, EXACT))
     assert np.array_equal(ev.columns["x_B"].val[[1, 3]], [0.0, 0.0])
     assert np.array_equal(ev.columns["y_B"].val[[0, 2, 4]], [0.0, 0.0, 0.0])
+
+
+@pytest.mark.parametrize("l_AB, e, phi", [(40.0, 10.0, 0.0), (40.0, -10.0, 0.0),
+                                          (0.3, 0.1, 33.0), (4e5, 1e5, -720.0)])
+def test_slider_rod_exactly_tangent_to_the_slide_line_is_flagged(l_AB, e, phi):
+    """l_BC = |e| < l_AB + |e|: the rod reaches the slide line on part of the turn and is
+    exactly tangent to it at psi = 0, 180 and where l_AB sin psi = 2 e (issue 21 item 1:
+    `batch --vary l_BC=0:60:10` at l_BC = 10).  The tangent rows are dead centres with
+    error rates, never the square root of rounding (h_BC 3.8e-7, v_C -1e10); every
+    other row is within TOL of 50 digits."""
+    l_BC = abs(e)
+    inputs = [phi + 10.0 * k for k in range(37)]
+    worst, status = assert_sound("slider_crank", dict(l_AB=l_AB, l_BC=l_BC, e=e,
+                                                       phi_slide=phi), inputs)
+    at_tangent = {s for s, x in zip(status, inputs) if (x - phi) % 180 == 0}
+    assert at_tangent == {"dead centre"}, at_tangent

@@ -9,9 +9,10 @@ import math
 
 import numpy as np
 import openpyxl
+import pandas as pd
 import pytest
 
-from workbook_gen import audit
+from workbook_gen import audit, write_workbook
 from workbook_gen.errors import SceneError
 from workbook_gen.reference import solve
 from workbook_gen.scene import load_scene
@@ -34,7 +35,7 @@ def scene_with(tmp_path_factory):
     def make(method: str = "closed", iterations: int = 5) -> str:
         path = folder / f"five_bar_{method}_{iterations}.toml"
         path.write_text(text.replace('method = "closed"', f'method = "{method}"')
-                        .replace("iterations = 5", f"iterations = {iterations}"), encoding="utf-8")
+                        .replace("iterations = 8", f"iterations = {iterations}"), encoding="utf-8")
         return str(path)
     return make
 
@@ -231,7 +232,7 @@ def test_audit_flags_a_newton_table_that_has_not_converged(generate, scene_with)
 
 
 @pytest.mark.parametrize("edit, key", [
-    ('iterations = 5', 'iterations = 0'),
+    ('iterations = 8', 'iterations = 0'),
     ('method = "closed"', 'method = "bisection"'),
     ('x_0 = 0.8 ', 'x_0 = 0.0 '),
     ('R_path = 0.3 ', 'R_path = -0.3 '),
@@ -244,3 +245,14 @@ def test_bad_scenes_are_refused(tmp_path, edit, key):
     path.write_text(text.replace(edit, key), encoding="utf-8")
     with pytest.raises(SceneError, match=key.split(" ")[0]):
         load_scene(path)
+
+
+def test_newton_defaults_converge_on_the_template_scene(tmp_path):
+    """Issue 21 item 5: `generate templates/five_bar.toml --set method=newton` with the
+    scene's own iterations: every row ok and the audit (reference model included) passes."""
+    scene = load_scene(SCENE, overrides={"method": "newton"})
+    path = write_workbook(scene, tmp_path)
+    report = audit(path)
+    status = pd.read_excel(path, sheet_name="Table")["status"]
+    assert set(status) == {"ok"}, status.value_counts().to_dict()
+    assert report.ok, [q.name for q in report.mechanics.quantities if not q.ok][:5]

@@ -255,6 +255,23 @@ LIBREOFFICE_CASES = [
     ("=ATAN2(0,0)", 0.0, DIV0),
     ("=POWER(0,0)", 1.0, NUM),
     ("=0^0", 1.0, NUM),
+    # LibreOffice 7.4 measured; Excel's as Microsoft documents (POWER, FIND, CEILING pages)
+    ("=0^-1", NUM, DIV0),
+    ("=POWER(0,-0.5)", NUM, DIV0),
+    ('=FIND("","abc")', VALUE, 1.0),
+    ('=SEARCH("","abc",2)', VALUE, 2.0),
+    ("=CEILING(5,-2)", VALUE, NUM),
+    ("=FLOOR(5,-2)", VALUE, NUM),
+    ('=CODE("")', 0.0, VALUE),
+    ('=ISEVEN("4")', VALUE, True),  # Excel: pycel__information.xlsx ISEVEN of "1" is FALSE
+    ('=SEARCH("*","")', VALUE, VALUE),
+    ('=MATCH("4",A1:A3,0)', 3.0, NA),  # LibreOffice: a numeric text finds the number
+  # Microsoft: start_num past within_text's length
+    ('=SEARCH("b*","abc",3)', VALUE, VALUE),
+    ("=ROUND(10,32767)", 10.0, 10.0),
+    ("=ROUND(10,32768)", VALUE, 10.0),
+    ("=TRUNC(2,-32769)", VALUE, 0.0),
+    ("=COUNTIF(A1:A3,NA())", NA, 0.0),
     ("=(-8)^(1/3)", -2.0, NUM),
     ("=POWER(-1,0.5)", NUM, NUM),
     ("=10^400", NUM, NUM),

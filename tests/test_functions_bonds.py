@@ -163,6 +163,10 @@ def lo_differs(formula: str, lo) -> str | None:
             "COUPDAYS", "COUPNUM", "COUPNCD", "COUPPCD"):
         return ("30/360 from a month's end to a 31st: Excel's US rule as in its YEARFRAC and "
                 "DAYS360 (the 31st counts as the 30th); LibreOffice keeps 31")
+    if name in ACTUAL_360_365 and basis in ("2", "3"):
+        return ("actual/360 and actual/365: Excel's PRICE takes DSC = E - A and its ODDL* an "
+                "odd last period's NL in actual days (the Excel-saved ironcalc "
+                "PRICE_YIELD.xlsx); LibreOffice COUPDAYSNC and 360/f (its dialect, tested)")
     if name in ("DURATION", "MDURATION"):
         return ("Excel counts the k-th coupon k-1+DSC/E periods away (Microsoft's examples, "
                 "the Excel-saved sheetjs file's DURATION to the last bit); LibreOffice from "
@@ -170,6 +174,28 @@ def lo_differs(formula: str, lo) -> str | None:
     if name == "TBILLEQ" and "DATE(2008,12,1)" in args:
         return "LibreOffice counts DSM on 30/360 plus a day; Microsoft's example counts actual days"
     return None
+
+
+ACTUAL_360_365 = ("PRICE", "YIELD", "ODDLPRICE", "ODDLYIELD")
+
+
+def test_libreoffice_dialect_actual_360_365(recalculated):
+    """The cases where Excel's bases 2 and 3 differ from LibreOffice's, recomputed in the
+    LibreOffice dialect, give LibreOffice's values."""
+    inputs, _ = recalculated
+    lo = evaluate_cells(inputs.formulas, inputs.constants, inputs.book.defined_names,
+                        dialect="libreoffice")
+    checked = 0
+    for r, formula in enumerate(CASES, start=1):
+        name, parts = formula.split("(")[0], formula.rstrip(")").split(",")
+        whole = len(parts) == (14 if name.startswith("ODDL") else 11)  # the basis given
+        if (name in ACTUAL_360_365 and whole and parts[-1] in ("2", "3")
+                and "DATE(2011,11,15),0.0575" not in formula):  # one coupon left: see above
+            cached, ours = inputs.cached.get(("Cases", r, 2)), lo.values[("Cases", r, 2)]
+            tol = 1e-7 if name == "YIELD" else 1e-9
+            assert same(cached, ours, tol), (formula, cached, ours)
+            checked += 1
+    assert checked > 100, checked
 
 
 def test_securities_agree_with_libreoffice(recalculated):
@@ -180,8 +206,9 @@ def test_securities_agree_with_libreoffice(recalculated):
         tol = 1e-7 if formula.startswith("YIELD(") else 1e-9  # iterative solutions
         if same(cached, ours, tol):
             continue
-        if lo_differs(formula, cached) is not None:
-            differ += 1
+        why = lo_differs(formula, cached)
+        if why is not None:
+            differ += not why.startswith("actual/360")  # the dialect's, tested above
             continue
         wrong.append(f"={formula}: LibreOffice {cached!r}, ours {ours!r}")
     assert not wrong, f"{len(wrong)} of {len(CASES)}:\n" + "\n".join(wrong)

@@ -51,6 +51,8 @@ MATH = [
     # Excel's rules for these are tested on Mac Excel's cells (test_excel_mac_cells.py)
     "FACTDOUBLE(-1)", "FACTDOUBLE(-1.1)", "FACTDOUBLE(TRUE)", "MROUND(TRUE,0)", "SQRTPI(TRUE)",
     'ARABIC("XIV")', 'ARABIC("IM")', 'ARABIC("MCMXCIV")',
+    # an omitted argument (Excel's #VALUE!: test_functions_edges.py), an overflow
+    "MMULT(,)", "MMULT({2},)", "MMULT({1e300,1e300},{1e300;-1e300})",
 ]
 LOGICAL = [
     "XOR(TRUE,FALSE)", "XOR(TRUE,TRUE)", f"XOR({MIX})", 'IFS(1>2,"a",2>1,"b")', "IFS(1>2,1)",
@@ -82,6 +84,17 @@ LOOKUP = [
     "ISFORMULA(Data!D1)", "ISFORMULA(Data!A1)", "ISFORMULA(Data!Z99)", "ISFORMULA(Data!C1:D2)",
 ]
 STATS = [
+    # criteria: "" matches empty cells and a formula's "", "=" empty cells only, "<>" all
+    # but empty cells (Data!D3 is =""); a boolean is 1 in LibreOffice's dialect only
+    'COUNTIF(Data!$D$3:$D$5,"")', 'COUNTIF(Data!$D$3:$D$5,"=")', 'COUNTIF(Data!$D$3:$D$5,"<>")',
+    'COUNTIFS(Data!$D$3:$D$5,"<>",Data!$A$3:$A$5,">0")', 'SUMIF(Data!$D$3:$D$5,"=",Data!$A$3:$A$5)',
+    f'COUNTIF({MIX},"=")', f'COUNTIF({MIX},"<>")', f'COUNTIF({MIX},TRUE)', f'COUNTIF({MIX},"TRUE")',
+    f'COUNTIF({MIX},"<>1")', f'COUNTIF({MIX},"3")', f'COUNTIF({MIX},3)', f'COUNTIF({WRD},"p?ar")',
+    f'COUNTIF({WRD},"x~*y")', f'COUNTIF({WRD},"<>*an*")', f'SUMIF({MIX},"<>1",{NUM})',
+    # Excel's rules on Mac Excel's cells (test_functions_edges.py): a probability of 1,
+    # areas of one size and two shapes
+    "BETAINV(1,3,2)", "BETAINV(0,3,2)", "CHITEST({10,0.1;10,3.2},{0.7;0.7;0.7;0.7})",
+    "CHITEST({1,2,3},{1,2})",
     # arrays of different sizes, one with an error; PROB's upper limit an empty cell
     "SUMPRODUCT(Data!$D$1:$D$2,Data!$A$1:$A$3)", "PROB({1,2,3},{0.2,0.3,0.5},1,Data!$K$1)",
     # Excel's Z.TEST rules are tested on Mac Excel's cells (test_excel_mac_cells.py)
@@ -132,6 +145,8 @@ TEXT = [
     "N(TRUE)", 'NUMBERVALUE("1.234,5",",",".")',
 ]
 INFO = [
+    # an empty friendly name shows 0 (Excel's cached value in test_functions_edges.py)
+    'HYPERLINK("https://"&Data!C4,Data!C4)', 'HYPERLINK("x",)', 'HYPERLINK("x",Data!A1)',
     "ISNUMBER(Data!A1)", "ISNUMBER(Data!C3)", "ISTEXT(Data!C3)", "ISBLANK(Data!C4)",
     "ISBLANK(Data!C3)", "ISNA(Data!D1)", "ISNA(Data!D2)", "ISERR(Data!D1)", "ISERR(Data!D2)",
     "ISERROR(Data!D2)", "ISLOGICAL(Data!C2)", "ISNONTEXT(Data!C3)", "ISREF(Data!A1)",
@@ -148,6 +163,9 @@ DATE = [
     "YEARFRAC(43101,43466,1)", "YEARFRAC(36526,45000,1)", "WEEKDAY(43891)", "WEEKDAY(43891,2)",
     "WEEKDAY(43891,3)", "WEEKNUM(43891)", "WEEKNUM(43891,2)", "ISOWEEKNUM(43891)",
     "DAYS(44196,43831)", "DAYS360(43831,44196)", "DAYS360(43890,44255)",
+    # serial 0, fractions, 1900's February: Excel's cached values in test_functions_edges.py
+    "DAYS360(0,1)", "DAYS360(0,10)", "DAYS360(1,0.00625)", "DAYS360(45992.000001,46000.999999)",
+    "DAYS360(59,61)", "DAYS360(60,61)",
     'DATEDIF(43831,44620,"Y")', 'DATEDIF(43831,44620,"M")', 'DATEDIF(43831,44620,"D")',
     'DATEDIF(43850,44620,"YM")', 'DATEDIF(43850,44620,"YD")', 'DATEDIF(43850,44620,"MD")',
     "HOUR(0.75)", "MINUTE(0.7604166667)", "SECOND(0.50001157407)", "TIME(18,30,0)",
@@ -169,6 +187,11 @@ FINANCE = [
     "XIRR(Data!$I$1:$I$8,Data!$J$1:$J$8)", "XIRR({-10,#N/A,1},{3,#REF!,7})",
     "IRR(Data!$D$1:$D$2)",
     "DDB(2400,300,10,2)", "EFFECT(0.0525,4)", "NOMINAL(0.053543,4)",
+    # a rate below -1 (Excel's cached values in test_functions_edges.py; at -1 Excel's #NUM!
+    # is LibreOffice's -0), a negative growth to a fractional power
+    "PMT(-3,5,100,300,1)", "PMT(-3,5,100)", "PMT(-1,1,-100)", "PMT(-2,2.5,100)",
+    # a rate of 0 or less (Excel's #NUM!: test_functions_edges.py)
+    "XNPV(-0.1,{-10,1,5},{1,99,55})", "XNPV(0,{-10,1,5},{1,99,55})", "XNPV(-1,{-10,1,5},{1,99,55})",
 ]
 ENG = [
     'CONVERT(1,"lbm","kg")', 'CONVERT(68,"F","C")', 'CONVERT(2.5,"ft","sec")',
@@ -181,6 +204,9 @@ ENG = [
     'HEX2DEC("FFFFFFFF5B")', 'BIN2DEC("1100100")', 'BIN2DEC("1111111111")', 'OCT2DEC("54")',
     'OCT2DEC("7777777533")', 'HEX2BIN("F",8)', 'BIN2HEX("11111011",4)', 'HEX2OCT("F",3)',
     'OCT2BIN("3",3)', "DELTA(5,5)", "DELTA(5,4)", "GESTEP(5,4)", "GESTEP(-4,-5)",
+    # a tiny real argument (Excel's cached values in test_functions_edges.py)
+    'IMREAL(IMCOT("1E-16"))', 'IMREAL(IMCSC("1E-18"))', 'IMREAL(IMCOT("0.5"))',
+    'IMAGINARY(IMCSC("1E-16"))',
 ]
 FAMILIES = {"math": MATH, "logical": LOGICAL, "lookup": LOOKUP, "stats": STATS, "text": TEXT,
             "info": INFO, "date": DATE, "finance": FINANCE, "eng": ENG}
@@ -262,6 +288,7 @@ def _write_book(path):
         data.cell(r + 1, 5, DATES[r])
     data["D1"] = "=NA()"
     data["D2"] = "=1/0"
+    data["D3"] = '=""'
     for r, (k, v) in enumerate(TABLE, start=1):
         data.cell(r, 6, k)
         data.cell(r, 7, v)

@@ -170,6 +170,22 @@ def test_error_cells_come_back_as_excel_error(libreoffice, tmp_path):
     assert got == {"B1": ExcelError.NUM, "B2": ExcelError.DIV0, "B3": ExcelError.NA}
 
 
+def test_date_and_time_formatted_cells_come_back_as_serial_numbers(libreoffice, tmp_path):
+    # openpyxl reads a number in a date format as a datetime: the values must stay the
+    # serial numbers the file stores (Microsoft: DATE(2009,5,11) is 39944, 6:00 is 0.25)
+    wb = xlsxwriter.Workbook(str(tmp_path / "dates.xlsx"))
+    sheet = wb.add_worksheet("Table")
+    date, time = wb.add_format({"num_format": "yyyy-mm-dd"}), wb.add_format({"num_format": "hh:mm"})
+    sheet.write_formula("A1", "=DATE(2009,5,11)", date, WRONG)
+    sheet.write_formula("A2", "=A1+7", date, WRONG)
+    sheet.write_formula("A3", "=TIME(6,0,0)", time, WRONG)
+    sheet.write_formula("A4", "=DATE(2009,5,11)+TIME(18,0,0)", date, WRONG)
+    sheet.write_formula("A5", "=2958465+1", date, WRONG)  # past 9999-12-31: still a number
+    wb.close()
+    got = lo.recalculated_values(tmp_path / "dates.xlsx")["Table"]
+    assert got == {"A1": 39944.0, "A2": 39951.0, "A3": 0.25, "A4": 39944.75, "A5": 2958466.0}
+
+
 # --- (4) failures are clean WorkbookGenErrors ------------------------------------------
 
 def test_missing_soffice_is_a_clean_error(tmp_path, monkeypatch):

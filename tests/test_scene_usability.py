@@ -69,6 +69,28 @@ def test_name_of_the_longest_allowed_stem_writes(capsys, tmp_path):
     assert Path(out.strip()).name == stem + ".xlsx"
 
 
+@pytest.mark.parametrize("given, stem", [
+    ("fb.xlsx", "fb"),                       # issue 22 item 15: not fb.xlsx.xlsx
+    ("FB.XLSX", "FB"),
+    ("Nähmaschine_v2", "Nähmaschine_v2"),    # letters of any script are letters
+    ("Na\u0308hmaschine", "Nähmaschine"),    # NFD (as macOS types it) saved as NFC
+    ("станок-1", "станок-1"),
+])
+def test_name_option_takes_letters_of_any_script_and_an_xlsx_suffix(capsys, tmp_path, given,
+                                                                   stem):
+    scene = write(tmp_path, SLIDER)
+    code, out, err = main(capsys, "generate", scene, "--out", tmp_path / "o", "--name", given)
+    assert code == 0, err
+    assert Path(out.strip()).name == stem + ".xlsx"
+    assert [p.name for p in (tmp_path / "o").iterdir()] == [stem + ".xlsx"]
+
+
+@pytest.mark.parametrize("bad", ["a b", ".xlsx", "x/y", "x:y", "trailing."])
+def test_name_option_refuses_what_is_not_a_file_stem(capsys, tmp_path, bad):
+    scene = write(tmp_path, SLIDER)
+    refused(capsys, tmp_path, scene, "--name", bad, words=["--name", "file stem"])
+
+
 @pytest.mark.parametrize("extra, key", [
     (["--step", "1e9"], "--step"),
     (["--step", "200"], "--step"),

@@ -44,6 +44,12 @@ CASES = {
     "C15": ("=_xlfn.AGGREGATE(15,5,A1:A8,2)", 10),                # 1 (A8), 10, ...
     "C16": ("=_xlfn.AGGREGATE(4,7,A1:B8)", 2 * sum(DATA)),            # B7 counted
     "C17": ("=SUBTOTAL(9,B1:B8)", "#DIV/0!"),                    # errors are met as usual
+    # the array form (14-19) takes an array expression without array entry (the Summary
+    # sheet's extremes over the ok rows); a row-wise reading would intersect C18 with
+    # nothing and give #VALUE!
+    "C18": ("=_xlfn.AGGREGATE(14,6,A1:A6/(A1:A6<100),1)", 80),
+    "C19": ("=_xlfn.AGGREGATE(15,6,ROW(A1:A6)/(A1:A6=40),1)", 3),
+    "C20": ("=_xlfn.AGGREGATE(14,6,B1:B6*2,1)", 640),             # B2's #DIV/0! left out
 }
 
 
@@ -98,3 +104,11 @@ def test_without_a_sheet_layout_nothing_is_left_out():
     assert fx.call("AGGREGATE", [9.0, 3.0, rng]) == 7.0
     assert fx.call("SUBTOTAL", [12.0, rng]) == fx.ExcelError.VALUE
     assert fx.call("AGGREGATE", [9.0, 8.0, rng]) == fx.ExcelError.VALUE
+
+
+def test_the_reference_form_refuses_an_array_in_excel_not_in_libreoffice():
+    """AGGREGATE 1-13 takes references (Microsoft: "reference form"); LibreOffice 7.4 also
+    takes an array there (measured: 12 for the case below)."""
+    values = Range.array_of([[5.0], [fx.ExcelError.DIV0], [7.0]])
+    assert fx.call("AGGREGATE", [9.0, 6.0, values]) == fx.ExcelError.VALUE
+    assert fx.call("AGGREGATE", [9.0, 6.0, values], "libreoffice") == 12.0

@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 import re
 import tomllib
+import unicodedata
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
@@ -20,7 +21,8 @@ from .names import check_name
 
 MAX_ROWS = 1_048_576 - 1  # Excel's rows, less the header
 _TOP_KEYS = {"name", "mechanism", "title", "parameters", "sweep", "outputs", "options", "masses"}
-_STEM = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.-]*$")
+# letters and digits of any script (Nähmaschine_v2), '_', '-', '.'; NFC-normalised
+_STEM = re.compile(r"^\w[\w.-]*$")
 # A file stem that every file system takes: with "_tradeoff.xlsx" and the temporary
 # file's prefix and suffix it stays far below the 255 bytes of a file name.
 MAX_STEM = 100
@@ -267,12 +269,23 @@ def _split_overrides(source: str, base: Template, overrides: Mapping[str, Any]
     return parameters, options
 
 
+def _stem(source: str, key: str, value: object) -> str:
+    """A checked file stem from a scene's ``name`` or ``--name``: NFC-normalised, without
+    the ``.xlsx`` a user may add (``--name fb.xlsx`` writes fb.xlsx, not fb.xlsx.xlsx)."""
+    name = unicodedata.normalize("NFC", _string(source, key, value))
+    if name.lower().endswith(".xlsx") and len(name) > 5:
+        name = name[:-5]
+    _check_stem(source, key, name)
+    return name
+
+
 def _check_stem(source: str, key: str, name: str) -> None:
     if len(name) > MAX_STEM:
         raise _fail(source, key, f"is {len(name)} characters long; a file stem may have at "
                     f"most {MAX_STEM}", name if len(name) <= 40 else name[:37] + "...")
     if not _STEM.match(name) or name.endswith(".") or _RESERVED.match(name):
-        raise _fail(source, key, "must be a file stem of letters, digits, '_', '-', '.' "
+        raise _fail(source, key, "must be a file stem of letters (any script), digits, '_', "
+                    "'-', '.' "
                     "(not starting with '.' or '-', not ending with '.', not a reserved "
                     "device name)", name)
 
@@ -298,11 +311,9 @@ def parse_scene(text: str, source: str, overrides: Mapping[str, Any] | None = No
     for key in ("name", "mechanism"):
         if key not in data:
             raise SceneError(f"{source}: {key} is missing")
-    stem = _string(source, "name", data["name"])
-    _check_stem(source, "name", stem)
+    stem = _stem(source, "name", data["name"])
     if name is not None:
-        stem = _string(source, "--name", name)
-        _check_stem(source, "--name", stem)
+        stem = _stem(source, "--name", name)
     mechanism = _string(source, "mechanism", data["mechanism"])
     if mechanism not in TEMPLATES:
         raise _fail(source, "mechanism", f"is not a template (known: "

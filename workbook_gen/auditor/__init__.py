@@ -9,6 +9,15 @@ known deviations is accepted and counted); for workbooks made by
 workbook-gen, every Table column against the independent reference model and
 the closure residuals; the structure (names, references, functions, links).
 With ``engine="libreoffice"`` the file is also recalculated by LibreOffice.
+
+Every formula cell is counted once (``tally.py``): agree + disagree + not checked + by
+contract = formula cells. A cell without a cached value is not checked
+(``no_cached_value``); a file saved without calculating (openpyxl, pandas) says so once
+and is ``ok`` (exit 0: it contradicts nothing) with "nothing was verified". A
+disagreement counts once at its source, an array formula's at its anchor; the cells
+that follow from it, including aggregates that agree with their stale precedents but
+would show another value if recalculated, are listed with it (``sources.py``). What the
+audit's own code warns of is counted in the report, never printed (``caught.py``).
 """
 
 from __future__ import annotations
@@ -25,6 +34,7 @@ from xlsxwriter.utility import xl_col_to_name, xl_rowcol_to_cell
 from ..errors import FormulaSyntaxError, WorkbookGenError, WorkbookReadError
 from ..evaluator import evaluate_cells
 from ..evaluator.keys import column_groups, pick
+from ..evaluator.relnames import relative_names
 from ..evaluator.store import FLOAT, type_mask, value_scale
 from ..evaluator.volatile import Clock
 from ..formula import ast, parse
@@ -34,12 +44,15 @@ from ..formula.scalar import evaluate as evaluate_scalar
 from ..xlerror import ExcelError
 import numpy as np
 
+from .caught import caught
 from .compare import ColumnStats, compare, compare_numbers
 from .findings import find as find_findings
 from .inputs import AuditInputs, read_inputs
 from .mechanics import check_mechanics, noise_trees
 from .report import AuditReport, EngineResult, Mismatch
 from .saved import last_saved
+from .sources import Stale, arrays_once, rectangles, settle
+from .tally import NO_CACHED_VALUE, absent as absent_values, no_cached_findings, tally
 from .structure import check_structure
 
 __all__ = ["audit", "AuditReport"]
@@ -90,7 +103,8 @@ def _libreoffice_explains(inputs: AuditInputs, key, value_of, cached) -> bool:
                          getattr(value_of, "clip", None))
     resolver.has_formula = lambda sheet, row, col: inputs.is_formula((sheet or key[0], row, col))
     try:
-        value = evaluate_scalar(node, resolver, dialect="libreoffice")
+        with np.errstate(all="ignore"):  # overflow is #NUM! there too (engine._floats_quiet)
+            value = evaluate_scalar(node, resolver, dialect="libreoffice")
     except (ArithmeticError, ValueError, TypeError, IndexError, KeyError, RecursionError,
             fx_unanswered):
         return False  # the re-check is a courtesy: a defect in it must not lose the file
@@ -102,50 +116,6 @@ PHASES = ("read", "evaluate", "compare", "reference", "findings", "engine")
 
 def _number_if_bool(v):
     return float(v) if isinstance(v, bool) else v
-
-
-MAX_ROOT_SEARCH = 5000  # mismatches beyond this are all listed as roots
-
-
-def _rectangles(node, sheet: str, names: dict[str, str], depth: int = 0):
-    """The cell rectangles (sheet, r1, c1, r2, c2) a formula reads."""
-    for n in ast.walk(node):
-        if isinstance(n, ast.CellRef):
-            yield (n.sheet or sheet, n.row, n.col, n.row, n.col)
-        elif isinstance(n, ast.RangeRef):
-            yield (n.sheet or sheet, min(n.first.row, n.last.row), min(n.first.col, n.last.col),
-                   max(n.first.row, n.last.row), max(n.first.col, n.last.col))
-        elif isinstance(n, ast.Name) and depth < 8:
-            text = names.get(n.name) or next(
-                (v for k, v in names.items() if k.upper() == n.name.upper()), None)
-            if text is not None:
-                try:
-                    yield from _rectangles(parse(str(text).lstrip("=")), sheet, names, depth + 1)
-                except FormulaSyntaxError:
-                    pass
-
-
-def _mark_roots(inputs: AuditInputs, mismatches: list[Mismatch], differ: set[str]) -> None:
-    """A mismatch is a root when none of the cells its formula reads disagrees
-    (``differ``: aggregates checked locally whose full recomputation disagrees)."""
-    if not mismatches or len(mismatches) > MAX_ROOT_SEARCH:
-        return
-    keys = {m.cell for m in mismatches} | differ
-    by_sheet: dict[str, list[tuple[int, int]]] = {}
-    cell_keys = inputs.cell_keys()
-    for name in keys:
-        sheet, row, col = cell_keys[name]
-        by_sheet.setdefault(sheet, []).append((row, col))
-    for m in mismatches:
-        sheet = cell_keys[m.cell][0]
-        try:
-            node = parse(m.formula)
-        except FormulaSyntaxError:
-            continue
-        for s, r1, c1, r2, c2 in _rectangles(node, sheet, inputs.book.defined_names):
-            if any(r1 <= r <= r2 and c1 <= c <= c2 for r, c in by_sheet.get(s, ())):
-                m.root = False
-                break
 
 
 def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: str = "excel",
@@ -164,18 +134,21 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: st
     read: set[tuple[str, int]] = set()  # the (sheet, column) pairs those formulas read
     # (print areas and titles are names of their sheets too: they matter only where used)
     local_names = {n.upper() for s in inputs.book.sheets for n in s.defined_names}
-    everything = False  # 3-D, structured references, sheet-scoped names: read all
+    relative = None
+    everything = False  # 3-D, structured references, sheet-scoped and relative names: all
     for key in keys:
         try:
             node = parse(inputs.formulas[key])
         except FormulaSyntaxError:
             continue
-        if any(isinstance(n, (ast.Sheets3D, ast.StructRef, ast.RefOp))
-               or (isinstance(n, ast.Name) and n.name.upper() in local_names)
-               for n in ast.walk(node)):
+        used = {n.name.upper() for n in ast.walk(node) if isinstance(n, ast.Name)}
+        if used and relative is None:  # (names read from the calling cell: relnames)
+            relative = relative_names(names)
+        if any(isinstance(n, (ast.Sheets3D, ast.StructRef, ast.RefOp)) for n in ast.walk(node)
+               ) or used & local_names or used & (relative or set()):
             everything = True
             break
-        for sheet, _, c1, _, c2 in _rectangles(node, key[0], names):
+        for sheet, _, c1, _, c2 in rectangles(node, key[0], names):
             read.update((sheet, c) for c in range(c1, c2 + 1))
     given = seen or inputs.cached
     if everything:  # formula and constant cells are apart: the same as below, at C speed
@@ -191,7 +164,8 @@ def _local_evaluation(inputs: AuditInputs, seen: dict | None = None, dialect: st
         saved = Clock(given, saved.saved, saved.agree, saved.date1904)
     return evaluate_cells({k: inputs.formulas[k] for k in keys}, cached, names,
                           dialect=dialect, book=inputs.book_info(), saved=saved,
-                          iterate=inputs.book.iterate)
+                          iterate=inputs.book.iterate, texts=inputs.formulas,
+                          array_texts=inputs.arrays)
 
 
 def _in_columns(cells: dict, columns: set[tuple[str, int]], leave=()) -> dict:
@@ -218,7 +192,10 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
     paused = gc.isenabled()
     gc.disable()
     try:
-        return _audit(path, engine, vectorize, progress)
+        with caught() as said:
+            report = _audit(path, engine, vectorize, progress)
+        report.warnings = said
+        return report
     finally:
         if paused:
             gc.enable()
@@ -251,7 +228,6 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
         aside.cancel()
         raise
     timings["evaluate_all"] = time.perf_counter() - t
-    skipped = evaluation.not_checked
 
     values, constants = evaluation.values, inputs.constants
     local = aside.result()
@@ -278,10 +254,17 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
     aside = Forked(_beside_compare, inputs, evaluation.runs, value_of,
                    evaluation.store.column_values, trees)
     try:
-        mismatches, columns, checked, explained, max_abs, max_rel = _compare(
-            inputs, evaluation, local, semantics, value_of, timings)
+        absent = absent_values(inputs.cached)
+        without = bool(absent) and len(absent) == len(inputs.cached)  # none has a value
+        if absent:  # an empty cell where the formula gives "" shows what it would show
+            values = evaluation.values
+            absent = [k for k in absent if k not in values or k in evaluation.not_checked
+                      or values[k] not in (None, "")]
+        mismatches, columns, counts, skipped, explained, max_abs, max_rel = _compare(
+            inputs, evaluation, local, semantics, value_of, timings, absent)
         step("compare")
         findings = check_structure(inputs, evaluation, _cell_name)
+        findings += no_cached_findings(inputs, absent, _cell_name)
         (mechanics, timings["reference"]), (seen, timings["findings"]) = aside.result()
         findings += seen
     except BaseException:
@@ -289,21 +272,23 @@ def _audit(path, engine, vectorize, progress) -> AuditReport:
         raise
     step("reference")
     step("findings")
-    engine_result = (_engine(path, engine, inputs, value_of, evaluation.operands_scale, skipped)
-                     if engine else None)
+    engine_result = (_engine(path, engine, inputs, value_of, evaluation.operands_scale,
+                             evaluation.not_checked) if engine else None)
     if engine:
         step("engine")
     not_checked = {_cell_name(k): reason for k, reason in sorted(skipped.items())
                    if inputs.is_formula(k)}
     return AuditReport(
-        path=str(path), formula_cells=inputs.formula_count, cells_checked=checked + explained,
+        path=str(path), formula_cells=inputs.formula_count, cells_checked=counts.checked,
         mismatches=mismatches, not_checked=not_checked, columns=[columns[k] for k in sorted(columns)],
         max_abs_error=max_abs, max_rel_error=max_rel, findings=findings, mechanics=mechanics,
         libreoffice_semantics=explained, vector_cells=evaluation.groups.vector_cells,
         seconds=time.perf_counter() - started, engine=engine_result, timings=timings,
         macros=inputs.book.vba_project, semantics=semantics,
-        by_contract={_cell_name(k): o.message for k, o in sorted(evaluation.contract.items())},
-        application=inputs.book.application)
+        by_contract={_cell_name(k): o.message for k, o in sorted(evaluation.contract.items())
+                     if o.status != "disagrees"},
+        application=inputs.book.application, counts=counts,
+        saved_without_values=without)
 
 
 def _timed(fn, *args):
@@ -335,21 +320,24 @@ def _beside_compare(inputs: AuditInputs, runs, value_of, column_of, trees):
             _timed(find_findings, inputs, runs, _cell_name))
 
 
-def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, timings):
-    """Cached against recomputed, every checked formula cell: (mismatches, column
-    statistics, cells checked, cells LibreOffice's semantics explain, max abs and rel
-    error of the agreeing cells)."""
+def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, timings,
+             absent: list):
+    """Cached against recomputed, every checked formula cell but those ``absent`` (no
+    cached value) and those checked by contract: (mismatches, column statistics, the
+    tally, cells LibreOffice's semantics explain, max abs and rel error of the agreeing
+    cells)."""
     values, skipped = evaluation.values, evaluation.not_checked
     t = time.perf_counter()
     columns: dict[tuple[str, int], ColumnStats] = {}
-    mismatches, explained, checked = [], 0, 0
+    mismatches, explained = [], 0
     max_abs = max_rel = 0.0
     # the cells to check, by column; those whose cached value is a number that the
     # evaluator computed as a whole column are compared as arrays (``fast``)
     evaluated, aggregates = values.keyset, set(local.values)
     keys, cached_values = list(inputs.cached), list(inputs.cached.values())
-    if skipped or not all(map(evaluated.__contains__, keys)):
-        keep = [k not in skipped and k in evaluated for k in keys]
+    aside = set(absent).union(evaluation.contract) if absent or evaluation.contract else ()
+    if skipped or aside or not all(map(evaluated.__contains__, keys)):
+        keep = [k not in skipped and k not in aside and k in evaluated for k in keys]
         keys, cached_values = list(compress(keys, keep)), list(compress(cached_values, keep))
     groups, all_rows = column_groups(keys)
     fast_all = type_mask(cached_values, FLOAT)
@@ -373,11 +361,10 @@ def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, t
             if agree.any():
                 max_abs = max(max_abs, float(diff[agree].max()))
                 max_rel = max(max_rel, float(rel[agree].max()))
-            checked += len(fast)
             for i in np.flatnonzero(~agree):
                 k = keys[fast[i]]
                 mismatches.append(Mismatch(_cell_name(k), inputs.text_of(k), inputs.cached[k],
-                                           float(column.val[rows[i]]), float(diff[i])))
+                                           float(column.val[rows[i]]), float(diff[i]), key=k))
         for key in pick(keys, idx[~done[idx]]):
             cached = inputs.cached[key]
             source = local if key in local.values else evaluation
@@ -388,25 +375,40 @@ def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, t
             if not verdict.agree and _libreoffice_explains(inputs, key, value_of, cached):
                 explained += 1
                 continue
-            checked += 1
             stats.add(inputs.ref(key), verdict)
             if not verdict.agree:
                 mismatches.append(Mismatch(_cell_name(key), inputs.text_of(key), cached,
-                                           recomputed, verdict.abs_error))
+                                           recomputed, verdict.abs_error, key=key))
             else:
                 max_abs = max(max_abs, verdict.abs_error)
                 max_rel = max(max_rel, verdict.rel_error)
     # volatile cells hold their cached value (their dependents read it): the check was
     # against the function's contract, and a value outside it is a disagreement
+    contract_ok = []
     for key, outcome in evaluation.contract.items():
         if outcome.status == "disagrees":
             mismatches.append(Mismatch(_cell_name(key), inputs.text_of(key), inputs.cached[key],
-                                       outcome.contract))
-    differ = {_cell_name(k) for k in local.values if k not in skipped
-              and not compare(inputs.cached[k], values[k], evaluation.operands_scale[k]).agree}
-    _mark_roots(inputs, mismatches, differ)
+                                       outcome.contract, key=key))
+        else:
+            contract_ok.append(key)
+    # aggregates that agree with their cached range, whose full recalculation differs
+    stale = {}
+    for k in local.values:
+        cached = inputs.cached[k]
+        if k in skipped or cached is None:
+            continue
+        if not compare(cached, values[k], evaluation.operands_scale[k]).agree:
+            stale[k] = Stale(inputs.text_of(k), cached, values[k])
+    disagreeing = [m.key for m in mismatches]
+    mismatches = settle(inputs, arrays_once(inputs, mismatches, _cell_name), stale, _cell_name)
+    disagreeing += [m.key for m in mismatches if m.stale]
+    not_checked = dict(skipped)
+    not_checked.update(inputs.opaque)
+    not_checked.update(dict.fromkeys(absent, NO_CACHED_VALUE))
+    counts = tally(inputs, keys, disagreeing, not_checked, contract_ok,
+                   sum(1 for m in mismatches if m.root))
     timings["compare"] = time.perf_counter() - t
-    return mismatches, columns, checked, explained, max_abs, max_rel
+    return mismatches, columns, counts, not_checked, explained, max_abs, max_rel
 
 
 def _agree(cached, value) -> bool:

@@ -17,6 +17,9 @@ from ..xlsx.model import Workbook
 
 Key = tuple[str, int, int]
 
+DATA_TABLE = ("data table (What-If Analysis): its values are not recomputed; the cells "
+              "that read it read its cached values")
+
 
 @dataclass
 class AuditInputs:
@@ -26,6 +29,9 @@ class AuditInputs:
     constants: dict[Key, object] = field(default_factory=dict)
     array_cells: list[Key] = field(default_factory=list)       # array formulas: not recomputed
     broken: dict[Key, str] = field(default_factory=dict)       # shared formulas that do not expand
+    # formula cells with no text to recompute (a data table's <f t="dataTable"/>, an empty
+    # <f/>): not checked, their readers read their cached values -> why
+    opaque: dict[Key, str] = field(default_factory=dict)
     # array formulas: master -> (text, (last row, last col)); cached holds every cell they fill
     arrays: dict[Key, tuple[str, tuple[int, int]]] = field(default_factory=dict)
     _names: dict[str, Key] | None = None
@@ -54,26 +60,50 @@ class AuditInputs:
         """Sheet order, sheet-scoped names and tables, for the evaluator."""
         from ..evaluator.book import BookInfo, Table
         from ..formula.tokenizer import CELL_PARTS, column_number
+        def corners(ref: str | None):
+            ends = [CELL_PARTS.fullmatch(p) for p in (ref or "").replace("$", "").split(":")]
+            if len(ends) != 2 or not all(ends):
+                return None
+            return tuple(x for m in ends for x in (int(m.group(4)), column_number(m.group(2))))
+
         tables = []
+        filtered: dict[str, frozenset[int]] = {}
         for sheet in self.book.sheets:
+            ranges = [sheet.filter_ref]
             for t in sheet.tables:
-                corners = [CELL_PARTS.fullmatch(p) for p in t.ref.replace("$", "").split(":")]
-                if len(corners) != 2 or not all(corners):
+                ranges.append(t.filter_ref)
+                if (area := corners(t.ref)) is None:
                     continue
-                (c1, r1), (c2, r2) = ((column_number(m.group(2)), int(m.group(4)))
-                                      for m in corners)
+                r1, c1, r2, c2 = area
                 tables.append(Table(t.name, sheet.name, r1, c1, r2, c2, tuple(t.columns),
                                     t.header_rows, t.totals_rows))
+            # rows a filter hid: the hidden rows below a filtering autoFilter's header
+            rows = {r for area in map(corners, ranges) if area is not None
+                    for r in sheet.hidden_rows if area[0] < r <= area[2]}
+            if rows:
+                filtered[sheet.name] = frozenset(rows)
         from ..xlsx.reader import MISSING_PART
         return BookInfo(self.book.sheet_names,
                         {s.name: dict(s.defined_names) for s in self.book.sheets
                          if s.defined_names}, tables,
                         [name for name, kind in self.book.other_sheets if kind == MISSING_PART],
                         {s.name: frozenset(s.hidden_rows) for s in self.book.sheets
-                         if s.hidden_rows},
+                         if s.hidden_rows}, filtered,
+                        all_sheets=self._all_sheets(),
                         charset="mac_roman" if "macintosh" in (self.book.application or
                                                                "").lower() else "cp1252",
+                        date1904=self.book.date1904,
                         olap=self.book.olap, external=self.book.external_links)
+
+    def _all_sheets(self) -> list[str]:
+        """Every sheet's name in the workbook's order: the worksheets at their positions
+        (``Sheet.index``), the other sheets, listed in order, at the positions left."""
+        book = self.book
+        by_position = {s.index: s.name for s in book.sheets}
+        left = (i for i in range(len(book.sheets) + len(book.other_sheets))
+                if i not in by_position)
+        by_position.update(zip(left, (name for name, _ in book.other_sheets)))
+        return [by_position[i] for i in sorted(by_position)]
 
     @property
     def formula_count(self) -> int:
@@ -81,7 +111,8 @@ class AuditInputs:
         # array masters, and the cells of an array's area that the file gives an empty <f/>
         masters = sum(1 for k in self.array_cells
                       if self.book.sheet(k[0]).cell(k[1], k[2]).has_formula)
-        return len(self.formulas) + len(self.broken) + masters + len(self.data_tables)
+        return (len(self.formulas) + len(self.broken) + len(self.opaque) + masters
+                + len(self.data_tables))
 
     def is_formula(self, key: Key) -> bool:
         if key in self.formulas or key in self.broken or key in self.table_of:
@@ -204,11 +235,16 @@ def _sheet_inputs(inputs: AuditInputs, sheet, cells=None, chunks=None) -> None:
             if cell.is_array:
                 _array(inputs, sheet, cell, key)
             continue
-        if kind == "dataTable" and cell.data_table is not None:
+        if kind == "dataTable" and cell.data_table is not None:  # recomputed (whatif)
             _data_table(inputs, cell, key)
+            inputs.constants[key] = cell.value
+            continue
         source = sheet.formula_source(cell) if cell.has_formula else None
         if source is None:
             inputs.constants[key] = cell.value
+            if cell.has_formula:
+                inputs.opaque[key] = (DATA_TABLE if kind == "dataTable" else
+                                      "the file gives this cell a formula without text")
             continue
         text, origin = source
         if origin != cell.ref:

@@ -51,10 +51,16 @@ class FileResult:
         s = self.summary
         findings = len(s.get("findings", ()))
         word = "OK  " if self.code == 0 else "FAIL"
+        sources = s.get("disagreements", 0)
         return (f"{word}  {self.path}: {s.get('formula_cells', 0)} formula cells, "
-                f"{s.get('cells_agree', 0)} agree, {s.get('cells_disagree', 0)} disagree, "
-                f"{s.get('cells_not_checked', 0)} not checked, {findings} findings"
-                + (", macros not checked" if s.get("macros") else ""))
+                f"{s.get('cells_agree', 0)} agree, {s.get('cells_disagree', 0)} disagree"
+                + (f" ({sources} at the source)" if sources else "")
+                + f", {s.get('cells_not_checked', 0)} not checked"
+                + (f", {s['cells_by_contract']} by contract" if s.get("cells_by_contract") else "")
+                + f", {findings} findings"
+                + (", macros not checked" if s.get("macros") else "")
+                + ("; no cached values: nothing verified" if s.get("saved_without_values")
+                   else ""))
 
     def json(self) -> dict:
         if self.error is not None:
@@ -117,6 +123,12 @@ def total_line(results: list[FileResult]) -> str:
     agree = sum(r.summary.get("cells_agree", 0) for r in results)
     disagree = sum(r.summary.get("cells_disagree", 0) for r in results)
     skipped = sum(r.summary.get("cells_not_checked", 0) for r in results)
+    sources = sum(r.summary.get("disagreements", 0) for r in results)
+    contract = sum(r.summary.get("cells_by_contract", 0) for r in results)
+    unverified = sum(bool(r.summary.get("saved_without_values")) for r in results)
     return (f"total: {len(results)} files: {ok} ok, {fail} with cells that disagree, "
-            f"{refused} refused; {cells} formula cells: {agree} agree, {disagree} disagree, "
-            f"{skipped} not checked")
+            f"{refused} refused"
+            + (f" ({unverified} saved without cached values: nothing verified)"
+               if unverified else "")
+            + f"; {cells} formula cells: {agree} agree, {disagree} disagree ({sources} at the "
+            f"source), {skipped} not checked" + (f", {contract} by contract" if contract else ""))

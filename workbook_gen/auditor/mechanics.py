@@ -23,6 +23,9 @@ REFERENCE_TOLERANCE = 1e-9  # of the column's magnitude, or of its rounding nois
 # An angle's magnitude is at least a radian: a rod 1e20 long at 4e-17 deg to the slide is
 # at 0 deg to within the reference's closure, and 4e-17 deg is not a relative error of 1.
 ANGLE_FLOOR = {"deg": 180.0 / np.pi, "rad": 1.0}
+# An angle and the same angle a whole number of turns away are one position: the workbook
+# and the model may choose different turns (a sweep from -540 deg, phi_slide = 720).
+TURN = {"deg": 360.0, "rad": 2.0 * np.pi}
 # Rows the workbook flags as singular: their rates are undefined or half their digits are
 # the model's (Newton at a double root), so they are counted, not compared.  A row that is
 # "not converged" or on the "other branch" is compared: the model shows how far off it is.
@@ -220,10 +223,19 @@ def _check_column(name, values, ref, inputs, col, singular, noise, unit) -> Quan
     scale = max(float(np.max(np.abs(ref[both]))), ANGLE_FLOOR.get(unit or "", 0.0), 1e-300)
     if noise is not None:
         scale = np.maximum(scale, NOISE_TO_SCALE * np.where(np.isfinite(noise), noise, 0.0))
-    errors = np.where(both, np.abs(ours - ref) / scale, 0.0)
+    errors = np.where(both, np.abs(_apart(ours, ref, TURN.get(unit or ""))) / scale, 0.0)
     worst = int(np.argmax(errors))
     return QuantityCheck(name, int(both.sum()), float(errors[worst]), float(inputs[worst]),
                          wrong, skipped)
+
+
+def _apart(ours, ref, turn: float | None):
+    """ours - ref, or for an angle (a ``turn`` given) its distance modulo a whole turn,
+    in [-turn/2, turn/2)."""
+    diff = ours - ref
+    if turn is None:
+        return diff
+    return np.remainder(diff + turn / 2, turn) - turn / 2
 
 
 def _residuals(book, value_of) -> tuple[dict[str, float], float | None]:

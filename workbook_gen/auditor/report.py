@@ -9,6 +9,7 @@ from ..xlerror import ExcelError
 from .compare import ColumnStats
 from .mechanics import REFERENCE_TOLERANCE, MechanicsReport
 from .structure import Finding
+from .tally import NO_CACHED_VALUE, Tally
 
 MAX_LISTED = 20  # disagreeing cells listed per column in the terminal (--verbose)
 WORST = 5  # disagreeing cells shown in the default summary
@@ -25,6 +26,17 @@ class Mismatch:
     recomputed: object
     abs_error: float | None = None
     root: bool = True  # False: a precedent disagrees too, so this may only follow from it
+    # an array formula: its area ("D8:D9"; ``cell`` is its anchor), its disagreeing cells,
+    # and the cell whose values are shown when it is not the anchor
+    area: str | None = None
+    cells: list[str] = field(default_factory=list)
+    at: str | None = None
+    sources: list[str] = field(default_factory=list)    # a follower: what it follows from
+    followers: list[str] = field(default_factory=list)  # a source: what follows from it
+    # agrees with what it makes of its cached precedents, but a recalculation, in which
+    # a source upstream changes, gives ``recomputed``
+    stale: bool = False
+    key: tuple | None = field(default=None, repr=False, compare=False)
 
 
 @dataclass
@@ -62,26 +74,48 @@ class AuditReport:
     # cells calling TODAY/NOW/RAND/RANDBETWEEN, checked against the function's contract
     # (not recomputed: the value changes at every recalculation): cell -> how
     by_contract: dict[str, str] = field(default_factory=dict)
+    counts: Tally | None = None  # the formula cells by verdict (tally.py)
+    # no formula cell holds a cached value (openpyxl, pandas): nothing could be verified
+    saved_without_values: bool = False
+    # what the audit's own code warned of while it ran (caught.py): message -> times
+    warnings: dict[str, int] = field(default_factory=dict)
 
     @property
     def ok(self) -> bool:
         """True unless a cell disagrees (with its cached value, the reference model or
-        the other engine): findings and cells not checked never fail an audit."""
+        the other engine): findings and cells not checked never fail an audit.
+
+        A file saved without calculating (``saved_without_values``: openpyxl, pandas) is
+        ok too, and exits 0: it contradicts nothing, as a file whose every cell calls an
+        unsupported function. The report says that nothing was verified instead of
+        "every checked cell agrees", and ``--engine libreoffice`` can verify it."""
         return (not self.mismatches
                 and (self.mechanics is None or self.mechanics.ok)
                 and (self.engine is None or not self.engine.mismatches))
 
     @property
     def cells_disagree(self) -> int:
-        return len(self.mismatches)
+        """Formula cells whose cached value differs from a recalculation, at the source or
+        following from one (an array formula's area at its anchor)."""
+        return self.counts.disagree if self.counts else len(self.mismatches)
+
+    @property
+    def disagreements(self) -> int:
+        """Disagreements counted once at their source."""
+        return sum(1 for m in self.mismatches if m.root)
 
     @property
     def cells_agree(self) -> int:
-        return self.cells_checked - len(self.mismatches)
+        return (self.counts.agree if self.counts else
+                self.cells_checked - len(self.mismatches) - len(self.by_contract))
 
     @property
     def cells_not_checked(self) -> int:
         return len(self.not_checked)
+
+    @property
+    def cells_no_cached_value(self) -> int:
+        return sum(1 for r in self.not_checked.values() if r == NO_CACHED_VALUE)
 
     def not_checked_reasons(self) -> list[tuple[str, int]]:
         """(reason, cells) most frequent first; dependents grouped by what they read."""
@@ -114,6 +148,9 @@ class AuditReport:
             "cells_agree": self.cells_agree,
             "cells_disagree": self.cells_disagree,
             "cells_not_checked": self.cells_not_checked,
+            "cells_no_cached_value": self.cells_no_cached_value,
+            "saved_without_values": self.saved_without_values,
+            "disagreements": self.disagreements,
             "not_checked": [{"cell": c, "reason": r} for c, r in self.not_checked.items()],
             "cells_by_contract": len(self.by_contract),
             "by_contract": [{"cell": c, "check": m} for c, m in self.by_contract.items()],
@@ -127,6 +164,7 @@ class AuditReport:
             "semantics": self.semantics,
             "application": self.application,
             "libreoffice_semantics": self.libreoffice_semantics,
+            "warnings": [{"message": k, "count": n} for k, n in self.warnings.items()],
             "vectorized_cells": self.vector_cells,
             "seconds": self.seconds,
             "timings": self.timings,
@@ -158,8 +196,17 @@ def _plain(value: object) -> object:
 
 
 def _mismatch_json(m: Mismatch) -> dict:
-    return {"cell": m.cell, "formula": "=" + m.formula, "cached": _plain(m.cached),
-            "recomputed": _plain(m.recomputed), "root": m.root}
+    out = {"cell": m.cell, "formula": "=" + m.formula, "cached": _plain(m.cached),
+           "recomputed": _plain(m.recomputed), "root": m.root}
+    if m.area:
+        out.update(area=m.area, cells=m.cells, at=m.at or m.cell)
+    if m.sources:
+        out["sources"] = m.sources
+    if m.followers:
+        out["followers"] = m.followers
+    if m.stale:
+        out["stale"] = True
+    return out
 
 
 def _show(value: object) -> str:
@@ -177,18 +224,68 @@ def _worst(report: AuditReport) -> list:
     return sorted(report.mismatches, key=lambda m: (not m.root, -size(m)))
 
 
+def _names(cells: list[str], shown: int = 5) -> str:
+    more = len(cells) - shown
+    return ", ".join(cells[:shown]) + (f" (+{more})" if more > 0 else "")
+
+
+def _disagreements(report: AuditReport, verbose: bool) -> list[str]:
+    """Each disagreement at its source with what follows from it; then the cells that
+    would show another value if recalculated (stale headlines first)."""
+    worst = _worst(report)
+    if not worst:
+        return []
+    sources = [m for m in worst if m.root]
+    follow = sorted((m for m in worst if not m.root), key=lambda m: not m.stale)
+    limit = MAX_LISTED * 5 if verbose else WORST
+    lines = [f"  {len(sources)} disagreement{'s' * (len(sources) != 1)} at the source "
+             f"(cached against recomputed; no precedent disagrees)"
+             + (f", {report.cells_disagree} formula cells in all with those that follow "
+                "from them" if follow or report.cells_disagree != len(sources) else "")
+             + ("; the worst:" if not verbose and len(sources) > WORST else ":")]
+    for m in sources[:limit]:
+        first, _, last = (m.area or "").partition(":")
+        where = (f" (array {m.area}, {len(m.cells)} of its cells disagree)"
+                 if m.area and first != last else "")
+        at = f"at {m.at}: " if m.at else ""
+        lines.append(f"    {m.cell}{where}: ={m.formula}")
+        lines.append(f"      {at}cached {_show(m.cached)}, recomputed {_show(m.recomputed)}"
+                     + (f"; {len(m.followers)} cell{'s' * (len(m.followers) > 1)} "
+                        f"follow{'s' * (len(m.followers) == 1)} from it: "
+                        f"{_names(m.followers)}" if m.followers else ""))
+    if follow:
+        one = len(follow) == 1
+        lines.append(f"  {len(follow)} cell{'s' * (not one)} would show another value if "
+                     f"recalculated ({'it follows' if one else 'they follow'} from a "
+                     "disagreement)"
+                     + ("; the first:" if not verbose and len(follow) > WORST else ":"))
+        for m in follow[:limit]:
+            why = f", because of {_names(m.sources, 3)}" if m.sources else ""
+            lines.append(f"    {m.cell}: ={_cut(m.formula)}")
+            lines.append(f"      shows {_show(m.cached)}, would show {_show(m.recomputed)}{why}")
+    return lines
+
+
 def format_report(report: AuditReport, verbose: bool = False) -> str:
     """A few lines (counts, reasons, the worst cells, the verdict); ``verbose``: every
     column, every disagreeing cell, every cell not checked and every finding."""
+    contract = (f", {len(report.by_contract)} by contract" if report.by_contract else "")
     lines = [f"audit of {report.path}",
              f"  {report.formula_cells} formula cells: {report.cells_checked} checked "
-             f"({report.cells_agree} agree, {report.cells_disagree} disagree), "
+             f"({report.cells_agree} agree, {report.cells_disagree} disagree{contract}), "
              f"{report.cells_not_checked} not checked; {report.seconds:.2f} s"]
+    if report.saved_without_values:
+        lines.append("  no cached values: the file was saved without calculating"
+                     + (f" (by {report.application})" if report.application else "")
+                     + "; its formulas were recomputed, but there is nothing to compare with")
     if report.semantics != "excel":
         lines.append(f"  recomputed with {report.semantics}'s semantics: the file was saved by "
                      f"{report.application}")
+    elif report.application and not report.application.lower().startswith("microsoft"):
+        lines.append(f"  recomputed with Excel's semantics: the file was saved by "
+                     f"{report.application}, whose own are not modelled")
     reasons = report.not_checked_reasons()
-    if reasons:
+    if reasons and not report.saved_without_values:
         shown = reasons if verbose else reasons[:3]
         lines.append("  not checked: " + "; ".join(f"{n} {r}" for r, n in shown)
                      + ("; ..." if len(shown) < len(reasons) else ""))
@@ -199,15 +296,7 @@ def format_report(report: AuditReport, verbose: bool = False) -> str:
     if report.libreoffice_semantics:
         lines.append(f"  {report.libreoffice_semantics} cells hold LibreOffice's answer where "
                      f"Excel's differs (e.g. SQRT(-1) is #VALUE! there): accepted")
-    worst = _worst(report)
-    if worst:
-        roots = sum(1 for m in worst if m.root)
-        lines.append(f"  {len(worst)} cells disagree (cached against recomputed), {roots} at "
-                     f"their source (no precedent disagrees)"
-                     + ("; the worst:" if not verbose and len(worst) > WORST else ":"))
-        for m in worst[:(MAX_LISTED * 5 if verbose else WORST)]:
-            lines.append(f"    {m.cell}: ={m.formula}{'' if m.root else '  (follows)'}")
-            lines.append(f"      cached {_show(m.cached)}, recomputed {_show(m.recomputed)}")
+    lines += _disagreements(report, verbose)
     if verbose:
         lines += _columns(report)
         if report.not_checked:
@@ -216,12 +305,14 @@ def format_report(report: AuditReport, verbose: bool = False) -> str:
         if report.by_contract:
             lines += ["", "  checked against the contract of a volatile function:"]
             lines += [f"    {cell}: {how}" for cell, how in report.by_contract.items()]
-    if report.findings:
+    findings = [f for f in report.findings if not (report.saved_without_values
+                                                   and f.kind == "no_cached_value")]
+    if findings:  # (a file saved without values is said so above, once)
         kinds: dict[str, int] = {}
-        for f in report.findings:
+        for f in findings:
             kinds[f.kind] = kinds.get(f.kind, 0) + 1
         lines.append("  findings: " + ", ".join(f"{k} {n}" for k, n in sorted(kinds.items())))
-        for f in report.findings[:None if verbose else 3]:
+        for f in findings[:None if verbose else 3]:
             lines.append(f"    {f.kind}: {f.cell}: {f.message}")
     if report.macros:
         lines.append(f"  macros: the file holds a VBA project ({report.macros}); "
@@ -235,12 +326,25 @@ def format_report(report: AuditReport, verbose: bool = False) -> str:
         for m in e.mismatches[:MAX_LISTED if verbose else WORST]:
             lines.append(f"    {m.cell}: ={_cut(m.formula)}: {e.engine} {_cut(_show(m.cached))}, "
                          f"ours {_cut(_show(m.recomputed))}")
-    if report.ok:
+    if report.warnings:
+        lines.append(f"  the audit warned {sum(report.warnings.values())} times (its own "
+                     "problem, not the file's): " + "; ".join(
+                         f"{k} (x{n})" for k, n in list(report.warnings.items())[:3]))
+    if report.ok and report.saved_without_values:
+        verdict = ("  OK: nothing disagrees, but nothing was verified: the file holds no cached "
+                   "values (--engine libreoffice compares with LibreOffice's recalculation)")
+    elif report.ok and report.formula_cells and not report.cells_checked:
+        verdict = (f"  OK: nothing disagrees, but nothing was verified: none of the "
+                   f"{report.formula_cells} formula cells could be checked")
+    elif report.ok:
         verdict = "  OK: every checked cell agrees"
         if report.cells_not_checked:
             verdict += f" ({report.cells_not_checked} not checked)"
     else:
-        verdict = "  FAILED: cells disagree (see above" + ("" if verbose else "; --verbose lists all") + ")"
+        n = report.disagreements
+        verdict = (f"  FAILED: {n} disagreement{'s' * (n != 1)} at the source" if n else
+                   "  FAILED: cells disagree") + (
+            " (see above" + ("" if verbose else "; --verbose lists all") + ")")
     lines.append(verdict)
     return "\n".join(lines)
 

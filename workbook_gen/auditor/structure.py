@@ -90,9 +90,17 @@ def check_structure(inputs, evaluation, cell_name) -> list[Finding]:
                                    "calculation is on)" if iterate else
                                    "with iterative calculation off they show 0 (LibreOffice: "
                                    "Err:522), as does what takes its value from them")))
-    findings += _by_function(evaluation.unsupported, "unsupported_function",
+    unknown = getattr(evaluation, "unknown", {})
+    findings += _by_function({k: v for k, v in evaluation.unsupported.items()
+                              if k not in unknown}, "unsupported_function",
                              "{n} cells call {f}, which the evaluator lacks; they and their "
                              "dependents are not checked", cell_name)
+    findings += _by_function({k: v for k, v in evaluation.unsupported.items() if k in unknown},
+                             "unsupported_function",
+                             "{n} cells call {f}, a name Excel does not know as a function "
+                             "here (an add-in's or a macro's, or one newer than Excel 2007 "
+                             "stored without its _xlfn. prefix): #NAME? unless an add-in or "
+                             "a macro defines it", cell_name)
     findings += _by_function(evaluation.volatile, "volatile_function",
                              "{n} cells call {f}, a volatile function", cell_name)
     findings.extend(_unresolved(inputs, evaluation, cell_name))

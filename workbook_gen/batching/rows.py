@@ -2,10 +2,9 @@
 job (a block of one) and for ``--summary-only`` (blocks of thousands).
 
 Columns arrive flattened, variant after variant (``V * n`` rows, ``n`` rows per
-variant); extremes are taken over the rows where the column holds a number (a row
-that cannot be assembled holds ``#NUM!`` in the workbook and is left out), the
-``_at`` value is the input of the first row where the extreme occurs (what
-``INDEX(..., MATCH(extreme, ..., 0))`` finds).
+variant); extremes are taken over the ok rows as the workbook's Summary takes them
+(workbook_gen/extremes.py: a flagged row or one that cannot be assembled is left out),
+the ``_at`` value is the input of the first ok row where the extreme occurs.
 """
 
 from __future__ import annotations
@@ -18,6 +17,7 @@ import numpy as np
 from .. import xlmath as xm
 from ..expr import Bin, Call, Neg, Node, Param, Var
 from ..expr.numeric import compile_numpy
+from ..extremes import ok_extremes
 from ..model import Model
 
 CANNOT_ASSEMBLE = "cannot assemble"
@@ -73,21 +73,6 @@ def value_columns(model: Model) -> list[str]:
     return names + figure_columns(model) + ["rows_not_assembled"]
 
 
-def _extremes(column: xm.XArray, inputs: np.ndarray, variants: int):
-    n = len(inputs)
-    val = column.val.reshape(variants, n)
-    ok = column.err.reshape(variants, n) == 0
-    anyok = ok.any(axis=1)
-    rows = np.arange(variants)
-    lo_val = np.where(ok, val, np.inf)
-    hi_val = np.where(ok, val, -np.inf)
-    i_lo = np.argmin(lo_val, axis=1)
-    i_hi = np.argmax(hi_val, axis=1)
-    nan = np.full(variants, np.nan)
-    return (np.where(anyok, lo_val[rows, i_lo], nan), np.where(anyok, inputs[i_lo], nan),
-            np.where(anyok, hi_val[rows, i_hi], nan), np.where(anyok, inputs[i_hi], nan))
-
-
 def figure_values(model: Model, params: Mapping[str, np.ndarray], variants: int
                   ) -> dict[str, list[object]]:
     """The template's figures from the parameters: a number, a text (Grashof class) or
@@ -111,10 +96,11 @@ def summarise(model: Model, inputs: np.ndarray, columns: Mapping[str, xm.XArray]
     table: dict[str, np.ndarray | list] = {}
     extremes = {}
     for q in model.outputs():
-        lo, lo_at, hi, hi_at = _extremes(columns[q.name], inputs, variants)
-        extremes[q.name] = (lo, hi)
-        table[f"{q.name}_min"], table[f"{q.name}_min_at"] = lo, lo_at
-        table[f"{q.name}_max"], table[f"{q.name}_max_at"] = hi, hi_at
+        column = columns[q.name]
+        found = ok_extremes(column.val, column.err, status, inputs, variants)
+        extremes[q.name] = (found.lo, found.hi)
+        table[f"{q.name}_min"], table[f"{q.name}_min_at"] = found.lo, found.lo_at
+        table[f"{q.name}_max"], table[f"{q.name}_max_at"] = found.hi, found.hi_at
     for span in model.spans:  # a span's quantity is always an output (model.select)
         lo, hi = extremes[span.quantity]
         table[snake(span.label)] = hi - lo

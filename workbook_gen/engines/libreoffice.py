@@ -8,7 +8,10 @@ several calls run at once: two soffice processes that share a profile collide.
 
 from __future__ import annotations
 
+import datetime
+import functools
 import logging
+import warnings
 import os
 import shutil
 import signal
@@ -18,6 +21,7 @@ import zipfile
 from pathlib import Path
 
 import openpyxl
+from openpyxl.utils.datetime import CALENDAR_WINDOWS_1900, to_excel
 
 from workbook_gen.errors import WorkbookGenError
 from workbook_gen.xlerror import ExcelError
@@ -157,8 +161,9 @@ def recalculate(src: Path | str, out_dir: Path | str, *, timeout: float = 300) -
     return target
 
 
-def _cell_value(value: object, data_type: str) -> object:
-    """A recalculated formula cell's value in the evaluator's types."""
+def _cell_value(value: object, data_type: str, epoch=None) -> object:
+    """A recalculated formula cell's value in the evaluator's types (openpyxl reads a
+    number in a date or time format as a datetime: back to the serial number)."""
     if data_type == "e":
         err = ExcelError.from_text(str(value))
         if err is not None:
@@ -169,9 +174,24 @@ def _cell_value(value: object, data_type: str) -> object:
         return value
     if isinstance(value, (int, float)):
         return float(value)
+    if isinstance(value, (datetime.datetime, datetime.date, datetime.time, datetime.timedelta)):
+        return float(to_excel(value, epoch or CALENDAR_WINDOWS_1900))
     return value
 
 
+def _openpyxl_quiet(fn):
+    """Run ``fn`` without openpyxl's warnings about the parts of a file it drops (data
+    validation extensions, conditional formatting, ...), on loading and on reading rows
+    (read-only sheets are parsed as they are read): only values are read here."""
+    @functools.wraps(fn)
+    def quiet(*args, **kwargs):
+        with warnings.catch_warnings():
+            warnings.filterwarnings("ignore", category=UserWarning, module="openpyxl")
+            return fn(*args, **kwargs)
+    return quiet
+
+
+@_openpyxl_quiet
 def _formula_cells(path: Path) -> dict[str, set[str]]:
     wb = openpyxl.load_workbook(path, read_only=True, data_only=False)
     try:
@@ -187,11 +207,15 @@ def _formula_cells(path: Path) -> dict[str, set[str]]:
         wb.close()
 
 
+@_openpyxl_quiet
 def read_formula_values(path: Path | str) -> dict[str, dict[str, object]]:
     """{sheet: {"B2": value}} of every formula cell's cached value in an xlsx file."""
     path = Path(path)
     formulas = _formula_cells(path)
     wb = openpyxl.load_workbook(path, read_only=True, data_only=True)
+    # numbers stay numbers: openpyxl would read one in a date format as a datetime (and
+    # a serial past 9999-12-31 as an error); _cell_value converts back if it still does
+    wb._date_formats, wb._timedelta_formats = set(), set()
     try:
         result: dict[str, dict[str, object]] = {}
         for ws in wb.worksheets:
@@ -204,7 +228,7 @@ def read_formula_values(path: Path | str) -> dict[str, dict[str, object]]:
                 for cell in row:
                     coord = getattr(cell, "coordinate", None)
                     if coord in wanted:
-                        values[coord] = _cell_value(cell.value, cell.data_type)
+                        values[coord] = _cell_value(cell.value, cell.data_type, wb.epoch)
             for coord in wanted - values.keys():
                 values[coord] = None
         return result

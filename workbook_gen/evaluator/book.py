@@ -11,6 +11,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
+from workbook_gen.evaluator.relnames import calling_cell_struct
 from workbook_gen.formula import ast
 from workbook_gen.xlerror import ExcelError
 
@@ -38,9 +39,23 @@ class BookInfo:
     unreadable: list[str] = field(default_factory=list)
     # rows hidden (by hand or by a filter) per sheet: SUBTOTAL 101-111 and AGGREGATE skip them
     hidden_rows: dict[str, frozenset[int]] = field(default_factory=dict)
+    # of those, the rows a filter hid (an autoFilter's or a table's): SUBTOTAL 1-11 skip them
+    filtered_rows: dict[str, frozenset[int]] = field(default_factory=dict)
+    # every sheet of the workbook (worksheets, chart, macro and dialog sheets) in its order:
+    # SHEET and SHEETS count them all (empty: the worksheets of ``sheets``)
+    all_sheets: list[str] = field(default_factory=list)
     # the character set of CHAR and CODE (Microsoft's CHAR page: Windows' ANSI set, cp1252;
     # the Macintosh character set in Excel for Mac)
     charset: str = "cp1252"
+    # the workbook's date system (workbookPr date1904): serial 0 is 1904-01-01 (serials.py)
+    date1904: bool = False
+    _names: tuple | None = field(default=None, repr=False, compare=False)
+
+    def is_table(self, name: str) -> bool:
+        """Does a table have this name (any case)?"""
+        if self._names is None or len(self._names[0]) != len(self.tables):
+            self._names = (tuple(self.tables), frozenset(t.name.casefold() for t in self.tables))
+        return name.casefold() in self._names[1]
     # the cube functions' cache of each connection (xlsx.olap), by case-folded name
     olap: dict = field(default_factory=dict)
     # the links to other workbooks with their cached cells (xlsx.model.ExternalLink)
@@ -55,44 +70,84 @@ class BookInfo:
                      and t.col1 <= col <= t.col2), None)
 
 
-_ITEM = re.compile(r"\[((?:[^\[\]']|'.)*)\]")
 _SPECIALS = {"#all", "#data", "#headers", "#totals", "#this row"}
 
 
+def _name_end(text: str, at: int) -> int:
+    """Offset of the ``]`` closing the column name that starts at ``at`` (``'`` escapes the
+    next character: ``'[ '] '# ''`` and ``'@``), or -1."""
+    while at < len(text):
+        ch = text[at]
+        if ch == "'":
+            at += 2
+            continue
+        if ch == "]":
+            return at
+        if ch == "[":
+            return -1
+        at += 1
+    return -1
+
+
 def _unescape(text: str) -> str:
-    return re.sub(r"'(.)", r"\1", text).strip()
+    """A column name as its header reads: escapes removed, spaces kept (a header may begin
+    or end with spaces: ``[the two ]`` names the column "the two ")."""
+    return re.sub(r"'(.)", r"\1", text)
+
+
+def _item(text: str, specials: set[str], columns: list[str]) -> None:
+    key = text.strip().lower()
+    if key in _SPECIALS:
+        specials.add(key)
+    else:
+        columns.append(_unescape(text))
 
 
 def _parse_spec(spec: str) -> tuple[set[str], list[str]] | None:
-    """(specials, column names; two names for a column range) of a bracketed spec."""
+    """(specials, column names; two names for a column range) of a bracketed spec.
+
+    Microsoft's grammar ("Using structured references with Excel tables"): a bare column
+    name ``Table1[Sales Amount]``, a special item ``[#All]``, ``[@Col]`` / ``[@[Col]]`` /
+    ``[@]`` for this row, or a list of bracketed items ``[[#Totals],[a]:[b]]`` separated by
+    commas (spaces between items are ignored, spaces inside an item's brackets are part of
+    the name). ``'`` escapes ``[ ] # ' @`` in a name."""
     inner = spec[1:-1]
     specials: set[str] = set()
     columns: list[str] = []
     if inner.startswith("@"):
         specials.add("#this row")
         inner = inner[1:]
-        if not inner:
+        if not inner.strip():
             return specials, columns
-        if not inner.startswith("["):
-            return specials, [_unescape(inner)]
-    if "[" not in inner:
-        text = _unescape(inner)
-        if text.lower() in _SPECIALS:
-            specials.add(text.lower())
-        elif text:
-            columns.append(text)
+        if not inner.lstrip().startswith("["):
+            columns.append(_unescape(inner))
+            return specials, columns
+    if not inner.lstrip().startswith("["):  # one bare name or special item
+        if inner.strip():
+            _item(inner, specials, columns)
         return specials, columns
-    for part in re.split(r"\s*,\s*(?=\[)", inner.strip()):
-        items = _ITEM.findall(part)
-        if not items:
+    at, n, ranged = 0, len(inner), False
+    while True:
+        while at < n and inner[at] == " ":
+            at += 1
+        if at >= n or inner[at] != "[":
             return None
-        for item in items:
-            text = _unescape(item)
-            if text.lower() in _SPECIALS:
-                specials.add(text.lower())
-            else:
-                columns.append(text)
-    return specials, columns
+        end = _name_end(inner, at + 1)
+        if end < 0:
+            return None
+        before = len(columns)
+        _item(inner[at + 1:end], specials, columns)
+        if ranged and len(columns) == before:  # "[a]:[#Data]" is no column range
+            return None
+        at = end + 1
+        while at < n and inner[at] == " ":
+            at += 1
+        if at >= n:
+            return specials, columns
+        ranged = inner[at] == ":"
+        if inner[at] not in ",:":
+            return None
+        at += 1
 
 
 def structured_ref(node: ast.StructRef, info: BookInfo, sheet: str, row: int, col: int):
@@ -137,26 +192,49 @@ def structured_ref(node: ast.StructRef, info: BookInfo, sheet: str, row: int, co
     return ast.RangeRef(this_sheet, first, last)
 
 
+def _table_name(node: ast.Node, info: BookInfo) -> bool:
+    """A bare table name (``=SUM(Sales)``: its data rows, as ``Sales[]``); tables and
+    defined names share one namespace in Excel."""
+    return (isinstance(node, ast.Name) and node.sheet is None and bool(info.tables)
+            and info.is_table(node.name))
+
+
+def _structured(node: ast.Node, info: BookInfo) -> bool:
+    return isinstance(node, ast.StructRef) or _table_name(node, info)
+
+
 def resolve(node: ast.Node, info: BookInfo | None, sheet: str, row: int, col: int) -> ast.Node:
     """``node`` with its structured references made plain (as seen from one cell)."""
-    if info is None or not any(isinstance(n, ast.StructRef) for n in ast.walk(node)):
+    if info is None or not any(_structured(n, info) for n in ast.walk(node)):
         return node
-    return _map(node, lambda n: structured_ref(n, info, sheet, row, col))
+    return _map(node, lambda n: structured_ref(n, info, sheet, row, col), info)
 
 
-def _map(node, fn):
+def resolve_fixed(node: ast.Node, info: BookInfo | None) -> ast.Node:
+    """A defined name's tree with the structured references that read the same cells from
+    any cell made plain; those resolved from the calling cell (no table named, this row)
+    are kept for it (:mod:`relnames` writes the name into that cell's formula)."""
+    if info is None or not any(_structured(n, info) for n in ast.walk(node)):
+        return node
+    return _map(node, lambda n: n if calling_cell_struct(n)
+                else structured_ref(n, info, "", 0, 0), info)
+
+
+def _map(node, fn, info: BookInfo):
     if isinstance(node, ast.StructRef):
         return fn(node)
+    if _table_name(node, info):
+        return fn(ast.StructRef(node.name, "[]"))
     if isinstance(node, ast.Func):
-        return ast.Func(node.name, tuple(_map(a, fn) for a in node.args), node.prefix)
+        return ast.Func(node.name, tuple(_map(a, fn, info) for a in node.args), node.prefix)
     if isinstance(node, ast.Unary):
-        return ast.Unary(node.op, _map(node.operand, fn))
+        return ast.Unary(node.op, _map(node.operand, fn, info))
     if isinstance(node, ast.Percent):
-        return ast.Percent(_map(node.operand, fn))
+        return ast.Percent(_map(node.operand, fn, info))
     if isinstance(node, ast.Binary):
-        return ast.Binary(node.op, _map(node.left, fn), _map(node.right, fn))
+        return ast.Binary(node.op, _map(node.left, fn, info), _map(node.right, fn, info))
     if isinstance(node, ast.RefOp):
-        return ast.RefOp(node.op, _map(node.left, fn), _map(node.right, fn))
+        return ast.RefOp(node.op, _map(node.left, fn, info), _map(node.right, fn, info))
     if isinstance(node, ast.Paren):
-        return ast.Paren(_map(node.inner, fn))
+        return ast.Paren(_map(node.inner, fn, info))
     return node

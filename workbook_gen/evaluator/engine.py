@@ -14,7 +14,9 @@ Documented choices:
   not take is evaluated normally. With iterative calculation on (``iterate``), a run-time
   cycle's component is not checked (Excel's iteration is not modelled);
 - every cell that cannot be recomputed, and every cell that reads one (directly or
-  through others), is in ``not_checked`` with the reason (:mod:`taint`);
+  through others), is in ``not_checked`` with the reason (:mod:`taint`); given ``saved``,
+  such a cell with a cached value holds it for its readers, which are then checked (the
+  consistency rule of :mod:`taint`);
 - a formula that does not parse gets ``#NAME?`` and its message in ``syntax_errors``;
 - an external reference (``[1]Sheet!A1``) reads the values the file caches of the other
   workbook (``book.external``); the cell is in ``external``, and not checked where the
@@ -34,6 +36,7 @@ Documented choices:
 from __future__ import annotations
 
 import dataclasses
+import functools
 import logging
 import re
 import time
@@ -45,8 +48,9 @@ import numpy as np
 
 from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.evaluator import cycles, graph, volatile as vol, whatif
-from workbook_gen.evaluator.book import BookInfo, resolve
+from workbook_gen.evaluator.book import BookInfo, resolve, resolve_fixed
 from workbook_gen.evaluator.external import ExternalBooks
+from workbook_gen.evaluator.relnames import NameInliner
 from workbook_gen.evaluator.taint import Taint
 from workbook_gen.evaluator.grouping import Grouped, Run, group_formulas
 from workbook_gen.evaluator.store import Names, SheetResolver, Store, value_scale
@@ -54,6 +58,8 @@ from workbook_gen.evaluator.units import Unit, evaluate_unit, rects, shapes_of, 
 from workbook_gen.evaluator.vector import NotVectorizable, compile_block
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
+from workbook_gen.formula.functions.serials import date_system
+from workbook_gen.formula.functions import availability
 from workbook_gen.formula.parser import parse
 from workbook_gen.formula.scalar import evaluate, unsupported_functions
 from workbook_gen.xlerror import ExcelError
@@ -110,6 +116,12 @@ class Evaluation:
     operands_scale: Mapping[Cell, float]
     cycles: list[list[Cell]] = field(default_factory=list)
     unsupported: dict[Cell, list[str]] = field(default_factory=dict)
+    # cells among ``unsupported`` whose evaluation took no branch calling one, or that
+    # call only unknown names (``unknown``) and cache #NAME? (the value of an unknown
+    # name; an add-in's or a macro's function would give another): recomputed
+    avoided: set[Cell] = field(default_factory=set)
+    unknown: dict[Cell, str] = field(default_factory=dict)  # calling only names Excel
+    # lacks: the reason they are not checked
     syntax_errors: dict[Cell, str] = field(default_factory=dict)
     volatile: dict[Cell, list[str]] = field(default_factory=dict)
     external: list[Cell] = field(default_factory=list)
@@ -125,6 +137,18 @@ class Evaluation:
     runs: list = field(default_factory=list)  # (sheet, col, first, last, tree) of every formula
 
 
+def _floats_quiet(fn):
+    """Run ``fn`` with numpy's floating-point warnings off: an overflow or an invalid
+    operation inside a formula is Excel's #NUM! or #DIV/0!, which the functions return
+    from the infinite or NaN result, not a fault to print (``ironcalc__MMULT.xlsx``)."""
+    @functools.wraps(fn)
+    def quiet(*args, **kwargs):
+        with np.errstate(all="ignore"):
+            return fn(*args, **kwargs)
+    return quiet
+
+
+@_floats_quiet
 def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object],
                    names: Mapping[str, str], *, vectorize: bool = True,
                    uncheckable: Mapping[Cell, str] | None = None,
@@ -132,6 +156,8 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
                    arrays: Mapping[Cell, tuple[str, tuple[int, int]]] | None = None,
                    saved: vol.Clock | None = None, iterate: bool = False,
                    grouped: Grouped | None = None,
+                   texts: Mapping[Cell, str] | None = None,
+                   array_texts: Mapping[Cell, tuple[str, tuple[int, int]]] | None = None,
                    tables: Sequence[whatif.DataTable] = ()) -> Evaluation:
     """Recompute every formula (texts without '=') of a workbook; see the module doc.
 
@@ -142,24 +168,39 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
     they fill are in ``values``. ``saved``: check volatile cells by contract (see above).
     ``iterate``: the workbook enables iterative calculation (cells on a circular reference
     are then not checked). ``grouped``: the runs of exactly ``formulas``, grouped
-    already (with ``vectorize``). ``tables``: data tables (:mod:`whatif`), recomputed
+    already (with ``vectorize``). ``texts``, ``array_texts``: the texts of every formula
+    and array formula of the workbook, where some are among ``constants`` (their cached
+    values taken as they are): SUBTOTAL, ISFORMULA and spill references (ANCHORARRAY)
+    still see them as formulas. ``tables``: data tables (:mod:`whatif`), recomputed
     last (what reads their cells reads the values among ``constants``)."""
     if dialect not in fx.registry.DIALECTS:
         raise ValueError(f"unknown dialect {dialect!r}")
     book = book or BookInfo()
+    with date_system(book.date1904):  # every serial in the workbook's date system
+        return _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
+                               book, arrays, saved, iterate, grouped, texts, array_texts,
+                               tables)
+
+
+def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect, book,
+                    arrays, saved, iterate, grouped, texts, array_texts,
+                    tables) -> Evaluation:
     sheets = set(map(itemgetter(0), formulas)) | set(map(itemgetter(0), constants))
     sheets |= set(book.sheets)
     sheets |= set(book.unreadable)
     store = Store(sheets, book.sheets)
     store.unreadable = {s.lower() for s in book.unreadable}
     store.hidden = {store.sheet(s): rows for s, rows in book.hidden_rows.items()}
+    store.filtered = {store.sheet(s): rows for s, rows in book.filtered_rows.items()}
     store.charset, store.olap = book.charset, book.olap
     store.external = ExternalBooks(book.external)
-    store.formula_texts, store.array_formulas = formulas, arrays or {}
+    store.all_sheets = list(book.all_sheets or book.sheets)
+    store.formula_texts, store.array_formulas = texts or formulas, arrays or array_texts or {}
     store.unparsed = uncheckable or {}
     store.put_constants(constants)
     name_table = Names(dict(names), book.local_names,
-                       prepare=lambda node: resolve(node, book, "", 0, 0))
+                       prepare=lambda node: resolve_fixed(node, book))
+    inliner = NameInliner(name_table, wrap=dialect == "excel")
     keys = formulas
     if arrays:
         keys = dict.fromkeys(formulas)
@@ -172,12 +213,13 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
         keys.update(dict.fromkeys(c for t in tables for c in t.cells()))
     result = Evaluation(CellMap(keys, store.get), CellMap(keys, store.scale),
                         store=store, bad_names=dict(name_table.errors))
-    taint = Taint()
+    taint = Taint(None if saved is None else saved.cached,
+                  lambda cell, value: store.put(*cell, value, value_scale(value)))
     for cell, reason in (uncheckable or {}).items():
         _source(result, taint, cell, cell, reason)
 
     clock = time.perf_counter()
-    runs, errors = formula_runs(formulas, vectorize, book, grouped)
+    runs, errors = formula_runs(formulas, vectorize, book, grouped, inliner)
     for run in runs:  # store.note of every formula cell (a run's last is its lowest)
         store.note(run.sheet, run.last, run.col)
     for sheet, row, col in errors:
@@ -193,8 +235,9 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
             store.put(*cell, SYNTAX_VALUE)
             _source(result, taint, cell, cell, f"formula syntax: {message}")
     units = _units(runs, vectorize, store, result)
-    units += _array_units(arrays or {}, book, result, taint, store)
-    _report_functions(units, result)
+    units += _array_units(arrays or {}, book, result, taint, store, inliner)
+    _report_functions(units, result, name_table, dialect)
+    taint.flush()
 
     result.seconds["grouping"] = time.perf_counter() - clock
     clock = time.perf_counter()
@@ -215,21 +258,33 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
                  for s in (singles(u) if i in split else [u])]
 
     result.seconds["graph"] = time.perf_counter() - clock
+    if saved is not None and result.volatile:  # the moment of the last recalculation
+        vol.moments((((u.sheet, u.first, u.col), u.node) for u in units
+                     if u.first == u.last and u.area in (None, (u.first, u.col))),
+                    saved.cached, saved)
     spent = {"vector": 0.0, "scalar": 0.0}
     for component in components:
         if graph.is_cycle(component, deps):
             _cycle([units[u] for u in component], [shapes[u] for u in component], taint,
                    result, store, name_table, dialect, iterate)
+            taint.flush()
             continue
         for u in component:
             head = (units[u].sheet, units[u].first, units[u].col)
-            by_contract = (saved is not None and units[u].area is None
+            by_contract = (saved is not None and units[u].area in (None, head[1:])
                            and saved.cached.get(head) is not None
                            and _changing(result, head))
+            if head in result.unsupported and not by_contract:
+                if (head in result.unknown and saved is not None
+                        and saved.cached.get(head) is ExcelError.NAME):
+                    result.avoided.add(head)
+                elif _guarded(units[u]):
+                    _try_avoiding(units[u], store, name_table, dialect, result)
             if taint or shapes[u][1] or head in result.unsupported or head in result.volatile:
                 _spread(units[u], shapes[u], taint, result, by_contract)
             if by_contract:
                 _settle(units[u], store, name_table, dialect, saved, result)
+                taint.flush()
                 continue
             clock = time.perf_counter()
             try:
@@ -247,6 +302,7 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
                             f"evaluator failure: {type(exc).__name__}: {exc}")
             spent["vector" if units[u].block is not None else "scalar"] += (
                 time.perf_counter() - clock)
+            taint.flush()
     result.seconds.update(spent)
     if result.cycles:
         _show_circular(store, cycles.shown(dialect))
@@ -264,13 +320,17 @@ def evaluate_cells(formulas: Mapping[Cell, str], constants: Mapping[Cell, object
 
 
 def formula_runs(formulas, vectorize: bool, book: BookInfo,
-                 grouped: Grouped | None = None) -> tuple[list[Run], dict]:
-    """The runs evaluate_cells evaluates (its ``runs``), and the syntax errors."""
+                 grouped: Grouped | None = None, inliner: NameInliner | None = None
+                 ) -> tuple[list[Run], dict]:
+    """The runs evaluate_cells evaluates (its ``runs``), and the syntax errors; names that
+    depend on the calling cell written into the formulas (``inliner``)."""
     if grouped is not None and vectorize:
         grouped.check(len(formulas))
         runs, errors = list(grouped.runs), dict(grouped.errors)
     else:
         runs, errors = _runs(formulas, vectorize)
+    if inliner is not None and inliner.active:
+        runs = [r for run in runs for r in inliner.inline_run(run)]
     if book.tables:
         runs = [dataclasses.replace(r, node=resolve(r.node, book, r.sheet, r.first, r.col))
                 for r in runs]
@@ -307,7 +367,8 @@ def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -
         if outside:
             result.external.extend((run.sheet, r, run.col) for r in range(run.first, run.last + 1))
         unit = Unit(run.sheet, run.col, run.first, run.last, run.node)
-        if run.last > run.first and (vol.calls(run.node) or outside or _cube(run.node)):
+        if run.last > run.first and (vol.calls(run.node) or _guarded(run) or outside
+                                     or _cube(run.node)):
             # checked cell by cell (a cell the cache does not answer is not checked alone)
             units.extend(singles(unit))
             continue
@@ -323,12 +384,15 @@ def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -
 
 
 def _array_units(arrays, book: BookInfo, result: Evaluation, taint: Taint,
-                 store: Store) -> list[Unit]:
+                 store: Store, inliner: NameInliner | None = None) -> list[Unit]:
     """One unit per array formula, filling its rectangle."""
     units = []
     for (sheet, row, col), (text, area) in arrays.items():
         try:
-            node = resolve(parse(text), book, sheet, row, col)
+            node = parse(text)
+            if inliner is not None:
+                node = inliner.inline(node, sheet, row, col)
+            node = resolve(node, book, sheet, row, col)
         except FormulaSyntaxError as exc:
             for r in range(row, area[0] + 1):
                 for c in range(col, area[1] + 1):
@@ -341,20 +405,82 @@ def _array_units(arrays, book: BookInfo, result: Evaluation, taint: Taint,
     return units
 
 
-def _report_functions(units: list[Unit], result: Evaluation) -> None:
+def _unsupported(node: ast.Node, names: Names, sheet: str, dialect: str,
+                 depth: int = 0) -> set[str]:
+    """The functions a formula calls that the evaluator lacks (or that the application
+    lacks: a future function without its prefix), looking into the defined names holding
+    a LAMBDA that it calls by name (those are not unsupported)."""
+    out = {n.name for n in ast.walk(node) if isinstance(n, ast.Func)
+           and availability.unavailable(n.name, n.prefix, dialect)}
+    for name in unsupported_functions(node):
+        tree = names.node(name, None, sheet)
+        while isinstance(tree, ast.Paren):
+            tree = tree.inner
+        if isinstance(tree, ast.Func) and tree.name == "LAMBDA" and depth < 8:
+            out |= _unsupported(tree, names, sheet, dialect, depth + 1) - {name}
+        else:
+            out.add(name)
+    return out
+
+
+def _report_functions(units: list[Unit], result: Evaluation, names: Names,
+                      dialect: str) -> None:
     for u in units:
         called = {n.name for n in ast.walk(u.node) if isinstance(n, ast.Func)}
         if not called:
             continue
-        bad = sorted(unsupported_functions(u.node))
+        bad = sorted(_unsupported(u.node, names, u.sheet, dialect))
         volatile = sorted(called & VOLATILE)
         if not bad and not volatile:
             continue
+        unknown = _unknown_reason(u.node, bad, dialect)
         for cell in u.cells():
             if bad:
                 result.unsupported[cell] = bad
+            if unknown:
+                result.unknown[cell] = unknown
             if volatile:
                 result.volatile[cell] = volatile
+
+
+def _unknown_reason(node: ast.Node, bad: list[str], dialect: str) -> str | None:
+    """Why a formula whose unsupported calls are all of names the application does not
+    know (an add-in's or a macro's, if any; a future function without its prefix) is not
+    checked, or None if some call is of a function the application knows."""
+    bare = {n.name for n in ast.walk(node) if isinstance(n, ast.Func)
+            and availability.unavailable(n.name, n.prefix, dialect)}
+    if not bad or not all(n in bare or not availability.known(n, fx.SUPPORTED) for n in bad):
+        return None
+    names = ", ".join(f"{n} (stored without its _xlfn. prefix)" if n in bare else n
+                      for n in bad)
+    return f"unknown function {names}: #NAME? unless an add-in or a macro defines it"
+
+
+def _guarded(unit) -> bool:
+    """Does the formula call an unsupported function inside a lazy one (IF, IFERROR,
+    CHOOSE ...), so that a cell may take a branch without it?"""
+    funcs = [n for n in ast.walk(unit.node) if isinstance(n, ast.Func)]
+    return (any(n.name in fx.LAZY for n in funcs)
+            and any(n.name not in fx.REGISTRY for n in funcs))
+
+
+def _try_avoiding(unit: Unit, store: Store, names: Names, dialect: str,
+                  result: Evaluation) -> None:
+    """A single cell whose unsupported call sits in a lazy function's branch: evaluated
+    (as Excel does, the branches not taken are not evaluated); if no unsupported function
+    was reached, its value does not depend on one and the cell is checked."""
+    if unit.block is not None or unit.area is not None:
+        return
+    cell = (unit.sheet, unit.first, unit.col)
+    reached = []
+    try:
+        evaluate(unit.node, SheetResolver(store, names, unit.sheet), dialect=dialect,
+                 on_unsupported=reached.append, cell=cell)
+    except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
+            AttributeError, RecursionError):
+        return
+    if not reached:
+        result.avoided.add(cell)
 
 
 def _where(cell: Cell) -> str:
@@ -362,11 +488,16 @@ def _where(cell: Cell) -> str:
     return f"{quote_sheet(cell[0])}!{column_letters(cell[2])}{cell[1]}"
 
 
-def _source(result: Evaluation, taint: Taint, cell: Cell, origin: Cell, reason: str) -> None:
-    """``cell`` cannot be recomputed (``origin`` is the cell the reason is about)."""
+def _source(result: Evaluation, taint: Taint, cell: Cell, origin: Cell, reason: str,
+            hold: bool = True) -> None:
+    """``cell`` cannot be recomputed (``origin`` is the cell the reason is about); with
+    ``hold``, its cached value stands for it (the consistency rule of :mod:`taint`)."""
     if cell not in result.not_checked:
         result.not_checked[cell] = reason
-        taint.add(cell[0], cell[2], cell[1], cell[1], origin)
+        if hold:
+            taint.mark(cell, origin)
+        else:
+            taint.add(cell[0], cell[2], cell[1], cell[1], origin)
 
 
 def _changing(result: Evaluation, cell: Cell) -> list[str]:
@@ -377,7 +508,9 @@ def _unit_reason(unit: Unit, result: Evaluation, bad_names: list[str],
                  by_contract: bool = False) -> str | None:
     """Why a unit cannot be recomputed at all, or None."""
     cell = (unit.sheet, unit.first, unit.col)
-    if cell in result.unsupported:
+    if cell in result.unsupported and cell not in result.avoided:
+        if cell in result.unknown:
+            return result.unknown[cell]
         return "unsupported function " + ", ".join(result.unsupported[cell])
     changing = _changing(result, cell)
     if changing and not by_contract:
@@ -409,7 +542,7 @@ def _spread(unit: Unit, shaped: tuple, taint: Taint, result: Evaluation,
             for cell in cells:
                 if cell not in result.not_checked:
                     result.not_checked[cell] = f"depends on {_where(origin)}: {why}"
-                    taint.add(unit.sheet, unit.col, cell[1], cell[1], origin)
+                    taint.mark(cell, origin)
 
 
 def _cycle(members: list[Unit], shaped: list, taint: Taint, result: Evaluation,
@@ -445,7 +578,9 @@ def _cycle(members: list[Unit], shaped: list, taint: Taint, result: Evaluation,
                "too large or not evaluated" if len(cells) > cycles.MAX_CELLS else "")
         for cell in cells:
             store.put(*cell, CYCLE_VALUE)
-            _source(result, taint, cell, cell, f"circular reference ({where}) {why}".strip())
+            # (not held: Excel's cached values around a cycle are not mutually consistent)
+            _source(result, taint, cell, cell, f"circular reference ({where}) {why}".strip(),
+                    hold=False)
         return
     result.cycles.extend(found)
     for unit, shape in zip(members, shaped):

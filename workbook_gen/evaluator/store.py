@@ -84,7 +84,9 @@ class Store:
         self.rect_cache: dict[tuple, Range] = {}
         self.extent: dict[str, list[int]] = {}
         self.hidden: dict[str, frozenset[int]] = {}  # sheet -> its hidden rows
+        self.filtered: dict[str, frozenset[int]] = {}  # sheet -> the rows a filter hid
         self.charset = "cp1252"  # CHAR and CODE's character set (BookInfo.charset)
+        self.all_sheets: list[str] = list(self.order)  # every sheet in order (SHEET, SHEETS)
         self.olap: dict = {}  # the cube functions' caches (BookInfo.olap)
         self.external = ExternalBooks()  # what the file caches of other workbooks
         self.formula_texts: Mapping[tuple[str, int, int], str] = {}  # for subtotal_cells
@@ -106,6 +108,18 @@ class Store:
                     self._subtotals.setdefault(name, []).extend(
                         (r, k) for r in range(row, r2 + 1) for k in range(col, c2 + 1))
         return self._subtotals.get(sheet, [])
+
+    def formula_text(self, sheet: str, row: int, col: int) -> tuple[str, bool] | None:
+        """The formula of a cell as stored (without '=') and whether it is an array
+        formula's, or None (FORMULATEXT)."""
+        key = (sheet, row, col)
+        if key in self.formula_texts:
+            return self.formula_texts[key], False
+        if self.has_formula(sheet, row, col):
+            for (name, r1, c1), (text, (r2, c2)) in self.array_formulas.items():
+                if name == sheet and r1 <= row <= r2 and c1 <= col <= c2:
+                    return text, True
+        return None
 
     def has_formula(self, sheet: str, row: int, col: int) -> bool:
         """Does the cell hold a formula (its own, an array formula's, one that does not
@@ -434,6 +448,16 @@ class SheetResolver:
         """The hidden rows of a sheet (SUBTOTAL 101-111, AGGREGATE)."""
         return self.store.hidden.get(self._sheet(sheet), frozenset())
 
+    def spill_area(self, sheet, row: int, col: int) -> tuple[int, int] | None:
+        """(last row, last column) of the array formula anchored at the cell, or None
+        (ANCHORARRAY)."""
+        found = self.store.array_formulas.get((self._sheet(sheet), row, col))
+        return None if found is None else found[1]
+
+    def filtered_rows(self, sheet) -> frozenset[int]:
+        """The rows of a sheet a filter hid (SUBTOTAL 1-11 leave them out too)."""
+        return self.store.filtered.get(self._sheet(sheet), frozenset())
+
     def charset(self) -> str:
         """The workbook's character set for CHAR and CODE ("cp1252" or "mac_roman")."""
         return self.store.charset
@@ -449,6 +473,19 @@ class SheetResolver:
     def has_formula(self, sheet, row, col) -> bool:
         return self.store.has_formula(self._sheet(sheet), row, col)
 
+    def formula_text(self, sheet, row, col) -> tuple[str, bool] | None:
+        return self.store.formula_text(self._sheet(sheet), row, col)
+
+    def sheet_number(self, sheet: str | None) -> int | None:
+        """The 1-based place of a sheet (None: this one) among all the workbook's sheets,
+        its name matched regardless of case; None if there is no such sheet."""
+        folded = (self.sheet if sheet is None else sheet).casefold()
+        return next((i + 1 for i, name in enumerate(self.store.all_sheets)
+                     if name.casefold() == folded), None)
+
+    def sheet_count(self) -> int:
+        return len(self.store.all_sheets)
+
     def sheets_between(self, first: str, last: str) -> list[str] | None:
         return self.store.sheets_between(first, last)
 
@@ -457,6 +494,10 @@ class SheetResolver:
             rows = self.range(sheet, row1, col1, row2, col2).rows
             return max((value_scale(v) for row in rows for v in row), default=0.0)
         return self.store.rect_scale(self._sheet(sheet), row1, col1, row2, col2)
+
+    def name_node(self, name: str):
+        """The tree of a defined name seen from this sheet (a LAMBDA called by name)."""
+        return self.names.node(name, None, self.sheet)
 
     def name(self, name, sheet):
         node = self.names.node(name, sheet, self.sheet)

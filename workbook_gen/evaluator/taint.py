@@ -7,11 +7,22 @@ cell that reads a source, directly or through other cells, is *not checked* as w
 its recomputed value says nothing about its own formula. The reads are followed at
 cell precision inside a block of rows: ``SUM($A$1:A5)`` filled down is tainted only
 from the row where its range first covers a source.
+
+The consistency rule: a not-checked cell whose value the file caches passes no taint on.
+Excel computed every cell in one recalculation, so the cached values are mutually
+consistent: a reader recomputed from the cached value of a cell we cannot recompute (a
+VBA function, an external reference, a LAMBDA we cannot evaluate, a cell reading such a
+cell) is checked exactly as a reader of a constant typed there would be. A disagreement
+it finds is a real one (the reader's formula does not give its cached value from the
+cached values it reads); an agreement says the reader's formula is consistent with its
+inputs, nothing about the unrecomputed cell, which stays "not checked" itself. A cell
+without a cached value taints its readers as before.
 """
 
 from __future__ import annotations
 
 from collections import defaultdict
+from collections.abc import Callable, Mapping
 from typing import NamedTuple
 
 
@@ -32,9 +43,29 @@ class Taint:
     """Row intervals of each (sheet, column) that hold a not-checked cell, each with the
     source cell it comes from (the first one found)."""
 
-    def __init__(self):
+    def __init__(self, cached: Mapping | None = None,
+                 put: Callable[[tuple, object], None] | None = None):
         self.intervals: dict[tuple[str, int], list[tuple[int, int, tuple]]] = defaultdict(list)
         self.cols: dict[str, set[int]] = defaultdict(set)
+        self.cached = cached if put is not None else None  # (sheet, row, col) -> value
+        self.put = put
+        self.pending: list[tuple[tuple, object]] = []  # held cells, their values not yet put
+
+    def mark(self, cell: tuple, origin: tuple) -> None:
+        """``cell`` (sheet, row, col) is not checked because of ``origin``: it holds its
+        cached value for its readers (the consistency rule), or taints them if it has
+        none."""
+        value = None if self.cached is None else self.cached.get(cell)
+        if value is None:
+            self.add(cell[0], cell[2], cell[1], cell[1], origin)
+        else:
+            self.pending.append((cell, value))
+
+    def flush(self) -> None:
+        """Put the held cells' cached values (after their own evaluation wrote theirs)."""
+        for cell, value in self.pending:
+            self.put(cell, value)
+        self.pending.clear()
 
     def __bool__(self) -> bool:
         return bool(self.intervals)

@@ -19,7 +19,7 @@ from workbook_gen.formula.scalar import Evaluator, evaluate
 
 # functions that use a reference's position or size, never its cells' values
 REFERENCE_ONLY = frozenset({"ROW", "COLUMN", "ROWS", "COLUMNS", "ISREF", "AREAS",
-                            "ISFORMULA"})
+                            "ISFORMULA", "FORMULATEXT", "SHEET", "SHEETS"})
 
 
 @dataclass
@@ -53,6 +53,9 @@ def _reads(node: ast.Node):
         n = stack.pop()
         if isinstance(n, (ast.CellRef, ast.RangeRef, ast.Name, ast.Sheets3D)):
             yield n
+        elif isinstance(n, ast.Func) and n.name not in fx.REGISTRY:
+            yield ast.Name(n.name)  # a defined name's LAMBDA called by name reads its body
+            stack.extend(ast.children(n))
         elif isinstance(n, ast.Func) and n.name in REFERENCE_ONLY:
             stack.extend(a for a in n.args if not isinstance(a, (ast.CellRef, ast.RangeRef)))
         else:

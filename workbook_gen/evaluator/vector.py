@@ -24,6 +24,7 @@ from workbook_gen.evaluator.ops import (
     Const, Num, binary, call, choose, is_num, scalar, to_bool_mask, unary,
 )
 from workbook_gen.evaluator.store import Num, value_scale
+from workbook_gen.formula.functions.availability import FUTURE
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
 from workbook_gen.formula.functions.subtotal import READS_LAYOUT
@@ -165,8 +166,9 @@ class _Compiler:
     def _func(self, node: ast.Func):
         name = node.name
         entry = fx.REGISTRY.get(name)
-        if entry is None:
-            return (lambda env: Const(fx.ExcelError.NAME)), False
+        if entry is None or (not node.prefix and name in FUTURE):  # unknown, a defined
+            # name's LAMBDA, a future function without its prefix: the cell-by-cell path
+            raise NotVectorizable(f"{name} is not a built-in function")
         if name in ("IF", "IFERROR"):
             return self._lazy(node)
         if name in READS_LAYOUT:  # hidden rows, nested subtotals: the cell-by-cell path

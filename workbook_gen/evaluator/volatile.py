@@ -22,6 +22,16 @@ candidate inside the contract that gives the cached value: agrees; a contract se
 completely with none: disagrees; otherwise not checked. A formula
 with several independent draws (two RAND() calls) is not checked.
 
+NOW and TODAY are not draws: one recalculation reads the clock once, so every NOW() of
+the workbook returns the same moment t and every TODAY() the day INT(t). They are one
+shared unknown, fixed by any cell that determines it: a cell that is just ``=NOW()`` or
+``=TODAY()`` caches it (:func:`moments` collects those values before any cell is
+checked). A formula with NOW/TODAY and at most one draw (``RAND()*NOW()``,
+``NOW()-TODAY()``) is evaluated at each moment the workbook settled on, the draw (if
+any) then checked as above: agrees if one moment gives the cached value. It never
+disagrees: a cell entered after the last full recalculation (manual calculation) may
+have read another moment.
+
 Either way the cell's cached value is what its dependents read: they are recomputed from
 it and compared as usual (the same as they would be from a constant input).
 """
@@ -36,9 +46,12 @@ from dataclasses import dataclass, field
 
 from workbook_gen.formula import ast
 from workbook_gen.formula.functions import coerce
+from workbook_gen.formula.functions.serials import OFFSET_1904
 from workbook_gen.xlerror import ExcelError
 
 CHANGING = frozenset({"NOW", "TODAY", "RAND", "RANDBETWEEN", "RANDARRAY"})
+SHARED = frozenset({"NOW", "TODAY"})  # one value per recalculation (the clock's moment)
+MAX_MOMENTS = 8  # distinct moments tried for a formula mixing NOW/TODAY with others
 _EPOCH = dt.datetime(1899, 12, 30)
 SMALL_RANGE = 2000  # whole-number contracts searched value by value up to this size
 
@@ -51,12 +64,13 @@ class Clock:
     agree: Callable[[object, object], bool] = lambda a, b: a == b
     date1904: bool = False
     settled: dict[str, float] = field(default_factory=dict)  # TODAY/NOW values found
+    moments: dict[str, list[float]] = field(default_factory=dict)  # cached by =NOW()/=TODAY()
 
     def serial(self) -> float | None:
         if self.saved is None:
             return None
         delta = self.saved.replace(tzinfo=None) - _EPOCH
-        return delta.total_seconds() / 86400.0 - (1462 if self.date1904 else 0)
+        return delta.total_seconds() / 86400.0 - (OFFSET_1904 if self.date1904 else 0)
 
 
 @dataclass
@@ -72,7 +86,7 @@ def calls(node: ast.Node) -> list[ast.Func]:
 
 def _date(serial: float, date1904: bool = False) -> str:
     try:
-        day = _EPOCH + dt.timedelta(days=serial + (1462 if date1904 else 0))
+        day = _EPOCH + dt.timedelta(days=serial + (OFFSET_1904 if date1904 else 0))
     except (OverflowError, ValueError):
         return f"serial {serial:g}"
     return day.strftime("%Y-%m-%d %H:%M" if serial != int(serial) else "%Y-%m-%d")
@@ -137,7 +151,9 @@ def _domain(call: ast.Func, evaluate, clock: Clock):
         where = ("" if saved is None else
                  f" up to {_date(hi, clock.date1904)} (a day after the file's last save)")
         return _Domain(1, hi, True, "a whole date serial" + where,
-                       [clock.settled[k] for k in ("TODAY",) if k in clock.settled] + near)
+                       [clock.settled[k] for k in ("TODAY",) if k in clock.settled]
+                       + clock.moments.get("TODAY", [])
+                       + [math.floor(t) for t in clock.moments.get("NOW", [])] + near)
     if call.name == "NOW":
         hi = saved + 1 if saved is not None else math.inf
         near = [] if saved is None else [saved + h / 24 for h in range(-12, 15)]
@@ -145,7 +161,8 @@ def _domain(call: ast.Func, evaluate, clock: Clock):
                  f" up to {_date(round(hi * 1440) / 1440, clock.date1904)} "
                  "(a day after the file's last save)")
         return _Domain(0, hi, False, "a date-time serial" + where,
-                       [clock.settled[k] for k in ("NOW",) if k in clock.settled] + near)
+                       [clock.settled[k] for k in ("NOW",) if k in clock.settled]
+                       + clock.moments.get("NOW", []) + near)
     if call.name == "RAND":
         return _Domain(0.0, 1.0, False, "a number in [0, 1)", [0.0, 0.5], hi_open=True)
     if call.name == "RANDBETWEEN":
@@ -168,6 +185,48 @@ def _domain(call: ast.Func, evaluate, clock: Clock):
     return f"{call.name} is not checked"
 
 
+def moments(cells, cached: Mapping, clock: Clock) -> None:
+    """Record in ``clock.moments`` the values that cells which are just ``=NOW()`` or
+    ``=TODAY()`` cache (numbers within the function's contract): ``cells`` yields
+    (cell, tree) pairs."""
+    for cell, node in cells:
+        node = _bare(node)
+        if not (isinstance(node, ast.Func) and node.name in SHARED and not node.args):
+            continue
+        x = _number(cached.get(cell))
+        found = clock.moments.setdefault(node.name, [])
+        if (x is not None and x not in found and len(found) < MAX_MOMENTS
+                and _domain(node, None, clock).holds(x)):
+            found.append(x)
+
+
+def _at_moments(node, sites, cached, evaluate, clock: Clock) -> Outcome | None:
+    """A formula with NOW/TODAY and at most one draw, at each moment the workbook settled
+    on (see the module doc): the agreeing outcome, or None."""
+    now = [s for s in sites if s.name == "NOW"]
+    today = [s for s in sites if s.name == "TODAY"]
+    times = clock.moments.get("NOW", [])
+    if now:
+        candidates = [(t, float(math.floor(t))) for t in times]
+    else:
+        days = clock.moments.get("TODAY", []) + [float(math.floor(t)) for t in times]
+        candidates = [(None, d) for d in dict.fromkeys(days)]
+    for t, day in candidates:
+        tree = _replace(_replace(node, now, t), today, day) if now else _replace(node, today, day)
+        when = (f"NOW() = {_value_text('NOW', t, clock)}" if now
+                else f"TODAY() = {_value_text('TODAY', day, clock)}")
+        if not calls(tree):
+            if clock.agree(cached, evaluate(tree)):
+                return Outcome("agrees", f"volatile {when} (the moment of the workbook's "
+                                         "recalculation) gives the cached value")
+            continue
+        outcome = check(tree, cached, evaluate, clock)
+        if outcome.status == "agrees":
+            return Outcome("agrees", f"at {when} (the moment of the workbook's "
+                                     f"recalculation), {outcome.message}")
+    return None
+
+
 def check(node: ast.Node, cached, evaluate, clock: Clock) -> Outcome:
     """Does some value within the contract of the formula's volatile call give ``cached``?
     ``evaluate(tree)`` evaluates a tree at the cell."""
@@ -179,6 +238,10 @@ def check(node: ast.Node, cached, evaluate, clock: Clock) -> Outcome:
     if "RANDARRAY" in kinds:
         return Outcome("unknown", "volatile function RANDARRAY: not checked (an array of draws)")
     if len(kinds) > 1 or independent > 1:
+        if kinds & SHARED and independent <= 1:
+            outcome = _at_moments(node, sites, cached, evaluate, clock)
+            if outcome is not None:
+                return outcome
         return Outcome("unknown", "volatile functions " + ", ".join(sorted(kinds))
                        + ": several values that change at every recalculation: not checked")
     name = sites[0].name

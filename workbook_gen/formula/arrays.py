@@ -10,6 +10,7 @@ shorter array is #N/A. :func:`spread` lays the result over the formula's cells.
 
 from __future__ import annotations
 
+from workbook_gen.formula.functions.availability import unavailable
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
 from workbook_gen.formula.functions import lambdas
@@ -26,7 +27,10 @@ def _shape(v) -> tuple[int, int]:
 
 
 def _multi(v) -> bool:
-    return isinstance(v, Range) and v.shape != (1, 1)
+    """An array to map over: any array but a single cell's reference (an array of one,
+    {1}, maps too: INDEX({2,3;4,5},{1}) is the one value 2, filling an array formula's
+    cells, in Mac Excel 16's formulas__test.xlsx LOOKUP!AO54:AP54)."""
+    return isinstance(v, Range) and (v.shape != (1, 1) or v.ref is None)
 
 
 def element(v, i: int, j: int):
@@ -100,20 +104,28 @@ class ArrayEvaluator(Evaluator):
 
     def func(self, node: ast.Func):
         entry = fx.REGISTRY.get(node.name)
-        if entry is None:
+        if entry is None or unavailable(node.name, node.prefix, self.dialect):
             return super().func(node)
         if node.name in ("IF", "IFERROR", "IFNA"):
             return self._conditional(node)
         args = [None if entry.omitted and isinstance(a, ast.Missing) else self.arg(a)
                 for a in node.args]
-        if entry.lazy:  # IFS, SWITCH, CHOOSE ...: every argument is needed element-wise
-            if not any(_multi(a) for a in args[:1]):
+        if entry.lazy:  # IFS, SWITCH, CHOOSE, XLOOKUP...: mapped over element-wise but for
+            # their range arguments (XLOOKUP's lookup and return arrays), when the first or a
+            # scalar one (XLOOKUP's modes) is an array
+            whole = [entry.kind(i) == "range" for i in range(len(args))]
+            if not any(_multi(a) and (i == 0 or entry.kind(i) == "scalar")
+                       for i, a in enumerate(args)):
                 return fx.call(node.name, [lambda v=v: v for v in args], self.ctx)
+            mapped = [i for i in range(len(args)) if not whole[i]]
 
             def each(*items):
-                result = fx.call(node.name, [lambda v=v: v for v in items], self.ctx)
+                call = list(args)
+                for i, item in zip(mapped, items):
+                    call[i] = item
+                result = fx.call(node.name, [lambda v=v: v for v in call], self.ctx)
                 return xv.scalar_of(result) if isinstance(result, Range) else result
-            return _broadcast(each, args)
+            return _broadcast(each, [args[i] for i in mapped])
         mapped = fx.registry.ARRAY_LIFTED.get(node.name)
         lifted = [i for i, a in enumerate(args) if _multi(a) and (
             entry.kind(i) == "scalar" or (mapped is not None and mapped(i)))]

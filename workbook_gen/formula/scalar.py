@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from typing import Callable, Protocol
 
+from workbook_gen.formula.functions.availability import unavailable
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
 from workbook_gen.formula.functions import lambdas
@@ -104,7 +105,9 @@ def _clean(x: float | ExcelError) -> float | ExcelError:
 
 
 # functions whose arguments Excel evaluates as arrays even outside an array formula
-ARRAY_ARGUMENTS = frozenset({"SUMPRODUCT", "MMULT", "TRANSPOSE", "MDETERM", "MINVERSE"})
+# (AGGREGATE: its array form, 14-19; the reference form refuses an array, subtotal.py)
+ARRAY_ARGUMENTS = frozenset({"SUMPRODUCT", "MMULT", "TRANSPOSE", "MDETERM", "MINVERSE",
+                             "AGGREGATE"})
 
 
 class Evaluator:
@@ -239,7 +242,12 @@ class Evaluator:
 
     def func(self, node: ast.Func) -> Value | Range:
         entry = fx.REGISTRY.get(node.name)
+        if entry is not None and unavailable(node.name, node.prefix, self.dialect):
+            entry = None  # a future function without its _xlfn. prefix: an unknown name
         if entry is None:
+            called = lambdas.named(self, node)  # a defined name holding a LAMBDA
+            if called is not None:
+                return _clean(called) if isinstance(called, float) else called
             if self.on_unsupported is not None:
                 self.on_unsupported(node.name)
             return ExcelError.NAME

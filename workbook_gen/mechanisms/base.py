@@ -85,6 +85,15 @@ class Figure:
     needs: tuple[str, ...] = ()  # if given: shown only when one of these columns is
 
 
+NOT_APPLICABLE = "n/a"
+
+
+def only_if(expr: Node, condition: Node, needs: str) -> Node:
+    """A figure that holds only under ``condition``: its value where the condition holds,
+    else the text ``n/a: needs <needs>`` (SPEC 9.1; never a number that does not apply)."""
+    return if_(condition, expr, f"{NOT_APPLICABLE}: needs {needs}")
+
+
 @dataclass(frozen=True)
 class Condition:
     """A design condition over the parameters alone (a balancing condition): ``expr`` is

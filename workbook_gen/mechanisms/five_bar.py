@@ -120,7 +120,7 @@ def _checks() -> tuple[Check, ...]:
 OPTIONS = (
     OptionSpec("method", "closed", "inverse kinematics: closed form, or Newton-Raphson steps "
                "as columns", choices=("closed", "newton")),
-    OptionSpec("iterations", 5, "Newton-Raphson steps (method = \"newton\")", minimum=1,
+    OptionSpec("iterations", 8, "Newton-Raphson steps (method = \"newton\")", minimum=1,
                maximum=20),
 )
 

@@ -34,11 +34,11 @@ mu = ATAN2(|b.c|, |b x c|).
 
 from __future__ import annotations
 
-from ..expr import (Node, abs_, atan2, cos, degrees, eq, if_, iserror, le, lt, max_,
+from ..expr import (Node, abs_, and_, atan2, cos, degrees, eq, if_, iserror, le, lt, max_,
                     min_, pi, radians, root, sin, sqrt, wrap)
 from .angles import cos_deg, cos_half_squared, reduced_input, sin_deg, sin_half_squared
-from .base import (Chart, Check, Figure, Link, ParamSpec, Quantity, quantity_vars, speed_scale,
-                   symbols)
+from .base import (Chart, Check, Figure, Link, ParamSpec, Quantity, only_if, quantity_vars,
+                   speed_scale, symbols)
 
 BRANCHES = ("open", "crossed")
 
@@ -236,13 +236,28 @@ def _triangle_angle(r: Node) -> Node:
     return atan2((g - l4) * (g + l4) + r * r, four_area)
 
 
-def grashof_class() -> Node:
-    """Text: Grashof class by s + l against p + q and which link is shortest."""
+def _grashof() -> tuple[Node, Node, Node]:
+    """(shortest link s, (s + l) - (p + q), the rounding allowed on it)."""
     links = (l_O1O2, l_O1A, l_AB, l_O2B)
     total = l_O1O2 + l_O1A + l_AB + l_O2B
     s, longest = min_(*links), max_(*links)
-    excess = 2 * (s + longest) - total       # (s + l) - (p + q)
-    return if_(le(abs_(excess), 1e-12 * total), "change point",
+    return s, 2 * (s + longest) - total, 1e-12 * total
+
+
+def crank_rocker() -> Node:
+    """True where the crank turns fully and the rocker swings (Grashof or at the change
+    point, the crank the only shortest link): the toggles and the time ratio exist."""
+    s, excess, tol = _grashof()
+    return and_(eq(l_O1A, s), lt(l_O1A, l_O1O2), le(excess, tol))
+
+
+CRANK_ROCKER_TEXT = "a crank-rocker (l_O1A the shortest link, s + l <= p + q)"
+
+
+def grashof_class() -> Node:
+    """Text: Grashof class by s + l against p + q and which link is shortest."""
+    s, excess, tol = _grashof()
+    return if_(le(abs_(excess), tol), "change point",
                if_(lt(excess, 0),
                    if_(eq(l_AB, s), "Grashof double-rocker",
                        if_(eq(l_O1O2, s), "Grashof double-crank", "Grashof crank-rocker")),
@@ -256,19 +271,24 @@ def figures(branch: str) -> tuple[Figure, ...]:
     folded = _triangle_angle(l_AB - l_O1A)     # crank folded over the coupler
     spread = abs_(folded - extended)
     side = "above" if s > 0 else "below"
+    rocks = crank_rocker()
     return (
         Figure("Grashof class", "", grashof_class(),
                "s + l against p + q (shortest s, longest l) and which link is shortest"),
-        Figure("toggle, crank and coupler extended", "deg", degrees(extended) if s > 0 else -degrees(extended),
+        Figure("toggle, crank and coupler extended", "deg",
+               only_if(degrees(extended) if s > 0 else -degrees(extended), rocks,
+                       CRANK_ROCKER_TEXT),
                f"crank angle where the rocker is at one extreme (B {side} the ground line); "
-               "crank-rocker"),
+               f"needs {CRANK_ROCKER_TEXT}"),
         Figure("toggle, crank and coupler folded", "deg",
-               180 + degrees(folded) if s > 0 else 180 - degrees(folded),
+               only_if(180 + degrees(folded) if s > 0 else 180 - degrees(folded), rocks,
+                       CRANK_ROCKER_TEXT),
                f"crank angle where the rocker is at its other extreme (B {side} the ground "
-               "line); crank-rocker with l_AB > l_O1A"),
-        Figure("time ratio", "", (pi() + spread) / (pi() - spread),
+               f"line); needs {CRANK_ROCKER_TEXT}"),
+        Figure("time ratio", "", only_if((pi() + spread) / (pi() - spread), rocks,
+                                         CRANK_ROCKER_TEXT),
                "slow stroke over quick stroke, (180 + beta)/(180 - beta) with beta the angle "
-               "between the two toggle lines; crank-rocker"),
+               f"between the two toggle lines; needs {CRANK_ROCKER_TEXT}"),
     )
 
 

@@ -22,11 +22,11 @@ from __future__ import annotations
 
 import math
 
-from ..expr import (Node, atan2, cos, degrees, eq, if_, iserror, pi, radians, root,
+from ..expr import (Node, atan2, cos, degrees, eq, ge, if_, iserror, pi, radians, root,
                     sin, sqrt)
 from .angles import cos_deg, cos_half_squared, reduced_input, sin_deg, sin_half_squared
 from .base import (Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span,
-                   Template, quantity_vars, speed_scale, symbols)
+                   Template, only_if, quantity_vars, speed_scale, symbols)
 
 l_AB, l_BC, l_BE, beta_E, x_F, y_F, l_FG, omega_1 = symbols(
     "l_AB l_BC l_BE beta_E x_F y_F l_FG omega_1")
@@ -218,8 +218,10 @@ TEMPLATE = Template(
     ),
     spans=(Span("needle stroke", "y_C"), Span("lever swing", "theta_5"),
            Span("block travel on the lever", "s_FE")),
-    figures=(Figure("needle stroke, exact", "mm", 2 * l_AB,
-                    "2 l_AB: the slide line passes through A"),),
+    figures=(Figure("needle stroke, exact", "mm",
+                    only_if(2 * l_AB, ge(l_BC, l_AB), "l_BC >= l_AB"),
+                    "2 l_AB: the slide line passes through A; needs l_BC >= l_AB (the rod "
+                    "reaches the slide line at every crank angle)"),),
     links=_links(),
     length_unit_m=1e-3,
     validate=_validate,

@@ -17,10 +17,11 @@ alpha_2 = (q'' h - q' h') / h^2.
 
 from __future__ import annotations
 
-from ..expr import Node, atan2, cos, degrees, eq, if_, iserror, radians, root, sin, sqrt
+from ..expr import (Node, abs_, atan2, cos, degrees, eq, gt, if_, iserror, le, radians, root,
+                    sin, sqrt)
 from .angles import cos_deg, reduced_input, sin_deg, sin_half_squared
 from .base import Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span, Template
-from .base import quantity_vars, speed_scale, symbols
+from .base import only_if, quantity_vars, speed_scale, symbols
 
 l_AB, l_BC, e, phi_slide, omega_1 = symbols("l_AB l_BC e phi_slide omega_1")
 (theta_1, u_B, n_B, h_BC, dh_BC, ddh_BC, s_C, v_C, a_C, theta_2, omega_2,
@@ -37,6 +38,18 @@ PARAMETERS = (
     ParamSpec("omega_1", 10.0, "rad/s", "crank speed, counter-clockwise"),
 )
 
+# A reach factor within rounding of 0 is 0: the rod exactly tangent to the slide line
+# (l_BC = l_AB + |e| at one crank angle) is a dead centre, flagged, its rates #DIV/0!,
+# never the square root of rounding (h_BC 3.8e-7 mm, v_C -1e10 mm/s; SPEC 9.1).  The
+# factor's terms round to a few ulps of l_BC + l_AB + |e| + 2 l_AB; a true excess
+# of 1e-12 of the lengths is kept (tests/test_extremes_slider.py).
+REACH_ROUNDING = 16 * 2.0 ** -52
+
+
+def _exact_zero(factor: Node) -> Node:
+    return if_(le(abs_(factor), REACH_ROUNDING * (l_BC + 3 * l_AB + abs_(e))), 0, factor)
+
+
 Q = Quantity
 PSI, psi = reduced_input("psi", theta_1 - phi_slide, "crank angle from the slide line")
 QUANTITIES = (
@@ -46,8 +59,8 @@ QUANTITIES = (
     Q("n_B", "mm", l_AB * sin_deg(psi), "crank pin across the slide",
       output=False),
     Q("h_BC", "mm", root(
-        ((l_BC - l_AB - e) + 2 * l_AB * sin_half_squared(psi + 90))
-        * ((l_BC - l_AB + e) + 2 * l_AB * sin_half_squared(psi - 90))),
+        _exact_zero((l_BC - l_AB - e) + 2 * l_AB * sin_half_squared(psi + 90))
+        * _exact_zero((l_BC - l_AB + e) + 2 * l_AB * sin_half_squared(psi - 90))),
       "rod's projection on the slide", output=False),
     Q("dh_BC", "mm/s", omega_1 * u_B * q / h_BC, "rate of h_BC", output=False),
     Q("ddh_BC", "mm/s^2", -(w2 * u_B ** 2 + q * w2 * n_B + dh_BC ** 2) / h_BC,
@@ -129,6 +142,10 @@ def _time_ratio() -> Node:
 
 
 TIME_RATIO: Node = _time_ratio()
+# The crank turns fully, the rod never tangent to the slide line: the exact stroke and the
+# time ratio hold (at l_BC = l_AB + |e| the rod is tangent at one crank angle).
+FULL_TURN: Node = gt(l_BC, l_AB + abs_(e))
+FULL_TURN_TEXT = "l_BC > l_AB + |e|"
 
 TEMPLATE = Template(
     id="slider_crank",
@@ -149,11 +166,12 @@ TEMPLATE = Template(
     ),
     spans=(Span("stroke", "s_C"), Span("rod swing", "theta_2")),
     figures=(
-        Figure("stroke, exact", "mm", sqrt((l_BC + l_AB) ** 2 - e ** 2)
-               - sqrt((l_BC - l_AB) ** 2 - e ** 2),
-               "between the dead centres (rod and crank in line); needs l_BC > l_AB + |e|"),
-        Figure("time ratio", "", TIME_RATIO,
-               "working stroke time over return stroke time; needs l_BC > l_AB + |e|"),
+        Figure("stroke, exact", "mm", only_if(sqrt((l_BC + l_AB) ** 2 - e ** 2)
+                                              - sqrt((l_BC - l_AB) ** 2 - e ** 2),
+                                              FULL_TURN, FULL_TURN_TEXT),
+               f"between the dead centres (rod and crank in line); needs {FULL_TURN_TEXT}"),
+        Figure("time ratio", "", only_if(TIME_RATIO, FULL_TURN, FULL_TURN_TEXT),
+               f"working stroke time over return stroke time; needs {FULL_TURN_TEXT}"),
     ),
     links=_links(),
     length_unit_m=1e-3,

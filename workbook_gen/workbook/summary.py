@@ -7,23 +7,27 @@ from __future__ import annotations
 import numpy as np
 
 from .. import xlmath as xm
+from ..extremes import OK, ok_extremes, ok_rows
 from ..tabulate import Evaluated
 from ..expr.magnitude import magnitude, scope
 from ..expr.numeric import compile_numpy
 from ..xlerror import ExcelError
+
+NUM = ExcelError.NUM.value  # AGGREGATE's value where no row counts
 from .table import cached_values
-from .layout import (CHECK_FIRST_ROW, CHECKS, SUMMARY, TableLayout, add_sheet, excel_text,
-                     print_wide)
+from .layout import (CHECK_FIRST_ROW, CHECKS, FIRST_ROW, STATUS, SUMMARY, TableLayout, add_sheet,
+                     excel_text, print_wide)
 from xlsxwriter.utility import xl_col_to_name
 
 
-def _extreme(column: xm.XArray, inputs: np.ndarray, pick) -> tuple[object, object]:
-    """What MAX/MIN and INDEX(MATCH(...)) give: the first error of the range if any."""
-    if np.count_nonzero(column.err):   # (a C call: .any() is Python-level in numpy)
-        first = ExcelError.from_code(int(column.err[np.flatnonzero(column.err)[0]])).value
-        return first, first
-    i = int(pick(column.val))
-    return float(column.val[i]), float(inputs[i])
+def _extremes(column: xm.XArray, inputs: np.ndarray, status: np.ndarray):
+    """(max, its input, min, its input, rows counted) over the ok rows, as the Summary's
+    formulas give them: #NUM! (AGGREGATE of nothing) where no row counts."""
+    found = ok_extremes(column.val, column.err, status, inputs)
+    if not found.counted[0]:
+        return NUM, NUM, NUM, NUM, 0
+    return (float(found.hi[0]), float(found.hi_at[0]), float(found.lo[0]),
+            float(found.lo_at[0]), int(found.counted[0]))
 
 
 # A column whose max - min is within TIE_ULPS ulps of the magnitudes its formula cancels
@@ -45,12 +49,21 @@ def tie_threshold(result: Evaluated, name: str, shared=None) -> float:
     return float(f"{bound:.3g}")  # as written in the formula
 
 
-def _where(row: int, value_col: str, inputs_abs: str, rng: str, tie: float) -> str:
-    """The input where the extreme in ``value_col`` occurs, or "tie" when the column is
-    constant to rounding (max - min within ``tie``)."""
+def _where(row: int, value_col: str, inputs_abs: str, rng: str, ok: str, first: int,
+           tie: float) -> str:
+    """The input of the first ok row holding the extreme in ``value_col`` (the smallest
+    row number among them, by AGGREGATE), or "tie" when the column is constant to
+    rounding (max - min within ``tie``)."""
     r = row + 1
-    return (f'=IF(C{r}-E{r}<={tie!r},"{TIE}",'
-            f"INDEX({inputs_abs},MATCH({value_col}{r},{rng},0)))")
+    return (f'=IF(C{r}-E{r}<={tie!r},"{TIE}",INDEX({inputs_abs},'
+            f"_xlfn.AGGREGATE(15,6,(ROW({rng})-{first - 1})/(({rng}={value_col}{r})*{ok}),1)))")
+
+
+def _aggregate(function: int, rng: str, ok: str) -> str:
+    """LARGE (14) or SMALL (15) of the column's ok rows, errors left out (AGGREGATE's
+    option 6; its array form takes the array expression without array entry): Excel
+    2010+ and LibreOffice."""
+    return f"=_xlfn.AGGREGATE({function},6,{rng}/{ok},1)"
 
 
 def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> None:
@@ -65,6 +78,8 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
     sheet.set_column(1, 1, 9)
     sheet.set_column(2, 5, 14, formats["value"])
     inputs_abs = layout.column(spec.name, absolute=True)
+    ok = f'({layout.column(STATUS, absolute=True)}="{OK}")'
+    counted = 0
     extremes: dict[str, tuple[int, object, object]] = {}
     row = 1
     shared = scope(result.columns, result.params, result.rows)  # outputs share subtrees
@@ -72,18 +87,19 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
     for q in result.model.outputs():
         column = result.columns[q.name]
         rng = layout.column(q.name)
-        hi, at_hi = _extreme(column, result.inputs, np.argmax)
-        lo, at_lo = _extreme(column, result.inputs, np.argmin)
+        hi, at_hi, lo, at_lo, counted = _extremes(column, result.inputs, result.status)
         tie = tie_threshold(result, q.name, shared)
         tied = isinstance(hi, float) and isinstance(lo, float) and hi - lo <= tie
         if tied:
             at_hi = at_lo = TIE
         sheet.write_string(row, 0, q.name)
         sheet.write_string(row, 1, q.unit)
-        sheet.write_formula(row, 2, f"=MAX({rng})", None, hi)
-        sheet.write_formula(row, 3, _where(row, "C", inputs_abs, rng, tie), None, at_hi)
-        sheet.write_formula(row, 4, f"=MIN({rng})", None, lo)
-        sheet.write_formula(row, 5, _where(row, "E", inputs_abs, rng, tie), None, at_lo)
+        for col, text, value in (
+                (2, _aggregate(14, rng, ok), hi),
+                (3, _where(row, "C", inputs_abs, rng, ok, FIRST_ROW, tie), at_hi),
+                (4, _aggregate(15, rng, ok), lo),
+                (5, _where(row, "E", inputs_abs, rng, ok, FIRST_ROW, tie), at_lo)):
+            sheet.write_formula(row, col, text, None, value)
         extremes[q.name] = (row + 1, hi, lo, tie, tied)
         row += 1
 
@@ -112,6 +128,12 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
     last = CHECK_FIRST_ROW + result.rows - 1
     sheet.write_string(row, 0, "rows")
     sheet.write_number(row, 2, result.rows)
+    row += 1
+    sheet.write_string(row, 0, "rows in the extremes")
+    sheet.write_formula(row, 2, f'=COUNTIF({layout.column(STATUS, absolute=True)},"{OK}")',
+                        None, int(np.sum(ok_rows(result.status))))
+    sheet.write_string(row, 3, "the max and min above are taken over the ok rows only; "
+                               "the rows counted below are left out")
     row += 1
     sheet.write_string(row, 0, "rows that cannot be assembled")
     sheet.write_formula(row, 2, f"=SUM({CHECKS}!{flags}{CHECK_FIRST_ROW}:{flags}{last})", None,

@@ -59,6 +59,7 @@ class TableDef:
     columns: list[str]
     header_rows: int = 1
     totals_rows: int = 0
+    filter_ref: str | None = None  # its autoFilter's range, when that filters rows
 
 
 @dataclass
@@ -74,6 +75,7 @@ class Sheet:
     dimension: str | None = None
     tables: list[TableDef] = field(default_factory=list)
     hidden_rows: set[int] = field(default_factory=set)  # <row hidden="1">: hidden or filtered
+    filter_ref: str | None = None  # the sheet's autoFilter range, when that filters rows
     _rows: dict[int, list[Cell]] | None = field(default=None, repr=False)
     _cells: dict[str, Cell] = field(default_factory=dict, repr=False)
     # Cells of the plain kind (a constant, or a formula with its text), as the scanner read

@@ -20,6 +20,7 @@ from xml.etree.ElementTree import Element
 
 from workbook_gen.errors import WorkbookReadError
 from workbook_gen.xlsx.apart import read_apart
+from workbook_gen.xlsx.filters import sheet_filter, table_filter
 from workbook_gen.xlsx.limits import MAX_CELLS, MAX_RATIO, MAX_UNCOMPRESSED, Package
 from workbook_gen.xlsx.model import ExternalLink, Sheet, TableDef, Workbook
 from workbook_gen.xlsx.olap import read_olap
@@ -137,7 +138,10 @@ def _application(pkg: Package) -> str | None:
 
 
 def _read_tables(pkg: Package, part: str, sheet: Sheet) -> None:
-    """The tables of a sheet (structured references name them)."""
+    """The tables of a sheet (structured references name them), and for a sheet with
+    hidden rows the filters that may have hidden them."""
+    if sheet.hidden_rows:
+        sheet.filter_ref = sheet_filter(pkg, part)
     for kind, target in _relationships(pkg, part).values():
         if kind != "table" or target is None or target.startswith("external:"):
             continue
@@ -152,7 +156,8 @@ def _read_tables(pkg: Package, part: str, sheet: Sheet) -> None:
         totals = root.get("totalsRowCount", "0")
         sheet.tables.append(TableDef(name, ref, columns,
                                      int(header) if header.isdigit() else 1,
-                                     int(totals) if totals.isdigit() else 0))
+                                     int(totals) if totals.isdigit() else 0,
+                                     table_filter(root)))
 
 
 def _workbook_part(pkg: Package) -> str:

@@ -20,8 +20,8 @@ from workbook_gen.formula.functions import (  # noqa: F401  (each module registe
     regress, depreciation, bessel, textbytes, subtotal,
     lambdas, dynamic, arrayops, regex,  # (helper corpb: LAMBDA, dynamic arrays, regex)
     bonds, oddbonds,  # (helper corpb3: securities, day-count bases in daycount.py)
-    weeks,
-    cube,  # (helper cube: answered from the file's OLAP cache)
+    weeks, spill,
+    cube,  # (answered from the file's OLAP cache)
 )
 from workbook_gen.formula.functions.dialect import (
     LIBREOFFICE_DIFFERENCES, Difference, dialect_of, libreoffice_error, libreoffice_result,

@@ -15,9 +15,9 @@ from workbook_gen.xlerror import ExcelError
 
 
 def _guarded(fn):
-    def wrapped(*xs):
+    def wrapped(*xs, **kw):
         try:
-            y = fn(*xs)
+            y = fn(*xs, **kw)
         except (ZeroDivisionError, OverflowError, ValueError):
             return ExcelError.NUM
         if isinstance(y, ExcelError):
@@ -48,10 +48,12 @@ _coupon("COUPNUM", lambda sch, s, b: float(sch.n))
 
 # -- coupon bonds -------------------------------------------------------------------------
 
-def price(s, m, f, b, rate, yld, redemption) -> float:
+def price(s, m, f, b, rate, yld, redemption, lo=False) -> float:
+    """DSC is E - A in every basis (Excel: the Excel-saved ironcalc PRICE_YIELD.xlsx, bases
+    2 and 3, where COUPDAYSNC's actual days differ); LibreOffice (``lo``) takes COUPDAYSNC."""
     sch = dc.Schedule(s, m, f)
     a, e = dc.days_before(sch, s, b), dc.coupon_days(sch, b)
-    dsc, n = dc.days_after(sch, s, b), sch.n
+    dsc, n = (dc.days_after(sch, s, b) if lo else e - a), sch.n
     cpn = 100.0 * rate / f
     if n == 1:
         return (redemption + cpn) / (1.0 + dsc / e * yld / f) - cpn * a / e
@@ -73,18 +75,20 @@ def _bond(name, n_nums, fn, check):
         s, m, f, b, xs = got
         if not check(*xs):
             return ExcelError.NUM
+        if fn in (price, _yield):
+            return _guarded(fn)(s, m, f, b, *xs, lo=ctx.dialect == "libreoffice")
         return _guarded(fn)(s, m, f, b, *xs)
     register(name, "finance", 3 + n_nums, 4 + n_nums)(scalar)
 
 
-def _yield(s, m, f, b, rate, pr, redemption):
+def _yield(s, m, f, b, rate, pr, redemption, lo=False):
     sch = dc.Schedule(s, m, f)
     if sch.n == 1:  # Microsoft's closed form for one coupon left
         a, e = dc.days_before(sch, s, b), dc.coupon_days(sch, b)
         dsr = e - a
         paid = pr / 100.0 + a / e * rate / f
         return (redemption / 100.0 + rate / f - paid) / paid * f * e / dsr
-    return _solve(lambda y: price(s, m, f, b, rate, y, redemption) - pr)
+    return _solve(lambda y: price(s, m, f, b, rate, y, redemption, lo) - pr)
 
 
 def _solve(g, guess=0.05):

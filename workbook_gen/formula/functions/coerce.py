@@ -222,10 +222,15 @@ def _criterion(kind: type, crit) -> "callable":
         op = next((o for o in _OPERATORS if crit.startswith(o)), "")
         body = crit[len(op):]
         target: Value = body
-        if body == "" and op in ("", "="):
-            return (lambda v: v is None or v == "") if op == "=" or crit == "" else None
+        # "" matches empty cells and empty text, "=" empty cells only, "<>" all but empty
+        # cells: a formula's "" is not empty (LibreOffice 7.4 as Excel: COUNTIF of
+        # {="",<empty>,"1",1} is 2 for "", 1 for "=" and 3 for "<>")
+        if body == "" and op == "=":
+            return lambda v: v is None
+        if body == "" and op == "":
+            return None
         if body == "" and op == "<>":
-            return lambda v: not (v is None or v == "")
+            return lambda v: v is not None
         x = text_to_number(body)
         if not isinstance(x, ExcelError):
             target = x
@@ -266,7 +271,8 @@ def _criterion(kind: type, crit) -> "callable":
 
 def criterion(crit: Value):
     """A predicate for COUNTIF-style criteria: ``5``, ``">=5"``, ``"a*"``, ``"<>pear"``,
-    ``""`` (empty cells), ``"<>"`` (non-empty), an error value (cells holding it)."""
+    ``""`` (empty cells and empty text), ``"="`` (empty cells), ``"<>"`` (all but empty
+    cells), an error value (cells holding it)."""
     if isinstance(crit, ExcelError):  # counts the cells holding that error
         return lambda v: v is crit
     if crit is None:

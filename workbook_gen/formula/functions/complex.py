@@ -172,6 +172,8 @@ def _tan(z):
 
 def _cot(z):
     a, b = z.real, z.imag
+    if b == 0:  # a real argument: cos/sin, whole for a tiny one (IMCOT(1e-16) is 1e+16
+        return complex(math.cos(a) / math.sin(a), 0.0)  # in the Excel-saved ironcalc COMPLEXs)
     den = math.cosh(2 * b) - math.cos(2 * a)
     return complex(math.sin(2 * a) / den, -math.sinh(2 * b) / den)
 
@@ -184,6 +186,8 @@ def _sec(z):
 
 def _csc(z):
     a, b = z.real, z.imag
+    if b == 0:  # as _cot
+        return complex(1.0 / math.sin(a), 0.0)
     den = math.cosh(2 * b) - math.cos(2 * a)
     return complex(2 * math.sin(a) * math.cosh(b) / den, -2 * math.cos(a) * math.sinh(b) / den)
 

@@ -1,10 +1,9 @@
-"""Dates and times as Excel's serial numbers (1900 system): DATE, YEAR, MONTH, DAY, TIME,
-HOUR, MINUTE, SECOND, TODAY/NOW (volatile), EDATE, EOMONTH, YEARFRAC, WEEKDAY (WEEKNUM and
-ISOWEEKNUM in :mod:`.weeks`),
-DAYS, DAYS360, DATEDIF, DATEVALUE, TIMEVALUE, NETWORKDAYS, WORKDAY.
+"""Dates and times as Excel's serial numbers: DATE, YEAR, MONTH, DAY, TIME, HOUR, MINUTE,
+SECOND, TODAY/NOW (volatile), EDATE, EOMONTH, YEARFRAC, WEEKDAY (WEEKNUM and ISOWEEKNUM in
+:mod:`.weeks`), DAYS, DAYS360, DATEDIF, DATEVALUE, TIMEVALUE, NETWORKDAYS, WORKDAY.
 
-Serial 1 is 1900-01-01 and serial 60 is the 29 February 1900 that never was (Lotus 1-2-3's
-leap-year bug, kept by Excel): from serial 61 on a serial counts days since 1899-12-30.
+Serial numbers and calendar dates convert in :mod:`.serials` (the 1900 system, with its 29
+February 1900 that never was, or the 1904 system of a workbook saved with ``date1904``).
 """
 
 from __future__ import annotations
@@ -14,30 +13,12 @@ import datetime as dt
 import math
 
 from workbook_gen.formula.functions import coerce as c
-from workbook_gen.formula.functions.datetext import format_date, parse_date_text  # noqa: F401
+from workbook_gen.formula.functions.datetext import parse_date_text
 from workbook_gen.formula.functions.registry import register
+from workbook_gen.formula.functions.serials import (  # noqa: F401  (re-exported)
+    from_serial, max_serial, null_date_plus, to_serial, weekday,
+)
 from workbook_gen.xlerror import ExcelError
-
-_EPOCH = dt.date(1899, 12, 30)
-MAX_SERIAL = 2958465  # 9999-12-31
-
-
-def to_serial(d: dt.date) -> float:
-    n = (d - _EPOCH).days
-    return float(n if n >= 61 else n - 1)
-
-
-def from_serial(x: float) -> tuple[int, int, int] | ExcelError:
-    """(year, month, day) of a serial; 0 is 1900-01-00 and 60 is 1900-02-29, as in Excel."""
-    if x < 0 or x >= MAX_SERIAL + 1:
-        return ExcelError.NUM
-    n = int(math.floor(x))
-    if n == 0:
-        return (1900, 1, 0)
-    if n == 60:
-        return (1900, 2, 29)
-    d = _EPOCH + dt.timedelta(days=n if n > 60 else n + 1)
-    return (d.year, d.month, d.day)
 
 
 def _date(x) -> tuple[int, int, int] | ExcelError:
@@ -73,7 +54,7 @@ def make_date(y: int, m: int, d: int) -> float | ExcelError:
     y, m = y + (m - 1) // 12, (m - 1) % 12 + 1
     base = dt.date(y, m, 1)
     serial = to_serial(base) + d - 1  # day arithmetic in serial space: DATE(1900,3,0) is 60
-    return float(serial) if 0 <= serial <= MAX_SERIAL else ExcelError.NUM
+    return float(serial) if 0 <= serial <= max_serial() else ExcelError.NUM
 
 
 @register("DATE", "date", 3, 3)
@@ -154,7 +135,8 @@ def _add_months(v, months, end_of_month: bool):
     last = calendar.monthrange(y, m)[1]
     if d == 0 and not end_of_month:  # 1900-01-00 keeps its day 0: the day before the 1st
         return to_serial(dt.date(y, m, 1)) - 1  # (formulas__test DATE & TIME!V9:W9)
-    return to_serial(dt.date(y, m, last if end_of_month else min(max(d, 1), last)))
+    serial = to_serial(dt.date(y, m, last if end_of_month else min(max(d, 1), last)))
+    return serial if serial >= 0 else ExcelError.NUM  # (before 1904 in the 1904 system)
 
 
 register("EDATE", "date", 2, 2)(lambda ctx, v, k: _add_months(v, k, False))
@@ -197,10 +179,6 @@ def days_30_360(start: tuple[int, int, int], start_feb_end: bool,
 
 def _end_of_feb(y: int, m: int, d: int) -> bool:
     return m == 2 and d == (29 if y == 1900 else calendar.monthrange(y, 2)[1])
-
-
-def _last_of_feb(d: dt.date) -> bool:
-    return d.month == 2 and d.day == calendar.monthrange(d.year, 2)[1]
 
 
 def yearfrac(s: float, e: float, basis: int) -> float | ExcelError:
@@ -254,25 +232,43 @@ def _days(ctx, end, start):
     return se if isinstance(se, ExcelError) else float(se[1] - se[0])
 
 
+def _days360_ymd(x: float, lo: bool):
+    """DAYS360's (year, month, day) of a serial: the time of day rounded to the second
+    first (Excel: 46000.999999 is 46001), serial 0 the day 0 of January 1900 and 60 the
+    29 February 1900 (the Excel-saved ironcalc DAYS_DAYS360.xlsx). LibreOffice (``lo``)
+    truncates, and its serial n is 1899-12-30 plus n days."""
+    if not lo:
+        return from_serial(math.floor(round(x * 86400.0) / 86400.0))
+    if isinstance(from_serial(x), ExcelError):
+        return ExcelError.NUM
+    d = null_date_plus(math.floor(x))
+    return d.year, d.month, d.day
+
+
 @register("DAYS360", "date", 2, 3)
 def _days360(ctx, a, b, european=False):
-    se = _two_dates(a, b)
+    x, y = serial_arg(a), serial_arg(b)
     eu = c.to_bool(european)
-    for x in (se, eu):
-        if isinstance(x, ExcelError):
-            return x
-    d1, d2 = _ymd_date(from_serial(se[0])), _ymd_date(from_serial(se[1]))
-    t1, t2 = d1.day, d2.day
+    for v in (x, y, eu):
+        if isinstance(v, ExcelError):
+            return v
+    lo = ctx is not None and ctx.dialect == "libreoffice"
+    d1, d2 = _days360_ymd(x, lo), _days360_ymd(y, lo)
+    for d in (d1, d2):
+        if isinstance(d, ExcelError):
+            return d
+    (y1, m1, t1), (y2, m2, t2) = d1, d2
     if eu:
         t1, t2 = min(t1, 30), min(t2, 30)
     else:
-        if _last_of_feb(d1):
+        feb_end = m1 == 2 and t1 == calendar.monthrange(y1, 2)[1]
+        if _end_of_feb(y1, m1, t1) if not lo else feb_end:
             t1 = 30
         if t1 == 31:
             t1 = 30
         if t2 == 31 and t1 >= 30:
             t2 = 30
-    return float((d2.year - d1.year) * 360 + (d2.month - d1.month) * 30 + t2 - t1)
+    return float((y2 - y1) * 360 + (m2 - m1) * 30 + t2 - t1)
 
 
 @register("DATEDIF", "date", 3, 3)
@@ -325,7 +321,7 @@ def _weekday(ctx, v, kind=1.0):
     for x in (ymd, k):
         if isinstance(x, ExcelError):
             return x
-    wd = (int(serial_arg(v)) + 5) % 7  # Monday 0, from the serial: 1900 has its 29 February
+    wd = weekday(serial_arg(v))  # Monday 0, from the serial: 1900 has its 29 February
     k = int(k)
     if k == 1 or k == 17:
         return float((wd + 1) % 7 + 1)
@@ -369,7 +365,8 @@ def _holidays(h) -> set[int] | ExcelError:
 
 
 def _workday_ok(n: int, hol: set[int]) -> bool:
-    wd = _ymd_date(from_serial(n)).weekday() if n > 0 else 5
+    ymd = from_serial(n)
+    wd = _ymd_date(ymd).weekday() if ymd[2] != 0 else 5  # (1900-01-00: a Saturday)
     return wd < 5 and n not in hol
 
 
@@ -397,7 +394,7 @@ def _workday(ctx, start, days, holidays=None):
     step = 1 if k > 0 else -1
     while k:
         d += step
-        if d < 1 or d > MAX_SERIAL:
+        if d < 1 or d > max_serial():
             return ExcelError.NUM
         if _workday_ok(d, hol):
             k -= step

@@ -1,21 +1,26 @@
-"""Dates as text: reading (DATEVALUE, VALUE, date arguments given as text) and TEXT's
-date and time formats. Serial numbers as in :mod:`.date`."""
+"""Dates read from text (DATEVALUE, VALUE, date arguments given as text), as serial
+numbers in the workbook's date system (:mod:`.serials`); TEXT's date formats are in
+:mod:`.numfmt.dates`."""
 
 from __future__ import annotations
 
 import calendar
 import datetime as dt
-import math
 import re
 
+from workbook_gen.formula.functions.serials import is_1904, to_serial
 from workbook_gen.xlerror import ExcelError
 
-_EPOCH = dt.date(1899, 12, 30)
+
+def _to_serial(d: dt.date) -> float | ExcelError:
+    """The day's serial in the workbook's date system; #VALUE! before its first day."""
+    x = to_serial(d)
+    return x if x >= 0 else ExcelError.VALUE
 
 
-def _to_serial(d: dt.date) -> float:
-    n = (d - _EPOCH).days
-    return float(n if n >= 61 else n - 1)
+def _feb29_1900(time: float) -> float | ExcelError:
+    """1900-02-29, the day Excel counts (serial 60), in the 1900 system only."""
+    return ExcelError.VALUE if is_1904() else 60.0 + time
 
 
 _MONTHS = {m.lower(): i for i, m in enumerate(calendar.month_abbr) if m}
@@ -85,7 +90,7 @@ def parse_date_text(text: str) -> float | ExcelError:
         year += 2000 if year < 30 else 1900
     day = int(parts["d"])
     if (year, int(month), day) == (1900, 2, 29):  # the day Excel counts, serial 60
-        return 60.0 + time
+        return _feb29_1900(time)
     try:
         d = dt.date(year, int(month), day)
     except ValueError:
@@ -93,117 +98,9 @@ def parse_date_text(text: str) -> float | ExcelError:
             return ExcelError.VALUE
         try:  # "29/02/1900": day first, as a European Excel reads it
             if (year, day, int(month)) == (1900, 2, 29):
-                return 60.0 + time
+                return _feb29_1900(time)
             d = dt.date(year, day, int(month))
         except ValueError:
             return ExcelError.VALUE
-    return _to_serial(d) + time
-
-
-# -- TEXT's date formats ------------------------------------------------------------------
-
-_DATE_TOKENS = re.compile(r"\[h+\]|\[m+\]|\[s+\]|(?<=s)\.0+|(?<=\])\.0+|y+|e+|m+|d+|"
-                          r"h+|s+|am/pm|a/p|\"[^\"]*\"|.", re.IGNORECASE)
-FRACTION = re.compile(r"(?<=[sS\]])\.0+")  # fractional seconds: "ss.000", "[ss].00"
-
-
-def _code(tok: str) -> str:
-    """Runs of a code longer than its forms read as the longest (yyy, ddddd, hhh, sss) or
-    shortest (y) form; mmmmm is the month's initial (formulas test.xlsx EXTRA!A37:A42)."""
-    low = tok.lower()
-    if not low or low[0] not in "ydhsm" or low.strip(low[0]):
-        return tok
-    n, k = len(low), low[0]
-    if k == "y":
-        return "yy" if n <= 2 else "yyyy"
-    if k == "d":
-        return tok if n <= 4 else "dddd"
-    if k in "hs":
-        return tok if n <= 2 else k * 2
-    return tok if n <= 5 else "mmmm"
-
-
-def format_date(x: float, fmt: str) -> str | ExcelError:
-    """TEXT's date and time formats. The value is first rounded to the format's smallest
-    unit (a second, or 1/10^k s with "ss.000"), carrying into the day as Excel does
-    (0.999999 as "dd hh:mm:ss" is 01 00:00:00); elapsed [h], [m], [s]; weekdays counted
-    from serial 1, a Sunday (serial 0 is "Saturday, 0 January 1900"); sheetjs
-    issue2717.xlsx, saved by Excel."""
-    from workbook_gen.formula.functions.date import from_serial
-    if x < 0:
-        return ExcelError.VALUE
-    tokens = [_code(t) for t in _DATE_TOKENS.findall(fmt)]
-    digits = max((len(t) - 1 for t in tokens if t.startswith(".")), default=0)
-    scale = 10 ** digits
-    units = math.floor(x * 86400 * scale + 0.5)
-    day, rest = divmod(units, 86400 * scale)
-    secs, part = divmod(rest, scale)
-    ymd = from_serial(day)
-    if isinstance(ymd, ExcelError):  # past 9999-12-31: elapsed counts only ([h] of 2958466)
-        if any(t[:1].lower() in "ymdhe" or t.lower() in ("am/pm", "a/p") for t in tokens
-               if not t.startswith(("[", '"', ".")) and len(t) > 0 and t[0].isalpha()
-               and t.lower() not in ("m", "mm", "s", "ss")):
-            return ExcelError.VALUE
-        ymd = (9999, 12, 31)  # not shown
-    y, m, d = ymd
-    wd = (day + 5) % 7  # Monday 0 ... Sunday 6
-    hh, mi, ss = secs // 3600, secs // 60 % 60, secs % 60
-    ampm = any(t.lower() in ("am/pm", "a/p") for t in tokens)
-    elapsed = next((t.lower()[1] for t in tokens if t.startswith("[")), None)
-    out = []
-    for i, tok in enumerate(tokens):
-        low = tok.lower()
-        prev = next((t.lower().strip("[]") for t in reversed(tokens[:i]) if t[-1:].isalpha() or
-                     t.endswith("]")), "")
-        nxt = next((t.lower().strip("[]") for t in tokens[i + 1:] if t[:1].isalpha() or
-                    t.startswith("[")), "")
-        minute = low in ("m", "mm") and (prev.startswith("h") or nxt.startswith("s"))
-        if low.startswith("["):
-            total = {"h": units // (3600 * scale), "m": units // (60 * scale),
-                     "s": units // scale}[low[1]]
-            out.append(str(total).zfill(len(low) - 2))
-        elif low.startswith("."):
-            out.append("." + str(part).zfill(digits)[:len(low) - 1])
-        elif low == "yyyy":
-            out.append(f"{y:04d}")
-        elif low == "yy":
-            out.append(f"{y % 100:02d}")
-        elif low.startswith("e"):  # the era's year: the year in the Gregorian calendar
-            out.append(str(y))  # (sheetjs formula_stress_test.xlsx Text!B15, "ee-mm-dd")
-        elif minute:
-            mm = mi if elapsed != "h" else mi
-            out.append(f"{mm:02d}" if low == "mm" else str(mm))
-        elif low == "mmmmm":
-            out.append(calendar.month_name[m][:1])
-        elif low == "mmmm":
-            out.append(calendar.month_name[m])
-        elif low == "mmm":
-            out.append(calendar.month_abbr[m])
-        elif low == "mm":
-            out.append(f"{m:02d}")
-        elif low == "m":
-            out.append(str(m))
-        elif low == "dddd":
-            out.append(calendar.day_name[wd])
-        elif low == "ddd":
-            out.append(calendar.day_abbr[wd])
-        elif low == "dd":
-            out.append(f"{d:02d}")
-        elif low == "d":
-            out.append(str(d))
-        elif low in ("hh", "h"):
-            h = (hh % 12 or 12) if ampm else hh
-            out.append(f"{h:02d}" if low == "hh" else str(h))
-        elif low in ("ss", "s"):
-            out.append(f"{ss:02d}" if low == "ss" else str(ss))
-        elif low == "am/pm":
-            out.append("AM" if hh < 12 else "PM")
-        elif low == "a/p":
-            out.append("A" if hh < 12 else "P")
-        elif tok.startswith('"'):
-            out.append(tok[1:-1])
-        elif tok == "\\":
-            continue
-        else:
-            out.append(tok)
-    return "".join(out)
+    serial = _to_serial(d)
+    return serial if isinstance(serial, ExcelError) else serial + time

@@ -9,6 +9,7 @@ aggregate is #VALUE!), and the operators' (``TRUE>1`` is FALSE, ``"x"&TRUE`` is 
 from __future__ import annotations
 
 import math
+import re
 from typing import NamedTuple
 
 from workbook_gen.formula.functions import coerce as c
@@ -33,6 +34,22 @@ LIBREOFFICE_DIFFERENCES: tuple[Difference, ...] = (
     Difference("text argument of an aggregate", 'SUM("3",4)', 7.0, ExcelError.VALUE),
     Difference("a boolean compared with a number", "TRUE>1", True, False),
     Difference("a boolean joined to text", '"x"&TRUE', "xTRUE", "x1"),
+    Difference("zero to a negative power (^ and POWER)", "0^-1", ExcelError.DIV0,
+               ExcelError.NUM),
+    Difference("FIND and SEARCH of an empty text", 'FIND("","abc")', 1.0, ExcelError.VALUE),
+    Difference("ROUND's digits beyond a 16-bit integer (ROUNDUP, ROUNDDOWN, TRUNC too)",
+               "ROUND(10,32768)", 10.0, ExcelError.VALUE),
+    Difference("ISEVEN and ISODD of a numeric text", 'ISEVEN("4")', True, ExcelError.VALUE),
+    Difference("a numeric text or a boolean in an exact lookup", 'MATCH("10",{10},0)',
+               ExcelError.NA, 1.0),
+    Difference("ISNUMBER of a TRUE cell", "ISNUMBER(A1) with A1=TRUE", False, True),
+    Difference("LEFT and RIGHT of a negative count above -1", 'LEFT("ab",-0.5)', "",
+               ExcelError.VALUE),
+    Difference("CODE of an empty text", 'CODE("")', ExcelError.VALUE, 0.0),
+    Difference("an error as the criterion of COUNTIF, SUMIF, ...", "COUNTIF(A1:A3,NA())",
+               0.0, ExcelError.NA),
+    Difference("SUBSTITUTE of an empty text at instance 0", 'SUBSTITUTE("abc","","X",0)',
+               "abc", ExcelError.VALUE),
 )
 
 
@@ -62,6 +79,9 @@ LIBREOFFICE_ERRORS: dict[str, dict[ExcelError, ExcelError]] = {
         "BIN2HEX", "BIN2OCT", "OCT2HEX", "SQRT", "COMBIN", "PERMUT", "PERCENTILE",
         "PERCENTILE.INC", "PERCENTILE.EXC", "QUARTILE", "QUARTILE.INC", "QUARTILE.EXC")},
     "QUOTIENT": {ExcelError.DIV0: ExcelError.VALUE},
+    # measured by the differential test (tests/differential.py): CEILING(5,-2)
+    "CEILING": _INVALID, "MEDIAN": _INVALID,
+    "FLOOR": {ExcelError.NUM: ExcelError.VALUE, ExcelError.DIV0: ExcelError.VALUE},
     "MODE": {ExcelError.NA: ExcelError.VALUE},
     "MODE.SNGL": {ExcelError.NA: ExcelError.VALUE},
     "CONVERT": {ExcelError.NA: ExcelError.VALUE},
@@ -92,7 +112,8 @@ def libreoffice_error(name: str, result, args=()):
     return LIBREOFFICE_ERRORS[name][result]
 
 
-NUMERIC_DEVIATIONS = frozenset({"SQRT", "ATAN2", "POWER", "LN"})
+_DIGITS = frozenset({"ROUND", "ROUNDUP", "ROUNDDOWN", "TRUNC"})
+NUMERIC_DEVIATIONS = frozenset({"SQRT", "ATAN2", "POWER", "LN"}) | _DIGITS
 
 
 def libreoffice_result(func: str, args) -> Value | None:
@@ -105,10 +126,14 @@ def libreoffice_result(func: str, args) -> Value | None:
         return 0.0
     if name == "LN" and len(args) == 1 and args[0] == 0:
         return ExcelError.VALUE
+    if name in _DIGITS and len(args) == 2 and not -32768 <= math.trunc(args[1]) <= 32767:
+        return ExcelError.VALUE  # its digits are a 16-bit integer (ROUND(10,32768))
     if name == "POWER" and len(args) == 2:
         x, y = args
         if x == 0 and y == 0:
             return 1.0
+        if x == 0 and y < 0:
+            return ExcelError.NUM
         if x < 0 and y != math.floor(y):
             return _odd_root(x, y)
     return None
@@ -122,3 +147,27 @@ def numeric_deviation(name: str, args: list) -> Value | None:
     if any(isinstance(x, ExcelError) for x in xs):
         return None
     return libreoffice_result(name, xs)
+
+
+_PLAIN_NUMBER = re.compile(r"-?(0|[1-9][0-9]*)(\.[0-9]+)?")
+
+
+def lookup_plain(v):
+    """A value as LibreOffice's exact lookups compare it: a boolean is its number and a
+    plain numeric text the number (MATCH("10",{10},0) is 1 there; not "007", " 3 " or
+    "1e2"; measured by tests/differential.py)."""
+    if isinstance(v, bool):
+        return float(v)
+    if isinstance(v, str) and _PLAIN_NUMBER.fullmatch(v):
+        return float(v)
+    return v
+
+
+def exact_lookup(ctx, lookup, values: list, first: bool = False):
+    """(lookup, values) as an exact MATCH (``first``: VLOOKUP's rows, by their first
+    cell) compares them in ``ctx``'s dialect: unchanged but in LibreOffice's."""
+    if getattr(ctx, "dialect", ctx) != "libreoffice":
+        return lookup, values
+    if first:
+        return lookup_plain(lookup), [(lookup_plain(r[0]), *r[1:]) for r in values]
+    return lookup_plain(lookup), [lookup_plain(v) for v in values]

@@ -144,7 +144,20 @@ def _beta_dist(ctx, x, a, b, cumulative, lo=0.0, hi=1.0):
 
 register("BETADIST", "stats", 3, 5)(numeric(lambda x, a, b, lo=0.0, hi=1.0: beta_dist(
     x, a, b, True, lo, hi)))
-register("BETA.INV", "stats", 3, 5, aliases=("BETAINV",))(numeric(beta_inv))
+@register("BETA.INV", "stats", 3, 5, aliases=("BETAINV",))
+def _beta_inv(ctx, p, a, b, lo=0.0, hi=1.0):
+    """Excel's probability is in (0, 1): Mac Excel 16 caches #NUM! for BETA.INV(TRUE,3,2)
+    (formulas__test.xlsx STATISTICAL!AO9, where TRUE is 1 for BETA.DIST). LibreOffice 7.4
+    (measured) takes [0, 1]: BETAINV(0,3,2) is 0, BETAINV(1,3,2) is 1."""
+    xs = args_of(p, a, b, 0.0 if lo is None else lo, 1.0 if hi is None else hi)
+    if isinstance(xs, ExcelError):
+        return xs
+    x, a, b, lo, hi = xs
+    if ctx.dialect == "libreoffice" and x in (0.0, 1.0) and a > 0 and b > 0 and lo < hi:
+        return c.result(lo if x == 0.0 else hi)
+    if x >= 1:
+        return ExcelError.NUM
+    return numeric(beta_inv)(ctx, *xs)
 
 
 # -- gamma and chi-squared ---------------------------------------------------------------

@@ -49,23 +49,30 @@ def pv(r, n, p, fv_=0.0, when=0.0):
 def _safe(fn, *xs):
     try:
         y = fn(*xs)
+        if isinstance(y, complex):  # a negative growth to a fractional power
+            return ExcelError.NUM
         return y if isinstance(y, ExcelError) else c.result(float(y))
     except (OverflowError, ZeroDivisionError, ValueError):
         return ExcelError.NUM
 
 
-def _tvm(name, fn, nmin):
+def _tvm(name, fn, nmin, rate_over_minus_one=False):
+    """``rate_over_minus_one``: a rate of -1 or less is #NUM! (LibreOffice: less only)."""
     def scalar(ctx, *args):
         xs = _nums(*args)
         if isinstance(xs, ExcelError):
             return xs
         if len(xs) == 5:
             xs[4] = 1.0 if xs[4] != 0 else 0.0
+        if rate_over_minus_one and (xs[0] < -1 or xs[0] == -1 and _excel(ctx)):
+            return ExcelError.NUM
         return _safe(fn, *xs)
     register(name, "finance", nmin, 5)(scalar)
 
 
-_tvm("PMT", pmt, 3)
+# PMT's rate must exceed -1 (Excel, ironcalc PMT.xlsx: PMT(-3,...) and PMT(-1,...) #NUM!);
+# LibreOffice 7.4 refuses below -1 only (PMT(-1,1,-100) is -0 there)
+_tvm("PMT", pmt, 3, rate_over_minus_one=True)
 _tvm("FV", fv, 3)
 _tvm("PV", pv, 3)
 
@@ -225,16 +232,26 @@ def _rate_argument(x, excel: bool):
 
 
 def _xnpv(r, vs, ds):
-    return fsum([v / (1 + r) ** ((d - ds[0]) / 365.0) for v, d in zip(vs, ds)])
+    """Summed in order, as Excel does: at Excel's own XIRR rate the sheetjs
+    formula_stress_test.xlsx's XNPV (Finance!B12, -6.211546860868111E-06) to the last bit."""
+    total = 0.0
+    for v, d in zip(vs, ds):
+        total += v / (1 + r) ** ((d - ds[0]) / 365.0)
+    return total
 
 
 @register("XNPV", "finance", 3, 3, ("scalar", "range", "range"))
 def _xnpv_fn(ctx, rate, values, dates):
+    """A rate of 0 or less is #NUM! (Mac Excel 16, formulas__test.xlsx FINANCIAL!S56, U56,
+    X56: -0.1, 0 and an empty cell); LibreOffice 7.4 (measured) refuses -1 or less only,
+    with #VALUE!."""
     r = _rate_argument(rate, _excel(ctx))
     flows = _flows(values, dates, _excel(ctx))
     for x in (r, flows):
         if isinstance(x, ExcelError):
             return x
+    if r <= (0 if _excel(ctx) else -1):
+        return ExcelError.NUM if _excel(ctx) else ExcelError.VALUE
     return _safe(_xnpv, r, *flows)
 
 
@@ -289,3 +306,25 @@ def _nominal(ctx, effect, n):
         return xs
     r, k = xs[0], int(xs[1])
     return ExcelError.NUM if r <= 0 or k < 1 else _safe(lambda: k * ((1 + r) ** (1 / k) - 1))
+
+
+@register("RRI", "finance", 3, 3)
+def _rri(ctx, nper, pv, fv):
+    """The equivalent interest rate for the growth of ``pv`` to ``fv`` in ``nper``
+    periods: ``(fv/pv)^(1/nper) - 1``, computed as Excel does through exp and log (RRI(0.5,
+    3, 4) is 0.7777777777777775 in Excel, one ulp under the power's); #NUM! for
+    ``nper <= 0`` or ``pv = 0`` (ironcalc RRI.xlsx)."""
+    xs = _nums(nper, pv, fv)
+    if isinstance(xs, ExcelError):
+        return xs
+    n, p, f = xs
+    if n <= 0 or p == 0:
+        return ExcelError.NUM
+    ratio = f / p
+    if ratio == 0:
+        return -1.0
+    if ratio < 0:
+        from workbook_gen.formula.functions.math import power
+        root = power(ratio, 1 / n)
+        return root if isinstance(root, ExcelError) else c.result(root - 1)
+    return _safe(lambda: math.exp(math.log(ratio) / n) - 1)

@@ -15,8 +15,12 @@ def _value(ctx, v):
     return ctx.scalar(v) if isinstance(v, Range) else v
 
 
-def _is(name, test, vector=None):
-    register(name, "info", 1, 1, "range", vector=vector)(lambda ctx, v: test(_value(ctx, v)))
+def _is(name, test, vector=None, libreoffice=None):
+    """``libreoffice``: the test in LibreOffice's dialect, where it differs."""
+    def fn(ctx, v):
+        lo = libreoffice is not None and ctx is not None and ctx.dialect == "libreoffice"
+        return (libreoffice if lo else test)(_value(ctx, v))
+    register(name, "info", 1, 1, "range", vector=vector)(fn)
     # in an array formula, one test per cell (formulas__test INFORMATION!AG7:AW18)
     ARRAY_LIFTED[name] = (0).__eq__
 
@@ -29,7 +33,8 @@ def _iserror_vector(xs, n):
 _is("ISERROR", lambda v: isinstance(v, ExcelError), _iserror_vector)
 _is("ISERR", lambda v: isinstance(v, ExcelError) and v is not ExcelError.NA)
 _is("ISNA", lambda v: v is ExcelError.NA)
-_is("ISNUMBER", c.is_number)
+# LibreOffice has no boolean type: a TRUE cell is a number (measured)
+_is("ISNUMBER", c.is_number, libreoffice=lambda v: c.is_number(v) or isinstance(v, bool))
 _is("ISTEXT", lambda v: isinstance(v, str))
 _is("ISNONTEXT", lambda v: not isinstance(v, str))
 _is("ISLOGICAL", lambda v: isinstance(v, bool))
@@ -58,8 +63,9 @@ def _isformula(ctx, v):
 
 
 def _parity(ctx, v, odd):
-    if isinstance(v, bool):
-        return ExcelError.VALUE
+    if isinstance(v, bool) or (isinstance(v, (str, type(None)))
+                               and ctx.dialect == "libreoffice"):
+        return ExcelError.VALUE  # LibreOffice: any text and an empty cell too (measured)
     x = c.integer(v)
     if isinstance(x, ExcelError):
         return x
@@ -97,10 +103,14 @@ def _t(ctx, v):
     return v if isinstance(v, (str, ExcelError)) else ""
 
 
+_NOT_GIVEN = object()
+
+
 @register("HYPERLINK", "info", 1, 2)
-def _hyperlink(ctx, link, friendly=None):
-    """The text the cell shows: the friendly name, else the link."""
-    shown = link if friendly is None else friendly
+def _hyperlink(ctx, link, friendly=_NOT_GIVEN):
+    """The text the cell shows: the friendly name, else the link; an empty cell shows 0
+    (Excel, ironcalc link_test.xlsx: HYPERLINK("https://"&E21,E21) with E21 empty)."""
+    shown = link if friendly is _NOT_GIVEN else friendly
     return 0.0 if shown is None else shown
 
 

@@ -7,6 +7,11 @@ formula operators stay element-wise) with the parameters bound: a name bound by 
 or LET is looked up before the workbook's defined names (:func:`bound`). A LAMBDA left
 as a cell's value is ``#CALC!``, as in Excel. LAMBDA and LET are evaluated by
 :func:`special` (they need their argument trees); the others are registered functions.
+
+A defined name holding a LAMBDA is called by its name (``=WEEK(A1)``, ``=CAL_MONTH(1)``):
+:func:`named` builds the LAMBDA in the calling evaluator, with none of the caller's
+LAMBDA or LET names bound (the name's formula sees only the workbook's names), and
+applies it to the arguments evaluated where the call is written.
 """
 
 from __future__ import annotations
@@ -62,6 +67,26 @@ def bound(evaluator, node: ast.Name):
     if not names or node.sheet is not None:
         return None
     return names.get(node.name.upper())
+
+
+def named(evaluator, node: ast.Func):
+    """The call ``NAME(args)`` of a defined name holding a LAMBDA, or None when no name
+    visible from the calling sheet holds one (an unknown function)."""
+    lookup = getattr(evaluator.resolver, "name_node", None)
+    tree = lookup(node.name) if lookup is not None else None
+    while isinstance(tree, ast.Paren):
+        tree = tree.inner
+    if not (isinstance(tree, ast.Func) and tree.name == "LAMBDA"):
+        return None
+    saved = getattr(evaluator, "bound", None)
+    evaluator.bound = None
+    try:
+        fn = special(evaluator, tree)
+    finally:
+        evaluator.bound = saved
+    if not isinstance(fn, Closure):
+        return fn
+    return fn(*(evaluator.arg(a) for a in node.args))
 
 
 def final(value):

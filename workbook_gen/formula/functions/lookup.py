@@ -9,7 +9,10 @@ Excel's results on pycel's lookup.xlsx show).
 
 from __future__ import annotations
 
+import math
+
 from workbook_gen.formula.functions import coerce as c
+from workbook_gen.formula.functions.dialect import exact_lookup
 from workbook_gen.formula.functions.reference import union_area
 from workbook_gen.formula.functions.registry import register
 from workbook_gen.formula.values import Range, Ref
@@ -208,6 +211,7 @@ def _match(ctx, lookup, area, kind=1.0):
     if lookup is None and kind == 0:
         return ExcelError.NA
     mode = 0 if kind == 0 else (1 if kind > 0 else -1)
+    lookup, values = exact_lookup(ctx, lookup, values) if mode == 0 else (lookup, values)
     if mode == 0 and type(lookup) is float and c.as_area(area).numbers() is not None:
         try:  # a number among plain numbers: list.index compares exactly, as find()
             return float(values.index(lookup) + 1)
@@ -272,6 +276,7 @@ def _table_lookup(ctx, lookup, table, index, approx, by_rows: bool):
         return ExcelError.VALUE
     if not rows or n > len(rows[0]):
         return ExcelError.REF
+    lookup, rows = (lookup, rows) if approx else exact_lookup(ctx, lookup, rows, first=True)
     if not approx and not by_rows and _exact_pattern(lookup) is None and lookup is not None:
         i = _exact_index(rows).get(_key(lookup))  # the first equal key: find()'s answer
     else:
@@ -361,7 +366,8 @@ def _modes(match_mode, search_mode):
     for x in (m, s):
         if isinstance(x, ExcelError):
             return x
-    m, s = int(m), int(s)
+    m, s = math.floor(m), math.floor(s)  # rounded down: a search mode of -1.1 is -2 (Mac
+    # Excel 16, formulas__test.xlsx LOOKUP!AH162:AW162 as AH166:AW166)
     if m not in (-1, 0, 1, 2, 3) or s not in (-2, -1, 1, 2) or (m >= 2 and s in (-2, 2)):
         return ExcelError.VALUE  # (wildcards or a regex with a binary search: #VALUE!)
     return m, s
@@ -383,7 +389,7 @@ def _xmatch(ctx, lookup, where, match_mode=0.0, search_mode=1.0):
     return ExcelError.NA if i is None else float(i + 1)
 
 
-@register("XLOOKUP", "lookup", 3, 6, ("scalar", "range", "range", "lazy"))
+@register("XLOOKUP", "lookup", 3, 6, ("scalar", "range", "range", "lazy", "scalar", "scalar"))
 def _xlookup(ctx, lookup, where, result, if_not_found=None, match_mode=None,
              search_mode=None):
     lookup = ctx.scalar(lookup())

@@ -36,16 +36,20 @@ def array(m: np.ndarray) -> Range | ExcelError:
     return Range.array_of([[c.result(float(x)) for x in row] for row in m])
 
 
-@register("MMULT", "math", 2, 2, "range")
+@register("MMULT", "math", 2, 2, "range", omitted=True)
 def _mmult(ctx, a, b):
+    """An omitted argument is #VALUE! (Excel, ironcalc MMULT.xlsx: MMULT(,)), LibreOffice's
+    the number 0."""
+    if ctx is not None and ctx.dialect == "libreoffice":
+        a, b = (0.0 if v is None else v for v in (a, b))
     x, y = matrix(a), matrix(b)
     for v in (x, y):
         if isinstance(v, ExcelError):
             return v
     if x.shape[1] != y.shape[0]:
         return ExcelError.VALUE
-    out = [[fsum(x[i, k] * y[k, j] for k in range(x.shape[1])) for j in range(y.shape[1])]
-           for i in range(x.shape[0])]
+    xs, ys = x.tolist(), y.T.tolist()  # Python floats: an overflow is inf, and #NUM! below
+    out = [[fsum(p * q for p, q in zip(row, col)) for col in ys] for row in xs]
     return array(np.array(out))
 
 

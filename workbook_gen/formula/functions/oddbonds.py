@@ -1,9 +1,10 @@
 """Securities with an odd first or last period: ODDFPRICE, ODDFYIELD, ODDLPRICE, ODDLYIELD,
 by the formulas of Microsoft's pages. An odd period is cut into quasi-coupon periods of
 12/frequency months (counted forward from the last interest date, or back from the first
-coupon); for the i-th: NL_i its normal length (actual days in basis 1, else 360/f or
-365/f), DC_i its days within the odd period, A_i its days up to settlement, DSC_i its days
-from settlement to maturity."""
+coupon); for the i-th: NL_i its normal length (an odd last period's: its days in the
+basis; an odd first period's: actual days in basis 1, else 360/f or 365/f), DC_i its days
+within the odd period (a whole one before the first coupon counts one), A_i its days up to
+settlement, DSC_i its days from settlement to maturity."""
 
 from __future__ import annotations
 
@@ -15,8 +16,11 @@ from workbook_gen.formula.functions.registry import register
 from workbook_gen.xlerror import ExcelError
 
 
-def _odd_last(s, m, last, f, b):
-    """(sum DC/NL, sum A/NL, sum DSC/NL) over the quasi-coupon periods of the odd period."""
+def _odd_last(s, m, last, f, b, lo=False):
+    """(sum DC/NL, sum A/NL, sum DSC/NL) over the quasi-coupon periods of the odd period.
+    NL is the quasi-coupon period's days in the basis (Excel: the Excel-saved ironcalc
+    PRICE_YIELD.xlsx, bases 2 and 3 counting actual days); LibreOffice (``lo``) 360/f or
+    365/f in bases 2 and 3."""
     step, eom = 12 // f, dc._month_end(last)
     dc_sum = a_sum = dsc_sum = 0.0
     k = 0
@@ -24,7 +28,7 @@ def _odd_last(s, m, last, f, b):
         q0, q1 = dc.add_months(last, k * step, eom), dc.add_months(last, (k + 1) * step, eom)
         if q0 >= m:
             break
-        nl = (q1 - q0).days if b == 1 else (365.0 if b == 3 else 360.0) / f
+        nl = float(dc.days(q0, q1, b)) if not lo or b == 1 else _normal(q0, q1, f, b)
         end = min(q1, m)
         dc_sum += dc.days(q0, end, b) / nl
         if s > q0:
@@ -58,7 +62,7 @@ def _oddlprice(ctx, settle, maturity, last, rate, yld, redemption, freq, basis=N
     s, m, li, f, b, (r, y, red) = got
     if r < 0 or y < 0 or red <= 0:
         return ExcelError.NUM
-    dcs, acs, dscs = _odd_last(s, m, li, f, b)
+    dcs, acs, dscs = _odd_last(s, m, li, f, b, ctx.dialect == "libreoffice")
     cpn = 100.0 * r / f
     return c.result((red + dcs * cpn) / (1.0 + dscs * y / f) - acs * cpn)
 
@@ -71,7 +75,7 @@ def _oddlyield(ctx, settle, maturity, last, rate, pr, redemption, freq, basis=No
     s, m, li, f, b, (r, p, red) = got
     if r < 0 or p <= 0 or red <= 0:
         return ExcelError.NUM
-    dcs, acs, dscs = _odd_last(s, m, li, f, b)
+    dcs, acs, dscs = _odd_last(s, m, li, f, b, ctx.dialect == "libreoffice")
     cpn = 100.0 * r / f
     paid = p + acs * cpn
     try:
@@ -101,7 +105,7 @@ def oddf_price(s, m, issue, first, f, b, r, y, red) -> float:
         q0, q1 = q(k), q(k - 1)
         nl = _normal(q0, q1, f, b)
         start = max(issue, q0)
-        dc_sum += dc.days(start, q1, b) / nl
+        dc_sum += dc.days(start, q1, b) / nl if k == nc else 1.0  # a whole period counts 1
         if s > start:
             a_sum += dc.days(start, min(s, q1), b) / nl
     k = 0
@@ -109,7 +113,10 @@ def oddf_price(s, m, issue, first, f, b, r, y, red) -> float:
         k += 1
     nq = k  # whole quasi-coupon periods from its end to the first coupon
     e = _normal(q(k + 1), q(k), f, b)
-    dsc = dc.days(s, q(k), b) / e
+    if b in (2, 3):  # actual days to the next quasi-coupon date; else E - A
+        dsc = dc.days(s, q(k), b) / e
+    else:
+        dsc = (e - dc.days(q(k + 1), s, b)) / e
     n = dc.Schedule(first, m, f).n if first < m else 0  # coupons after the first one
     v = 1.0 + y / f
     cpn = 100.0 * r / f

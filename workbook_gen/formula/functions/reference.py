@@ -1,10 +1,12 @@
 """References themselves: ROW, COLUMN, ROWS, COLUMNS, AREAS, OFFSET and INDIRECT (volatile,
-and evaluated), ADDRESS, TRANSPOSE. A reference argument is a Range with ``.ref``."""
+and evaluated), ADDRESS, TRANSPOSE, FORMULATEXT, SHEET, SHEETS. A reference argument is a
+Range with ``.ref``."""
 
 from __future__ import annotations
 
 import re
 
+from workbook_gen.errors import WorkbookGenError
 from workbook_gen.formula.functions import coerce as c
 from workbook_gen.formula.functions.registry import register
 from workbook_gen.formula.values import Range, Ref
@@ -171,3 +173,95 @@ def _address(ctx, row, col, absolute=1.0, a1=True, sheet=_OMITTED):
 def _transpose(ctx, v):
     area = c.as_area(v)
     return Range.array_of(zip(*area.rows)) if area.rows else area
+
+
+# -- FORMULATEXT ---------------------------------------------------------------------------
+
+_HIDDEN_PREFIXES = ("_xlfn._xlws.", "_xlfn.", "_xlws.", "_xlpm.", "_xleta.")
+MAX_FORMULA = 8192  # characters of a formula (Excel's limit; FORMULATEXT: #N/A beyond)
+
+
+def display_text(stored: str) -> str:
+    """A formula as Excel shows it: the file's text without the prefixes of functions
+    newer than Excel 2007 (``_xlfn.``) and of LAMBDA parameters (``_xlpm.``); strings
+    and everything else as stored."""
+    from workbook_gen.formula.tokenizer import FUNC, NAME, tokenize
+    out = []
+    for token in tokenize(stored):
+        text = token.text
+        if token.kind in (FUNC, NAME):
+            for prefix in _HIDDEN_PREFIXES:
+                if text[:len(prefix)].lower() == prefix:
+                    text = text[len(prefix):]
+                    break
+        out.append(text)
+    return "".join(out)
+
+
+@register("FORMULATEXT", "lookup", 1, 1, "ref")
+def _formulatext(ctx, v):
+    """The formula of the (top-left) cell referred to, as text; #N/A for a cell without
+    a formula; a CSE array formula's in braces."""
+    if isinstance(v, ExcelError):
+        return v
+    if not isinstance(v, Range) or v.ref is None:
+        return ExcelError.VALUE
+    ask = getattr(ctx.resolver, "formula_text", None)
+    ref = v.ref
+    found = ask(ref.sheet, ref.row1, ref.col1) if ask is not None else None
+    if found is None:
+        return ExcelError.NA
+    stored, array = found
+    try:
+        text = "=" + display_text(stored.lstrip("="))
+    except WorkbookGenError:  # (a text the tokenizer refuses: as stored)
+        text = "=" + stored.lstrip("=")
+    if array:
+        text = "{" + text + "}"
+    return text if len(text) <= MAX_FORMULA else ExcelError.NA
+
+
+# -- SHEET, SHEETS -------------------------------------------------------------------------
+
+def _not_3d(args) -> bool:
+    """The calls evaluated: not of a 3-D reference (Sheet1:Sheet3!A1)."""
+    from workbook_gen.formula import ast
+    return not any(isinstance(a, ast.Sheets3D) for a in args)
+
+
+def _sheets_accepts(args) -> bool:
+    from workbook_gen.formula import ast
+    return all(isinstance(a, (ast.CellRef, ast.RangeRef, ast.Name, ast.StructRef))
+               for a in args)
+
+
+@register("SHEET", "info", 0, 1, "ref", accepts=_not_3d)
+def _sheet(ctx, v=None):
+    """The place of a sheet among all the workbook's sheets (chart sheets included):
+    of the calling cell's sheet, of a reference's, or of the sheet a text names (any
+    case); #N/A for a text naming no sheet and for a number (ironcalc tables.xlsx)."""
+    number = getattr(ctx.resolver, "sheet_number", None)
+    if number is None:
+        return ExcelError.NA
+    if v is None:
+        found = number(ctx.cell[0] if ctx.cell else None)
+    elif isinstance(v, ExcelError):
+        return v
+    elif isinstance(v, Range) and v.ref is not None:
+        found = number(v.ref.sheet or (ctx.cell[0] if ctx.cell else None))
+    elif isinstance(v, str):
+        found = number(v)
+    else:
+        return ExcelError.NA
+    return ExcelError.NA if found is None else float(found)
+
+
+@register("SHEETS", "info", 0, 1, "ref", accepts=_sheets_accepts)
+def _sheets(ctx, v=None):
+    """The number of sheets in the workbook (no argument) or in a reference (1)."""
+    if v is None:
+        count = getattr(ctx.resolver, "sheet_count", None)
+        return ExcelError.NA if count is None else float(count())
+    if isinstance(v, ExcelError):
+        return v
+    return 1.0 if isinstance(v, Range) and v.ref is not None else ExcelError.VALUE

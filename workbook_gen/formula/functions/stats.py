@@ -157,6 +157,29 @@ def _criterion_value(ctx, crit):
     return ctx.scalar(crit) if ctx is not None else ExcelError.VALUE
 
 
+_OPS = ("<=", ">=", "<>", "=", "<", ">")
+
+
+def _lo_number(v):
+    """A criterion as LibreOffice's, which has no boolean type: TRUE, "TRUE" are 1."""
+    if isinstance(v, bool):
+        return float(v)
+    if isinstance(v, str):
+        op = next((o for o in _OPS if v.startswith(o)), "")
+        body = v[len(op):].upper()
+        if body in ("TRUE", "FALSE"):
+            return float(body == "TRUE") if not op else op + ("1" if body == "TRUE" else "0")
+    return v
+
+
+def _lo_values(crit, values):
+    """LibreOffice 7.4 (measured: COUNTIF over {TRUE,1,"1"}) sees a boolean cell as its
+    number except under a plain text criterion (" 1" counts 1 and "1", not TRUE)."""
+    if isinstance(crit, str) and not crit.startswith(_OPS):
+        return values
+    return [float(v) if isinstance(v, bool) else v for v in values]
+
+
 def _matches(pairs, ctx=None) -> list[bool] | ExcelError:
     """Per cell of the first range, whether every (range, criterion) pair holds."""
     shape = None
@@ -167,10 +190,17 @@ def _matches(pairs, ctx=None) -> list[bool] | ExcelError:
             shape = area.shape
         elif area.shape != shape:
             return ExcelError.VALUE
-        pred = c.criterion(_criterion_value(ctx, crit))
+        crit = _criterion_value(ctx, crit)
+        values = area.flat()
+        if ctx is not None and ctx.dialect == "libreoffice":  # no boolean type: TRUE is 1
+            if isinstance(crit, ExcelError):  # an error criterion is the result (measured,
+                return crit                   # tests/differential.py)
+            crit = _lo_number(crit)
+            values = _lo_values(crit, values)
+        pred = c.criterion(crit)
         if isinstance(pred, ExcelError):
             return pred
-        hits = [pred(v) for v in area.flat()]
+        hits = [pred(v) for v in values]
         mask = hits if mask is None else [a and b for a, b in zip(mask, hits)]
     return mask
 

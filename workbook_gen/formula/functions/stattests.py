@@ -216,9 +216,14 @@ def _var(xs):
 
 @register("CHISQ.TEST", "stats", 2, 2, "range", aliases=("CHITEST",))
 def _chisq_test(ctx, actual, expected):
+    """Excel pairs areas of one size whatever their shapes, the degrees of freedom from
+    the actual values' shape (Mac Excel 16, formulas__test.xlsx STATISTICAL!R17: a 2x2
+    against a 4x1 is 9.66041305483331E-58, one degree); sizes that differ are #N/A.
+    LibreOffice 7.4 (measured): any other shape is #VALUE!."""
     a, b = c.as_area(actual), c.as_area(expected)
-    if a.shape != b.shape:
-        return ExcelError.NA
+    size = (a.shape[0] * a.shape[1], b.shape[0] * b.shape[1])
+    if a.shape != b.shape and (ctx.dialect == "libreoffice" or size[0] != size[1]):
+        return ExcelError.VALUE if ctx.dialect == "libreoffice" else ExcelError.NA
     rows, cols = a.shape
     if ctx.dialect == "excel":  # the actual values' errors first, then the expected ones'
         for area in (a, b):    # (Mac Excel 16, formulas__test.xlsx STATISTICAL!Y17, AD17)

@@ -7,7 +7,10 @@ Excel's documented rules:
   formula is left out (always for SUBTOTAL; for AGGREGATE with options 0-3), so that a
   grand total over a column of subtotals does not count twice;
 * hidden rows: left out by SUBTOTAL 101-111 and by AGGREGATE with options 1, 3, 5, 7
-  (hidden columns never are);
+  (hidden columns never are); rows a filter hid are left out by every SUBTOTAL ("ignores
+  any rows that are not included in the result of a filter, no matter which
+  function_num value you use"); AGGREGATE leaves them out only with the options that
+  leave out hidden rows (option 4 "ignore nothing"; LibreOffice likewise);
 * errors: AGGREGATE with options 2, 3, 6, 7 leaves error values out; otherwise the
   function meets them as usual (the first error is the result);
 * AGGREGATE's variances (7 STDEV.S, 8 STDEV.P, 10 VAR.S, 11 VAR.P) are Excel's one-pass
@@ -18,11 +21,10 @@ Excel's documented rules:
 * AGGREGATE 14-19 (LARGE, SMALL, PERCENTILE.INC, QUARTILE.INC, PERCENTILE.EXC,
   QUARTILE.EXC) take one array or reference and the k argument.
 
-What the layout is comes from the evaluation context's resolver (``hidden_rows(sheet)``
-and ``subtotal_cells(sheet)``); a resolver without them (a bare value table) hides
-nothing. Not modelled: SUBTOTAL 1-11 also leave out rows hidden by a filter (the file
-marks those rows hidden exactly as rows hidden by hand; which is which is in the sheet's
-autoFilter, not read).
+What the layout is comes from the evaluation context's resolver (``hidden_rows(sheet)``,
+``filtered_rows(sheet)``, the hidden rows below a filtering autoFilter's header:
+:mod:`workbook_gen.xlsx.filters`, and ``subtotal_cells(sheet)``); a resolver without
+them (a bare value table) hides nothing.
 """
 
 from __future__ import annotations
@@ -44,17 +46,19 @@ READS_LAYOUT = frozenset({"SUBTOTAL", "AGGREGATE",
                           "CHAR", "CODE"})  # (the workbook's character set: text.py)
 
 
-def _left_out(ctx, arg, hidden: bool, nested: bool, errors: bool):
-    """``arg`` with the cells to leave out made empty: rows hidden (``hidden``), cells
-    holding SUBTOTAL/AGGREGATE (``nested``) of a reference, error values (``errors``)."""
+def _left_out(ctx, arg, hidden: bool, nested: bool, errors: bool, filtered: bool = False):
+    """``arg`` with the cells to leave out made empty: rows hidden (``hidden``; else with
+    ``filtered`` the rows a filter hid), cells holding SUBTOTAL/AGGREGATE (``nested``) of a
+    reference, error values (``errors``)."""
     if not isinstance(arg, Range):
         return None if errors and isinstance(arg, ExcelError) else arg
     ref, resolver = arg.ref, ctx.resolver
     drop: set[tuple[int, int]] = set()
     if ref is not None and resolver is not None:
         n_rows, n_cols = arg.shape
-        if hidden and hasattr(resolver, "hidden_rows"):
-            rows = [r - ref.row1 for r in resolver.hidden_rows(ref.sheet)
+        rows_of = getattr(resolver, "hidden_rows" if hidden else "filtered_rows", None)
+        if rows_of is not None and (hidden or filtered):
+            rows = [r - ref.row1 for r in rows_of(ref.sheet)
                     if ref.row1 <= r <= ref.row2 and r - ref.row1 < n_rows]
             drop.update((i, j) for i in rows for j in range(n_cols))
         if nested and hasattr(resolver, "subtotal_cells"):
@@ -101,7 +105,7 @@ def _subtotal(ctx, which, *refs):
     name = _SUBTOTAL.get(k % 100) if k in _SUBTOTAL or k - 100 in _SUBTOTAL else None
     if name is None:
         return ExcelError.VALUE
-    refs = tuple(_left_out(ctx, r, k > 100, True, False) for r in refs)
+    refs = tuple(_left_out(ctx, r, k > 100, True, False, True) for r in refs)
     return REGISTRY[name].fn(ctx, *refs)
 
 
@@ -120,6 +124,9 @@ def _aggregate(ctx, which, options, *args):
             return ExcelError.VALUE
         data = _left_out(ctx, args[0], hidden, nested, errors)
         return REGISTRY[name].fn(ctx, data, c.scalar_of(args[1]))
+    if ctx.dialect == "excel" and any(isinstance(a, Range) and a.ref is None for a in args):
+        return ExcelError.VALUE  # Excel's reference form takes references only (LibreOffice
+        # also takes an array: AGGREGATE(9,6,A1:A3/(B1:B3="ok")) is 12 there, measured 7.4)
     args = tuple(_left_out(ctx, a, hidden, nested, errors) for a in args)
     if k in _ONE_PASS:
         return _one_pass(ctx, args, *_ONE_PASS[k])

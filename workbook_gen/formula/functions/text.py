@@ -8,7 +8,7 @@ import math
 import re
 
 from workbook_gen.formula.functions import coerce as c
-from workbook_gen.formula.functions.numformat import fixed_digits, format_value
+from workbook_gen.formula.functions.numfmt import fixed_digits, format_value
 from workbook_gen.formula.functions.registry import register
 from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
@@ -46,7 +46,8 @@ def _side(take_left: bool):
         for x in (t, k):
             if isinstance(x, ExcelError):
                 return x
-        if k < 0:
+        if k < 0 or (_libreoffice(ctx) and n not in (_ABSENT, None)
+                     and c.to_number(n) < 0):  # LibreOffice: -0.5 too (measured)
             return ExcelError.VALUE
         return t[:k] if take_left else (t[max(len(t) - k, 0):] if k else "")
     return fn
@@ -135,6 +136,10 @@ def _exact(ctx, a, b):
     return ts if isinstance(ts, ExcelError) else ts[0] == ts[1]
 
 
+def _libreoffice(ctx) -> bool:
+    return getattr(ctx, "dialect", ctx) == "libreoffice"
+
+
 def _find(case: bool):
     def fn(ctx, needle, hay, start=_ABSENT):
         ts = _texts(needle, hay)
@@ -144,7 +149,9 @@ def _find(case: bool):
         if isinstance(s, ExcelError):
             return s
         n, h = ts
-        if s < 1 or s > len(h) + 1:
+        # Microsoft: a start past the text's length is #VALUE! (SEARCH("*","") too; an
+        # empty find_text matches at the start, even just past the end)
+        if s < 1 or s > len(h) + 1 or (not n and _libreoffice(ctx)) or (n and s > len(h)):
             return ExcelError.VALUE
         if case:
             i = h.find(n, s - 1)
@@ -166,7 +173,7 @@ def _substitute(ctx, v, old, new, which=None):
     if isinstance(ts, ExcelError):
         return ts
     t, o, n = ts
-    if not o:
+    if not o and (which is None or not _libreoffice(ctx)):
         return t
     if which is None:
         return t.replace(o, n)
@@ -175,6 +182,8 @@ def _substitute(ctx, v, old, new, which=None):
         return k
     if k < 1:
         return ExcelError.VALUE
+    if not o:  # (LibreOffice checks the instance first)
+        return t
     i = -1
     for _ in range(k):
         i = t.find(o, i + 1)
@@ -220,7 +229,7 @@ def _code(ctx, v):
     if isinstance(t, ExcelError):
         return t
     if not t:
-        return ExcelError.VALUE
+        return 0.0 if _libreoffice(ctx) else ExcelError.VALUE
     try:
         return float(t[0].encode(_charset(ctx))[0])
     except UnicodeEncodeError:

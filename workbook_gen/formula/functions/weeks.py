@@ -10,6 +10,7 @@ from workbook_gen.formula.functions.date import _date, _ymd_date, from_serial, s
     to_serial
 from workbook_gen.formula.functions import coerce as c
 from workbook_gen.formula.functions.registry import register
+from workbook_gen.formula.functions.serials import serial_1900
 from workbook_gen.xlerror import ExcelError
 
 
@@ -43,7 +44,7 @@ def _isoweeknum(ctx, v):
     if isinstance(n, ExcelError):
         return n
     n = int(n)
-    if n >= 61:
+    if serial_1900(n) >= 61:
         return float(_ymd_date(from_serial(n)).isocalendar()[1])
     # before the 29 February 1900 that never was, Excel's weekdays are a day early (serial
     # 1 is a Sunday, as WEEKDAY says): 1900-01-01 is in week 52 of 1899, 1900-01-08 in week

@@ -4,14 +4,15 @@ The weekend is a code (1 = Saturday and Sunday ... 7 = Friday and Saturday, 11 =
 only ... 17 = Saturday only) or seven characters of 0/1 from Monday to Sunday, 1 meaning
 a day off (another code is #NUM!; other text #VALUE!; "1111111" is #VALUE! for
 WORKDAY.INTL, which could never end, and counts no day in NETWORKDAYS.INTL). Serial numbers count weekdays
-continuously (serial 1 is a Sunday, as in Excel)."""
+continuously (serial 1 is a Sunday, as in Excel; :mod:`.serials`)."""
 
 from __future__ import annotations
 
 import math
 
 from workbook_gen.formula.functions import coerce as c
-from workbook_gen.formula.functions.date import MAX_SERIAL, _holidays, serial_arg
+from workbook_gen.formula.functions.date import _holidays, serial_arg
+from workbook_gen.formula.functions.serials import max_serial, weekday
 from workbook_gen.formula.functions.registry import register
 from workbook_gen.xlerror import ExcelError
 
@@ -32,11 +33,6 @@ def weekend_days(v, all_allowed: bool = False) -> frozenset[int] | ExcelError:
         return x
     days = _CODES.get(math.trunc(x))
     return ExcelError.NUM if days is None else frozenset(days)
-
-
-def weekday(n: int) -> int:
-    """Monday 0 ... Sunday 6 of a serial number."""
-    return (n + 5) % 7
 
 
 def _args(weekend, holidays, all_allowed=False):
@@ -74,7 +70,7 @@ def _workday_intl(ctx, start, days, weekend=None, holidays=None):
     step = 1 if k > 0 else -1
     while k:
         d += step
-        if d < 1 or d > MAX_SERIAL:
+        if d < 1 or d > max_serial():
             return ExcelError.NUM
         if weekday(d) not in off and d not in hol:
             k -= step
