@@ -381,3 +381,42 @@ def test_data_tables_of_each_layout_agree_with_libreoffice(tmp_path, libreoffice
     assert report.not_checked == {} and report.mismatches == []
     # (a table counts once, at its anchor, as the file stores it; D1 E1 D3 E3 G9 K12)
     assert (report.formula_cells, report.cells_checked) == (3 + 6, 3 + 6)
+
+
+# ------------------------------------------------------------------------ real-time data
+
+def test_rtd_agrees_with_excel_from_the_volatile_dependencies():
+    # A2 =RTD(1223,XL11, 1) cached #N/A; the file keeps the call ("1223": "", "1") = #N/A
+    report = audit(CORPUS / "openxmlsdk__VolTypes.xlsx")
+    assert (report.formula_cells, report.cells_checked, report.mismatches,
+            report.not_checked) == (1, 1, [], {})
+
+
+def _rtd_book(tmp_path: Path, sheet: str) -> Path:
+    """A workbook whose RTD server "quotes.feed" last sent ("", "IBM", "Last") = 143.5 and
+    ("", "IBM", "Name") = "IBM Corp"."""
+    vol = (f'<volTypes xmlns="{MAIN}"><volType type="realTimeData"><main first="quotes.feed">'
+           '<tp><v>143.5</v><stp/><stp>IBM</stp><stp>Last</stp><tr r="A1" s="1"/></tp>'
+           '<tp t="s"><v>IBM Corp</v><stp/><stp>IBM</stp><stp>Name</stp><tr r="B1" s="1"/>'
+           "</tp></main></volType></volTypes>")
+    return _package(tmp_path / "rtd.xlsx", {"S": sheet},
+                    extra={"xl/volatileDependencies.xml": vol},
+                    extra_rels=f'<Relationship Id="rId7" Type="{REL}/volatileDependencies" '
+                               'Target="volatileDependencies.xml"/>')
+
+
+def test_rtd_on_a_small_cache_and_calls_it_does_not_hold(tmp_path):
+    sheet = ('<row r="1">' + _f("A1", 'RTD("quotes.feed",,"IBM","Last")*2', "287")
+             + _f("B1", 'RTD("Quotes.Feed","","IBM","Name")', "IBM Corp", "str")
+             + _f("C1", 'RTD("quotes.feed",,"IBM","Last")+1', "150")  # Excel: 144.5
+             + _f("D1", 'RTD("quotes.feed",,"MSFT","Last")', "410")
+             + _f("E1", 'RTD("other.feed",,"IBM","Last")', "1") + "</row>")
+    report = audit(_rtd_book(tmp_path, sheet))
+    assert [(m.cell, m.cached, m.recomputed) for m in report.mismatches] == [
+        ("S!C1", 150.0, 144.5)]
+    assert report.not_checked == {
+        "S!D1": "RTD: the call is not in the file's real-time data cache: 'quotes.feed', '', "
+                "'MSFT', 'Last'",
+        "S!E1": "RTD: the call is not in the file's real-time data cache: 'other.feed', '', "
+                "'IBM', 'Last'"}
+    assert report.cells_checked == 3
