@@ -332,3 +332,91 @@ def test_a_data_table_whose_chain_calls_rand_is_not_checked(tmp_path):
     report = audit(_package(tmp_path / "t.xlsx", {"S": rows}))
     assert report.not_checked["S!C4"] == ("data table: its formula reads a cell calling "
                                           "RAND: S!C3")
+
+
+def test_data_tables_of_each_layout_agree_with_libreoffice(tmp_path, libreoffice):
+    """LibreOffice computes <f t="dataTable"> (as MULTIPLE.OPERATIONS): a column-input, a
+    row-input and a two-dimensional table through a chain of formulas, written with
+    cached 0s, recalculated by LibreOffice; its values, cached in the same workbook, must
+    be what the audit recomputes."""
+    import openpyxl
+    from workbook_gen.engines.libreoffice import recalculate
+
+    def book(values: dict[str, float]) -> str:
+        v = lambda ref: values.get(ref, 0)  # noqa: E731
+        table = lambda ref, **a: (f'<c r="{ref}"><f t="dataTable" ref="{a["area"]}" '  # noqa
+                                  f'dt2D="{a.get("d2", 0)}" dtr="{a.get("dtr", 0)}" '
+                                  f'r1="{a["r1"]}"{a.get("r2", "")}/><v>{v(ref)}</v></c>')
+        plain = lambda ref: f'<c r="{ref}"><v>{v(ref)}</v></c>'  # noqa: E731
+        return ('<row r="1"><c r="B1"><v>0.5</v></c><c r="C1"><v>2</v></c>'
+                + _f("D1", "B1*C1", "1") + _f("E1", "D1^2+C1", "3") + "</row>"
+                # column input B1 (values A4:A6), formulas D3 (=D1+1) and E3 (=E1)
+                + '<row r="3">' + _f("D3", "D1+1", "2") + _f("E3", "E1", "3") + "</row>"
+                + '<row r="4"><c r="C4"><v>1</v></c>'
+                + table("D4", area="D4:E6", r1="B1") + plain("E4") + "</row>"
+                + '<row r="5"><c r="C5"><v>2</v></c>' + plain("D5") + plain("E5") + "</row>"
+                + '<row r="6"><c r="C6"><v>-3</v></c>' + plain("D6") + plain("E6") + "</row>"
+                # row input C1 (values H8:J8), formula G9 (=E1*10)
+                + '<row r="8"><c r="H8"><v>1</v></c><c r="I8"><v>4</v></c><c r="J8"><v>9</v>'
+                "</c></row>"
+                + '<row r="9">' + _f("G9", "E1*10", "30")
+                + table("H9", area="H9:J9", dtr=1, r1="C1") + plain("I9") + plain("J9")
+                + "</row>"
+                # two-dimensional: row input C1 (L12:M12), column input B1 (K13:K14)
+                + '<row r="12">' + _f("K12", "E1-D1", "2") + '<c r="L12"><v>3</v></c>'
+                '<c r="M12"><v>5</v></c></row>'
+                + '<row r="13"><c r="K13"><v>7</v></c>'
+                + table("L13", area="L13:M14", d2=1, dtr=1, r1="C1", r2=' r2="B1"')
+                + plain("M13") + "</row>"
+                + '<row r="14"><c r="K14"><v>0.25</v></c>' + plain("L14") + plain("M14")
+                + "</row>")
+
+    source = _package(tmp_path / "tables.xlsx", {"S": book({})})
+    sheet = openpyxl.load_workbook(recalculate(source, tmp_path / "lo"), data_only=True).active
+    cells = ["D4", "E4", "D5", "E5", "D6", "E6", "H9", "I9", "J9", "L13", "M13", "L14", "M14"]
+    theirs = {ref: sheet[ref].value for ref in cells}
+    assert all(isinstance(x, (int, float)) for x in theirs.values()), theirs
+    assert theirs["D4"] == 1 * 2 + 1  # (LibreOffice really computed them: not the 0s)
+    report = audit(_package(tmp_path / "cached.xlsx", {"S": book(theirs)}))
+    assert report.not_checked == {} and report.mismatches == []
+    # (a table counts once, at its anchor, as the file stores it; D1 E1 D3 E3 G9 K12)
+    assert (report.formula_cells, report.cells_checked) == (3 + 6, 3 + 6)
+
+
+# ------------------------------------------------------------------------ real-time data
+
+def test_rtd_agrees_with_excel_from_the_volatile_dependencies():
+    # A2 =RTD(1223,XL11, 1) cached #N/A; the file keeps the call ("1223": "", "1") = #N/A
+    report = audit(CORPUS / "openxmlsdk__VolTypes.xlsx")
+    assert (report.formula_cells, report.cells_checked, report.mismatches,
+            report.not_checked) == (1, 1, [], {})
+
+
+def _rtd_book(tmp_path: Path, sheet: str) -> Path:
+    """A workbook whose RTD server "quotes.feed" last sent ("", "IBM", "Last") = 143.5 and
+    ("", "IBM", "Name") = "IBM Corp"."""
+    vol = (f'<volTypes xmlns="{MAIN}"><volType type="realTimeData"><main first="quotes.feed">'
+           '<tp><v>143.5</v><stp/><stp>IBM</stp><stp>Last</stp><tr r="A1" s="1"/></tp>'
+           '<tp t="s"><v>IBM Corp</v><stp/><stp>IBM</stp><stp>Name</stp><tr r="B1" s="1"/>'
+           "</tp></main></volType></volTypes>")
+    return _package(tmp_path / "rtd.xlsx", {"S": sheet},
+                    extra={"xl/volatileDependencies.xml": vol},
+                    extra_rels=f'<Relationship Id="rId7" Type="{REL}/volatileDependencies" '
+                               'Target="volatileDependencies.xml"/>')
+
+
+def test_rtd_on_a_small_cache_and_calls_it_does_not_hold(tmp_path):
+    sheet = ('<row r="1">' + _f("A1", 'RTD("quotes.feed",,"IBM","Last")*2', "287")
+             + _f("B1", 'RTD("Quotes.Feed","","IBM","Name")', "IBM Corp", "str")
+             + _f("C1", 'RTD("quotes.feed",,"IBM","Last")+1', "150")  # Excel: 144.5
+             + _f("D1", 'RTD("quotes.feed",,"MSFT","Last")', "410")
+             + _f("E1", 'RTD("other.feed",,"IBM","Last")', "1") + "</row>")
+    report = audit(_rtd_book(tmp_path, sheet))
+    assert [(m.cell, m.cached, m.recomputed) for m in report.mismatches] == [
+        ("S!C1", 150.0, 144.5)]
+    assert report.not_checked == {
+        "S!D1": "RTD: the call is not in the file's real-time data cache: 'quotes.feed', '', "
+                "'MSFT', 'Last'",
+        "S!E1": "RTD: the call is not in the file's real-time data cache: 'other.feed', '', "
+                "'IBM', 'Last'"}
+    assert report.cells_checked == 3

@@ -93,7 +93,8 @@ class AuditInputs:
                         charset="mac_roman" if "macintosh" in (self.book.application or
                                                                "").lower() else "cp1252",
                         date1904=self.book.date1904,
-                        olap=self.book.olap, external=self.book.external_links)
+                        olap=self.book.olap, external=self.book.external_links,
+                        topics=self.book.topics)
 
     def _all_sheets(self) -> list[str]:
         """Every sheet's name in the workbook's order: the worksheets at their positions

@@ -15,7 +15,7 @@ MAX_LISTED = 20  # disagreeing cells listed per column in the terminal (--verbos
 WORST = 5  # disagreeing cells shown in the default summary
 
 # reasons of what the file only caches (a cube, another workbook, a data table)
-_CACHED_OUTSIDE = ("CUBE", "external reference", "external name", "data table")
+_CACHED_OUTSIDE = ("CUBE", "RTD:", "external reference", "external name", "data table")
 
 
 @dataclass

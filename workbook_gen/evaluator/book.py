@@ -58,6 +58,7 @@ class BookInfo:
         return name.casefold() in self._names[1]
     # the cube functions' cache of each connection (xlsx.olap), by case-folded name
     olap: dict = field(default_factory=dict)
+    topics: dict = field(default_factory=dict)  # the RTD calls' last values (xlsx.topics)
     # the links to other workbooks with their cached cells (xlsx.model.ExternalLink)
     external: list = field(default_factory=list)
 

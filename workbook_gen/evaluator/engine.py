@@ -195,7 +195,7 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
     store.unreadable = {s.lower() for s in book.unreadable}
     store.hidden = {store.sheet(s): rows for s, rows in book.hidden_rows.items()}
     store.filtered = {store.sheet(s): rows for s, rows in book.filtered_rows.items()}
-    store.charset, store.olap = book.charset, book.olap
+    store.charset, store.olap, store.topics = book.charset, book.olap, book.topics
     store.external = ExternalBooks(book.external)
     store.stored = stored
     store.all_sheets = list(book.all_sheets or book.sheets)

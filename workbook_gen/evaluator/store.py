@@ -88,6 +88,7 @@ class Store:
         self.charset = "cp1252"  # CHAR and CODE's character set (BookInfo.charset)
         self.all_sheets: list[str] = list(self.order)  # every sheet in order (SHEET, SHEETS)
         self.olap: dict = {}  # the cube functions' caches (BookInfo.olap)
+        self.topics: dict = {}  # the RTD calls' last values (BookInfo.topics)
         self.external = ExternalBooks()  # what the file caches of other workbooks
         self.stored = False  # formulas as a file stores them (availability.unavailable)
         self.formula_texts: Mapping[tuple[str, int, int], str] = {}  # for subtotal_cells
@@ -466,6 +467,10 @@ class SheetResolver:
     def olap(self, connection: str):
         """The cube functions' cache of a connection (xlsx.olap.OlapCache), or None."""
         return self.store.olap.get(connection.casefold())
+
+    def topics(self, progid: str):
+        """{(server, topics...): last value} of an RTD server's calls, or None."""
+        return self.store.topics.get(progid.casefold())
 
     def subtotal_cells(self, sheet) -> list[tuple[int, int]]:
         """(row, col) of a sheet's cells holding SUBTOTAL or AGGREGATE (left out by them)."""

@@ -232,6 +232,8 @@ class Workbook:
     application: str | None = None  # docProps/app.xml's Application: the program that saved it
     # the cube functions' cache of each connection (xlsx.olap), by case-folded name
     olap: dict = field(default_factory=dict)
+    # the RTD calls' last values (xlsx.topics): ProgID -> (server, topics...) -> value
+    topics: dict = field(default_factory=dict)
 
     @property
     def sheet_names(self) -> list[str]:

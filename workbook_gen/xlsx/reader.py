@@ -24,6 +24,7 @@ from workbook_gen.xlsx.filters import sheet_filter, table_filter
 from workbook_gen.xlsx.limits import MAX_CELLS, MAX_RATIO, MAX_UNCOMPRESSED, Package
 from workbook_gen.xlsx.model import ExternalLink, Sheet, TableDef, Workbook
 from workbook_gen.xlsx.olap import read_olap
+from workbook_gen.xlsx.topics import read_topics
 from workbook_gen.xlsx.sheetdata import _LOCAL, _text_of, read_sheet
 
 log = logging.getLogger(__name__)
@@ -100,6 +101,7 @@ def _read(pkg: Package, path: str, max_cells: int, ready, prepare) -> Workbook:
             part = rels.get(_rid(el), (None, None))[1]
             book.external_links.append(_external_link(pkg, n + 1, part))
         book.olap = read_olap(pkg, root, rels, _rid)
+        book.topics = read_topics(pkg, rels)
         book.vba_project = next((p for k, p in rels.values() if k == "vbaProject" and p
                                  and not p.startswith("external:")), None)
         sst_part = next((p for k, p in rels.values() if k == "sharedStrings" and p

@@ -21,7 +21,7 @@ from workbook_gen.formula.functions import (  # noqa: F401  (each module registe
     lambdas, dynamic, arrayops, regex,  # (helper corpb: LAMBDA, dynamic arrays, regex)
     bonds, oddbonds,  # (helper corpb3: securities, day-count bases in daycount.py)
     weeks, spill, randarray,
-    cube,  # (answered from the file's OLAP cache)
+    cube, rtd,  # (answered from the caches the file keeps: OLAP, real-time data)
 )
 from workbook_gen.formula.functions.dialect import (
     LIBREOFFICE_DIFFERENCES, Difference, dialect_of, libreoffice_error, libreoffice_result,
@@ -38,7 +38,7 @@ SUPPORTED = frozenset(REGISTRY)
 VOLATILE = frozenset(n for n, f in REGISTRY.items() if f.volatile)
 LAZY = frozenset(n for n, f in REGISTRY.items() if f.lazy)
 # functions whose value is read from a cache the file keeps of something outside it
-CACHED_OUTSIDE = cube.FUNCTIONS
+CACHED_OUTSIDE = cube.FUNCTIONS | rtd.FUNCTIONS
 
 __all__ = ["REGISTRY", "SUPPORTED", "VOLATILE", "LAZY", "Context", "Function", "RowDependent",
            "Unanswered",
