@@ -25,6 +25,8 @@ CASES = [
     ("ironcalc__MMULT.xlsx", ("MMULT",), 20),
     ("ironcalc__link_test.xlsx", ("HYPERLINK",), 1),
     ("formulas__test.xlsx", ("CHISQ.TEST", "CHITEST", "BETA.INV", "BETAINV"), 20),
+    ("formulas__test.xlsx", ("PPMT", "IPMT"), 20),
+    ("sheetjs__formula_stress_test.xlsx", ("PPMT", "IPMT"), 2),
     # XLOOKUP mapped over its lookup value and modes, its arrays whole; a mode rounded down
     ("formulas__test.xlsx", ("XLOOKUP", "XMATCH"), 200),
     # XNPV's rate: FINANCIAL!S56:Z56 (its array formulas and its XNPV at the XIRR of R54,
