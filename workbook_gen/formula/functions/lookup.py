@@ -199,8 +199,9 @@ def _vector(area: Range) -> list | None:
 
 @register("MATCH", "lookup", 2, 3, ("scalar", "range", "scalar"))
 def _match(ctx, lookup, area, kind=1.0):
-    if isinstance(lookup, ExcelError):
-        return lookup
+    for v in (lookup, area):  # an error for the array (#REF!: a deleted range) is that error
+        if isinstance(v, ExcelError):
+            return v
     kind = c.to_number(kind)
     if isinstance(kind, ExcelError):
         return kind
@@ -293,8 +294,9 @@ def _hlookup(ctx, lookup, table, row, approx=None):
 
 @register("LOOKUP", "lookup", 2, 3, ("scalar", "range"))
 def _lookup(ctx, lookup, where, result=None):
-    if isinstance(lookup, ExcelError):
-        return lookup
+    for v in (lookup, where, result):  # as MATCH
+        if isinstance(v, ExcelError):
+            return v
     area = c.as_area(where)
     nrows, ncols = area.shape
     if result is None:
@@ -372,8 +374,9 @@ def _modes(match_mode, search_mode):
 
 @register("XMATCH", "lookup", 2, 4, ("scalar", "range", "scalar"))
 def _xmatch(ctx, lookup, where, match_mode=0.0, search_mode=1.0):
-    if isinstance(lookup, ExcelError):
-        return lookup
+    for v in (lookup, where):
+        if isinstance(v, ExcelError):
+            return v
     modes = _modes(match_mode, search_mode)
     if isinstance(modes, ExcelError):
         return modes
@@ -396,7 +399,11 @@ def _xlookup(ctx, lookup, where, result, if_not_found=None, match_mode=None,
                    ctx.scalar(search_mode()) if search_mode else 1.0)
     if isinstance(modes, ExcelError):
         return modes
-    area, out = c.as_area(where()), c.as_area(result())
+    area, out = where(), result()
+    for v in (area, out):  # a #REF! for an array (a deleted range) is that error
+        if isinstance(v, ExcelError):
+            return v
+    area, out = c.as_area(area), c.as_area(out)
     values = _vector(area)
     if values is None:
         return ExcelError.VALUE
