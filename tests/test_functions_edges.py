@@ -25,6 +25,8 @@ CASES = [
     ("ironcalc__MMULT.xlsx", ("MMULT",), 20),
     ("ironcalc__link_test.xlsx", ("HYPERLINK",), 1),
     ("formulas__test.xlsx", ("CHISQ.TEST", "CHITEST", "BETA.INV", "BETAINV"), 20),
+    ("formulas__test.xlsx", ("PPMT", "IPMT"), 20),
+    ("sheetjs__formula_stress_test.xlsx", ("PPMT", "IPMT"), 2),
     # XLOOKUP mapped over its lookup value and modes, its arrays whole; a mode rounded down
     ("formulas__test.xlsx", ("XLOOKUP", "XMATCH"), 200),
     # XNPV's rate: FINANCIAL!S56:Z56 (its array formulas and its XNPV at the XIRR of R54,
@@ -90,3 +92,21 @@ def test_xnpv_sums_in_order_as_excel():
     values["B11"] = inputs.cached[("Finance", 11, 2)]
     got = evaluate(parse("=XNPV(B11,E10:H10,E11:H11)"), DictResolver(values), dialect="excel")
     assert got == inputs.cached[("Finance", 12, 2)], got
+
+
+# Microsoft's function pages: SORT's sort_index and sort_order are optional (1 and
+# ascending when omitted, also between commas); a lookup over an error for its array
+# gives that error (#REF!: a deleted range), not "not found"
+DOCUMENTED = [
+    ("INDEX(SORT({3;1;2},,-1),1)", 3.0), ("INDEX(SORT({3;1;2},,-1),3)", 1.0),
+    ("INDEX(SORT({3,1;1,5;2,0},,),1,1)", 1.0), ("INDEX(SORTBY({3;1;2},{3;1;2},),3)", 3.0),
+    ("XLOOKUP(1,#REF!,{1})", "#REF!"), ("XLOOKUP(1,{1,2},#REF!)", "#REF!"),
+    ("XMATCH(1,#REF!)", "#REF!"), ("MATCH(1,#REF!,0)", "#REF!"), ("LOOKUP(1,#REF!)", "#REF!"),
+]
+
+
+@pytest.mark.parametrize("formula,expected", DOCUMENTED, ids=[d[0] for d in DOCUMENTED])
+def test_documented_defaults_and_errors(formula, expected):
+    from workbook_gen.formula import DictResolver, evaluate, parse
+    got = evaluate(parse("=" + formula), DictResolver({}), dialect="excel")
+    assert (got.value if hasattr(got, "value") and isinstance(expected, str) else got) == expected

@@ -190,6 +190,8 @@ FINANCE = [
     # a rate below -1 (Excel's cached values in test_functions_edges.py; at -1 Excel's #NUM!
     # is LibreOffice's -0), a negative growth to a fractional power
     "PMT(-3,5,100,300,1)", "PMT(-3,5,100)", "PMT(-1,1,-100)", "PMT(-2,2.5,100)",
+    # PMT - IPMT cancelling to 1E-09 of its terms (Excel's exact digits: test_functions_edges)
+    "PPMT(1,3,33,10000,1)", "PPMT(0.1/12,5,24,2000,100,1)", "PPMT(0.2,4,4,-300,10,1)",
     # a rate of 0 or less (Excel's #NUM!: test_functions_edges.py)
     "XNPV(-0.1,{-10,1,5},{1,99,55})", "XNPV(0,{-10,1,5},{1,99,55})", "XNPV(-1,{-10,1,5},{1,99,55})",
 ]

@@ -102,12 +102,13 @@ def _single(v):
     return v
 
 
-@register("SORT", "lookup", 1, 4, "range")
+@register("SORT", "lookup", 1, 4, "range", omitted=True)
 def _sort(ctx, array, index=OMITTED, order=OMITTED, by_col=OMITTED):
+    """An omitted option (SORT(A1:A9,,-1)) takes its default; an empty cell is 0."""
     rows = _grid(array)
     if isinstance(rows, ExcelError):
         return rows
-    index, order, by_col = _single(index), _single(order), _single(by_col)
+    index, order, by_col = (OMITTED if v is None else _single(v) for v in (index, order, by_col))
     k = _int(index, 1)
     o = _int(order, 1)
     flag = False if by_col in (OMITTED, None) else c.to_bool(by_col)
@@ -121,7 +122,7 @@ def _sort(ctx, array, index=OMITTED, order=OMITTED, by_col=OMITTED):
     return _out([list(r) for r in zip(*ordered)] if flag else ordered)
 
 
-@register("SORTBY", "lookup", 2, 254, "range")
+@register("SORTBY", "lookup", 2, 254, "range", omitted=True)
 def _sortby(ctx, array, *by):
     rows = _grid(array)
     if isinstance(rows, ExcelError):
@@ -129,7 +130,8 @@ def _sortby(ctx, array, *by):
     keys, orders = [], []
     for i in range(0, len(by), 2):
         key = _grid(by[i])
-        order = _int(_single(by[i + 1]) if i + 1 < len(by) else OMITTED, 1)
+        order = _int(_single(by[i + 1]) if i + 1 < len(by) and by[i + 1] is not None
+                     else OMITTED, 1)
         for v in (key, order):
             if isinstance(v, ExcelError):
                 return v

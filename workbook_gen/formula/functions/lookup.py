@@ -9,8 +9,6 @@ Excel's results on pycel's lookup.xlsx show).
 
 from __future__ import annotations
 
-import math
-
 from workbook_gen.formula.functions import coerce as c
 from workbook_gen.formula.functions.dialect import exact_lookup
 from workbook_gen.formula.functions.reference import union_area
@@ -200,8 +198,8 @@ def _vector(area: Range) -> list | None:
 
 @register("MATCH", "lookup", 2, 3, ("scalar", "range", "scalar"))
 def _match(ctx, lookup, area, kind=1.0):
-    if isinstance(lookup, ExcelError):
-        return lookup
+    if (e := c.first_error((lookup, area))) is not None:  # an array's #REF! too
+        return e
     kind = c.to_number(kind)
     if isinstance(kind, ExcelError):
         return kind
@@ -296,8 +294,8 @@ def _hlookup(ctx, lookup, table, row, approx=None):
 
 @register("LOOKUP", "lookup", 2, 3, ("scalar", "range"))
 def _lookup(ctx, lookup, where, result=None):
-    if isinstance(lookup, ExcelError):
-        return lookup
+    if (e := c.first_error((lookup, where, result))) is not None:
+        return e
     area = c.as_area(where)
     nrows, ncols = area.shape
     if result is None:
@@ -366,8 +364,7 @@ def _modes(match_mode, search_mode):
     for x in (m, s):
         if isinstance(x, ExcelError):
             return x
-    m, s = math.floor(m), math.floor(s)  # rounded down: a search mode of -1.1 is -2 (Mac
-    # Excel 16, formulas__test.xlsx LOOKUP!AH162:AW162 as AH166:AW166)
+    m, s = int(m // 1), int(s // 1)  # down: -1.1 is -2 (Mac Excel 16, formulas__test LOOKUP!AH162)
     if m not in (-1, 0, 1, 2, 3) or s not in (-2, -1, 1, 2) or (m >= 2 and s in (-2, 2)):
         return ExcelError.VALUE  # (wildcards or a regex with a binary search: #VALUE!)
     return m, s
@@ -375,8 +372,8 @@ def _modes(match_mode, search_mode):
 
 @register("XMATCH", "lookup", 2, 4, ("scalar", "range", "scalar"))
 def _xmatch(ctx, lookup, where, match_mode=0.0, search_mode=1.0):
-    if isinstance(lookup, ExcelError):
-        return lookup
+    if (e := c.first_error((lookup, where))) is not None:
+        return e
     modes = _modes(match_mode, search_mode)
     if isinstance(modes, ExcelError):
         return modes
@@ -399,7 +396,10 @@ def _xlookup(ctx, lookup, where, result, if_not_found=None, match_mode=None,
                    ctx.scalar(search_mode()) if search_mode else 1.0)
     if isinstance(modes, ExcelError):
         return modes
-    area, out = c.as_area(where()), c.as_area(result())
+    area, out = where(), result()
+    if (e := c.first_error((area, out))) is not None:  # a #REF! for an array
+        return e
+    area, out = c.as_area(area), c.as_area(out)
     values = _vector(area)
     if values is None:
         return ExcelError.VALUE
