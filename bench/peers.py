@@ -16,9 +16,9 @@ with a per-file timeout (a hang or a crash costs that engine that file only):
 
 One rule judges every engine (``reproduces``): numbers within a relative 1e-9 (absolute
 1e-12 near zero), errors, text and booleans equal, an empty text equal to an empty
-cell. A cell an engine could not compute (the file failed or timed out, no value, an
-error that is not one of Excel's such as #N/IMPL!, or #NAME? where the cached value is
-not: a function it lacks) is "not computed".
+cell. A cell an engine could not compute (the file failed or timed out, no value or an empty
+one, an error that is not one of Excel's such as #N/IMPL!, or #NAME? where the cached
+value is not: a function it lacks) is "not computed".
 
     python bench/peers.py [--limit N] [--timeout 180] [--engines ours,formualizer,...]
                           [--json docs/bench/peers.json] [FILE ...]
@@ -94,8 +94,8 @@ def reproduces(cached, value) -> bool:
 
 def verdict(cached, value) -> str:
     """"r" (reproduces), "c" (contradicts) or "n" (not computed)."""
-    if value == NOT_COMPUTED:
-        return "n"
+    if value == NOT_COMPUTED or (value is None and cached not in (None, "")):
+        return "n"  # no value: a formula always has one (formualizer's unloaded sheets)
     if isinstance(value, dict) and "error" in value:
         error = value["error"]
         if error not in EXCEL_ERRORS:
