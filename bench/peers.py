@@ -190,13 +190,31 @@ def ironcalc_runner(path: str, cells: list) -> list:
 
 
 def libreoffice_runner(path: str, cells: list, timeout: float) -> list:
-    from workbook_gen.engines.libreoffice import recalculated_values
-    values = recalculated_values(path, timeout=timeout)
-    out = []
-    for sheet, _, _, name, _ in cells:
-        ref = name.rsplit("!", 1)[1]
-        found = values.get(sheet, {})
-        out.append(encode(found[ref]) if ref in found else NOT_COMPUTED)
+    """LibreOffice's values of ``cells`` in its recalculated copy, read by position: the
+    cells an array formula fills are plain values there, not formulas."""
+    import openpyxl
+    from workbook_gen.engines.libreoffice import _cell_value, recalculate
+    wanted: dict[str, dict[tuple[int, int], int]] = {}
+    for i, (sheet, row, col, _, _) in enumerate(cells):
+        wanted.setdefault(sheet, {})[(row, col)] = i
+    out: list = [NOT_COMPUTED] * len(cells)
+    with tempfile.TemporaryDirectory(prefix="workbook-gen-peers-lo-") as tmp:
+        book = openpyxl.load_workbook(recalculate(path, tmp, timeout=timeout),
+                                      read_only=True, data_only=True)
+        book._date_formats, book._timedelta_formats = set(), set()  # numbers stay numbers
+        try:
+            for ws in book.worksheets:
+                here = wanted.get(ws.title)
+                if not here:
+                    continue
+                last = max(r for r, _ in here)
+                for row in ws.iter_rows(max_row=last):
+                    for cell in row:
+                        i = here.get((getattr(cell, "row", None), getattr(cell, "column", None)))
+                        if i is not None:
+                            out[i] = encode(_cell_value(cell.value, cell.data_type, book.epoch))
+        finally:
+            book.close()
     return out
 
 
