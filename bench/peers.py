@@ -16,9 +16,9 @@ with a per-file timeout (a hang or a crash costs that engine that file only):
 
 One rule judges every engine (``reproduces``): numbers within a relative 1e-9 (absolute
 1e-12 near zero), errors, text and booleans equal, an empty text equal to an empty
-cell. A cell an engine could not compute (the file failed or timed out, no value, an
-error that is not one of Excel's such as #N/IMPL!, or #NAME? where the cached value is
-not: a function it lacks) is "not computed".
+cell. A cell an engine could not compute (the file failed or timed out, no value or an empty
+one, an error that is not one of Excel's such as #N/IMPL!, or #NAME? where the cached
+value is not: a function it lacks) is "not computed".
 
     python bench/peers.py [--limit N] [--timeout 180] [--engines ours,formualizer,...]
                           [--json docs/bench/peers.json] [FILE ...]
@@ -94,8 +94,8 @@ def reproduces(cached, value) -> bool:
 
 def verdict(cached, value) -> str:
     """"r" (reproduces), "c" (contradicts) or "n" (not computed)."""
-    if value == NOT_COMPUTED:
-        return "n"
+    if value == NOT_COMPUTED or (value is None and cached not in (None, "")):
+        return "n"  # no value: a formula always has one (formualizer's unloaded sheets)
     if isinstance(value, dict) and "error" in value:
         error = value["error"]
         if error not in EXCEL_ERRORS:
@@ -190,13 +190,31 @@ def ironcalc_runner(path: str, cells: list) -> list:
 
 
 def libreoffice_runner(path: str, cells: list, timeout: float) -> list:
-    from workbook_gen.engines.libreoffice import recalculated_values
-    values = recalculated_values(path, timeout=timeout)
-    out = []
-    for sheet, _, _, name, _ in cells:
-        ref = name.rsplit("!", 1)[1]
-        found = values.get(sheet, {})
-        out.append(encode(found[ref]) if ref in found else NOT_COMPUTED)
+    """LibreOffice's values of ``cells`` in its recalculated copy, read by position: the
+    cells an array formula fills are plain values there, not formulas."""
+    import openpyxl
+    from workbook_gen.engines.libreoffice import _cell_value, recalculate
+    wanted: dict[str, dict[tuple[int, int], int]] = {}
+    for i, (sheet, row, col, _, _) in enumerate(cells):
+        wanted.setdefault(sheet, {})[(row, col)] = i
+    out: list = [NOT_COMPUTED] * len(cells)
+    with tempfile.TemporaryDirectory(prefix="workbook-gen-peers-lo-") as tmp:
+        book = openpyxl.load_workbook(recalculate(path, tmp, timeout=timeout),
+                                      read_only=True, data_only=True)
+        book._date_formats, book._timedelta_formats = set(), set()  # numbers stay numbers
+        try:
+            for ws in book.worksheets:
+                here = wanted.get(ws.title)
+                if not here:
+                    continue
+                last = max(r for r, _ in here)
+                for row in ws.iter_rows(max_row=last):
+                    for cell in row:
+                        i = here.get((getattr(cell, "row", None), getattr(cell, "column", None)))
+                        if i is not None:
+                            out[i] = encode(_cell_value(cell.value, cell.data_type, book.epoch))
+        finally:
+            book.close()
     return out
 
 

@@ -51,6 +51,7 @@ BENCHES = {
     "read_xlsx": ["bench/read_xlsx.py"],
     "batch": ["bench/batch.py"],
     "corpus": ["bench/corpus.py"],
+    "peers": ["bench/peers.py", "--timeout", "240"],  # the whole corpus: about an hour
 }
 README = ROOT / "README.md"
 # name -> (scene file, options replaced in a copy: the five-bar copy uses Newton steps)
@@ -264,7 +265,8 @@ def measure_bench(folder: Path = BENCH, extra: dict[str, list[str]] | None = Non
 # Small sizes, to check --measure-bench end to end in a few minutes (not figures to quote).
 QUICK = {"generate": ["--variants", "2", "--steps", "10,1"], "audit": ["--quick"],
          "read_xlsx": ["--rows", "200", "--repeat", "1"],
-         "batch": ["--variants", "20", "--summary", "200"], "corpus": []}
+         "batch": ["--variants", "20", "--summary", "200"], "corpus": [],
+         "peers": ["--limit", "3"]}
 
 
 def main() -> int:
