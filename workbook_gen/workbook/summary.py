@@ -13,7 +13,8 @@ from ..expr.magnitude import magnitude, scope
 from ..expr.numeric import compile_numpy
 from ..xlerror import ExcelError
 
-NUM = ExcelError.NUM.value  # AGGREGATE's value where no row counts
+# where no row is ok: #N/A (AGGREGATE of nothing is #NUM! in Excel, #VALUE! in LibreOffice)
+NONE_OK = ExcelError.NA.value
 from .table import cached_values
 from .layout import (CHECK_FIRST_ROW, CHECKS, FIRST_ROW, STATUS, SUMMARY, TableLayout, add_sheet,
                      excel_text, print_wide)
@@ -22,10 +23,10 @@ from xlsxwriter.utility import xl_col_to_name
 
 def _extremes(column: xm.XArray, inputs: np.ndarray, status: np.ndarray):
     """(max, its input, min, its input, rows counted) over the ok rows, as the Summary's
-    formulas give them: #NUM! (AGGREGATE of nothing) where no row counts."""
+    formulas give them: #N/A where no row counts."""
     found = ok_extremes(column.val, column.err, status, inputs)
     if not found.counted[0]:
-        return NUM, NUM, NUM, NUM, 0
+        return NONE_OK, NONE_OK, NONE_OK, NONE_OK, 0
     return (float(found.hi[0]), float(found.hi_at[0]), float(found.lo[0]),
             float(found.lo_at[0]), int(found.counted[0]))
 
@@ -59,11 +60,12 @@ def _where(row: int, value_col: str, inputs_abs: str, rng: str, ok: str, first: 
             f"_xlfn.AGGREGATE(15,6,(ROW({rng})-{first - 1})/(({rng}={value_col}{r})*{ok}),1)))")
 
 
-def _aggregate(function: int, rng: str, ok: str) -> str:
+def _aggregate(function: int, rng: str, ok: str, status: str) -> str:
     """LARGE (14) or SMALL (15) of the column's ok rows, errors left out (AGGREGATE's
     option 6; its array form takes the array expression without array entry): Excel
-    2010+ and LibreOffice."""
-    return f"=_xlfn.AGGREGATE({function},6,{rng}/{ok},1)"
+    2010+ and LibreOffice; #N/A in both where no row is ok."""
+    return (f'=IF(COUNTIF({status},"{OK}"),_xlfn.AGGREGATE({function},6,{rng}/{ok},1),'
+            f"NA())")
 
 
 def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> None:
@@ -78,7 +80,8 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
     sheet.set_column(1, 1, 9)
     sheet.set_column(2, 5, 14, formats["value"])
     inputs_abs = layout.column(spec.name, absolute=True)
-    ok = f'({layout.column(STATUS, absolute=True)}="{OK}")'
+    status = layout.column(STATUS, absolute=True)
+    ok = f'({status}="{OK}")'
     counted = 0
     extremes: dict[str, tuple[int, object, object]] = {}
     row = 1
@@ -95,9 +98,9 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
         sheet.write_string(row, 0, q.name)
         sheet.write_string(row, 1, q.unit)
         for col, text, value in (
-                (2, _aggregate(14, rng, ok), hi),
+                (2, _aggregate(14, rng, ok, status), hi),
                 (3, _where(row, "C", inputs_abs, rng, ok, FIRST_ROW, tie), at_hi),
-                (4, _aggregate(15, rng, ok), lo),
+                (4, _aggregate(15, rng, ok, status), lo),
                 (5, _where(row, "E", inputs_abs, rng, ok, FIRST_ROW, tie), at_lo)):
             sheet.write_formula(row, col, text, None, value)
         extremes[q.name] = (row + 1, hi, lo, tie, tied)

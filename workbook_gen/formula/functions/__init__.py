@@ -20,7 +20,7 @@ from workbook_gen.formula.functions import (  # noqa: F401  (each module registe
     regress, depreciation, bessel, textbytes, subtotal,
     lambdas, dynamic, arrayops, regex,  # (helper corpb: LAMBDA, dynamic arrays, regex)
     bonds, oddbonds,  # (helper corpb3: securities, day-count bases in daycount.py)
-    weeks, spill, randarray,
+    weeks, spill, randarray, xlookup,
     cube, rtd,  # (answered from the caches the file keeps: OLAP, real-time data)
 )
 from workbook_gen.formula.functions.dialect import (
