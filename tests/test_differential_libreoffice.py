@@ -9,7 +9,7 @@ from __future__ import annotations
 import differential
 import pytest
 
-SEED, CASES = 2, 400
+SEED, CASES = 2, 1000
 
 
 @pytest.fixture(scope="module")
