@@ -114,7 +114,7 @@ class _Run:
         self.state[u] = False
         for cell in self.cells[u]:
             self.store.put(*cell, CIRCULAR)
-        self.store.rect_cache.clear()
+        self.store.forget_rects()
         self.stack.append(u)
         try:
             self.evaluate(self.units[u], self.view)
@@ -123,7 +123,7 @@ class _Run:
         for cell in self.cells[u]:
             if cell in self.fixed:
                 self.store.put(*cell, CIRCULAR)
-        self.store.rect_cache.clear()
+        self.store.forget_rects()
         self.state[u] = True
 
     def all(self) -> None:
@@ -189,7 +189,7 @@ def run(units: Sequence, cells_of: Callable, store, evaluate: Callable) -> list[
                 found.append(sorted(part))
     finally:
         sys.setrecursionlimit(limit)
-        store.rect_cache.clear()
+        store.forget_rects()
 
 
 def _strong_parts(graph: dict) -> list[set]:

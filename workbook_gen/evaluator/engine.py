@@ -549,7 +549,7 @@ def _cycle(members: list[Unit], shaped: list, taint: Taint, result: Evaluation,
 
 
 def _fresh(store: Store) -> None:
-    store.rect_cache.clear()
+    store.forget_rects()
 
 
 def _show_circular(store: Store, shown) -> None:
@@ -558,7 +558,7 @@ def _show_circular(store: Store, shown) -> None:
     for (sheet, col), column in list(store.cols.items()):
         for row in np.nonzero(column.err == code)[0].tolist():
             store.put(sheet, row, col, shown, float(column.scale[row]))
-    store.rect_cache.clear()
+    store.forget_rects()
 
 
 def _settle_area(unit: Unit, store: Store, names: Names, dialect: str, clock: vol.Clock,

@@ -82,6 +82,7 @@ class Store:
         self.order = [s for s in order if s.lower() in self.canonical] or sorted(sheets)
         self.cols: dict[tuple[str, int], _Column] = {}
         self.rect_cache: dict[tuple, Range] = {}
+        self.scale_cache: dict[tuple, float] = {}
         self.extent: dict[str, list[int]] = {}
         self.hidden: dict[str, frozenset[int]] = {}  # sheet -> its hidden rows
         self.filtered: dict[str, frozenset[int]] = {}  # sheet -> the rows a filter hid
@@ -277,9 +278,22 @@ class Store:
             rows = self.rect_cache[key] = Range.of(zip(*columns))
         return rows
 
+    def forget_rects(self) -> None:
+        """Drop the rectangles' kept values and scales (their cells are to change)."""
+        self.rect_cache.clear()
+        self.scale_cache.clear()
+
     def rect_scale(self, sheet: str, r1: int, c1: int, r2: int, c2: int) -> float:
-        """Largest magnitude among the numbers of a rectangle."""
+        """Largest magnitude among the numbers of a rectangle (kept, as ``rect``'s
+        values are: a rectangle is read once its cells are computed)."""
         r1, c1, r2, c2 = self.clip(sheet, r1, c1, r2, c2)
+        key = (sheet, r1, c1, r2, c2)
+        found = self.scale_cache.get(key)
+        if found is None:
+            found = self.scale_cache[key] = self._rect_scale(sheet, r1, c1, r2, c2)
+        return found
+
+    def _rect_scale(self, sheet: str, r1: int, c1: int, r2: int, c2: int) -> float:
         scale = 0.0
         for col in range(c1, c2 + 1):
             c = self.cols.get((sheet, col))

@@ -11,7 +11,7 @@ shorter array is #N/A. :func:`spread` lays the result over the formula's cells.
 from __future__ import annotations
 
 from workbook_gen.formula.functions.availability import unavailable
-from workbook_gen.formula import ast
+from workbook_gen.formula import arraysfast, ast
 from workbook_gen.formula import functions as fx
 from workbook_gen.formula.functions import lambdas
 from workbook_gen.formula import values as xv
@@ -97,7 +97,11 @@ class ArrayEvaluator(Evaluator):
         for step in reversed(spine):
             right = self.arg(step.right)
             if _multi(acc) or _multi(right):
-                acc = _broadcast(lambda a, b, op=step.op: self.apply(op, a, b), [acc, right])
+                fast = arraysfast.operate(step.op, acc if _multi(acc) else xv.scalar_of(acc),
+                                          right if _multi(right) else xv.scalar_of(right),
+                                          self.apply)
+                acc = fast if fast is not None else _broadcast(
+                    lambda a, b, op=step.op: self.apply(op, a, b), [acc, right])
             else:
                 acc = self.apply(step.op, xv.scalar_of(acc), xv.scalar_of(right))
         return acc

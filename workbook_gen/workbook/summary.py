@@ -60,12 +60,12 @@ def _where(row: int, value_col: str, inputs_abs: str, rng: str, ok: str, first: 
             f"_xlfn.AGGREGATE(15,6,(ROW({rng})-{first - 1})/(({rng}={value_col}{r})*{ok}),1)))")
 
 
-def _aggregate(function: int, rng: str, ok: str, status: str) -> str:
+def _aggregate(function: int, rng: str, ok: str, counted: str) -> str:
     """LARGE (14) or SMALL (15) of the column's ok rows, errors left out (AGGREGATE's
     option 6; its array form takes the array expression without array entry): Excel
-    2010+ and LibreOffice; #N/A in both where no row is ok."""
-    return (f'=IF(COUNTIF({status},"{OK}"),_xlfn.AGGREGATE({function},6,{rng}/{ok},1),'
-            f"NA())")
+    2010+ and LibreOffice; #N/A in both where no row is ok (``counted``: the cell that
+    counts them)."""
+    return f"=IF({counted},_xlfn.AGGREGATE({function},6,{rng}/{ok},1),NA())"
 
 
 def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> None:
@@ -82,7 +82,9 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
     inputs_abs = layout.column(spec.name, absolute=True)
     status = layout.column(STATUS, absolute=True)
     ok = f'({status}="{OK}")'
-    counted = 0
+    # the Summary's "rows in the extremes" cell, below the outputs, spans and figures
+    model = result.model
+    count_cell = "$C$" + str(len(model.outputs()) + len(model.spans) + len(model.figures) + 5)
     extremes: dict[str, tuple[int, object, object]] = {}
     row = 1
     shared = scope(result.columns, result.params, result.rows)  # outputs share subtrees
@@ -90,7 +92,7 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
     for q in result.model.outputs():
         column = result.columns[q.name]
         rng = layout.column(q.name)
-        hi, at_hi, lo, at_lo, counted = _extremes(column, result.inputs, result.status)
+        hi, at_hi, lo, at_lo, _ = _extremes(column, result.inputs, result.status)
         tie = tie_threshold(result, q.name, shared)
         tied = isinstance(hi, float) and isinstance(lo, float) and hi - lo <= tie
         if tied:
@@ -98,9 +100,9 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
         sheet.write_string(row, 0, q.name)
         sheet.write_string(row, 1, q.unit)
         for col, text, value in (
-                (2, _aggregate(14, rng, ok, status), hi),
+                (2, _aggregate(14, rng, ok, count_cell), hi),
                 (3, _where(row, "C", inputs_abs, rng, ok, FIRST_ROW, tie), at_hi),
-                (4, _aggregate(15, rng, ok, status), lo),
+                (4, _aggregate(15, rng, ok, count_cell), lo),
                 (5, _where(row, "E", inputs_abs, rng, ok, FIRST_ROW, tie), at_lo)):
             sheet.write_formula(row, col, text, None, value)
         extremes[q.name] = (row + 1, hi, lo, tie, tied)
@@ -132,6 +134,7 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
     sheet.write_string(row, 0, "rows")
     sheet.write_number(row, 2, result.rows)
     row += 1
+    assert f"$C${row + 1}" == count_cell  # (the extremes' formulas refer to this cell)
     sheet.write_string(row, 0, "rows in the extremes")
     sheet.write_formula(row, 2, f'=COUNTIF({layout.column(STATUS, absolute=True)},"{OK}")',
                         None, int(np.sum(ok_rows(result.status))))
