@@ -297,3 +297,29 @@ def corpus_block(record: dict) -> str:
         lines.append(f"- `{name}`: {count(r['evaluated'])} of {count(r['formula_cells'])} "
                      f"formula cells recomputed, {count(r['disagree'])} disagree")
     return "\n".join(lines) + "\n"
+
+
+PEER_NAMES = {"ours": "ours (`workbook-gen audit`)", "formualizer": "formualizer",
+              "ironcalc": "IronCalc", "libreoffice": "LibreOffice (headless, recalculated)"}
+
+
+def peers_block(record: dict) -> str:
+    """The corpus's cached values each engine reproduces (bench/peers.py)."""
+    f = record["figures"]
+    t = f["totals"]
+    lines = [f"On the {t['files']} corpus workbooks (`{record['command']}`, {when(record)}), "
+             f"{count(t['cells'])} formula cells that hold a cached value and call no "
+             f"volatile function ({count(t['volatile'])} volatile cells left out): how many "
+             "cached values each engine reproduces (equal to 1e-9 relative), contradicts, "
+             "or does not compute (an error of its own, an unknown function, a file it cannot "
+             "load):", "",
+             "| engine | reproduces | contradicts | not computed | files failed |",
+             "|---|---|---|---|---|"]
+    for name in f["engines"]:
+        e = t[name]
+        lines.append(f"| {PEER_NAMES.get(name, name)} | {count(e['r'])} | {count(e['c'])} | "
+                     f"{count(e['n'])} | {e['failed_files']} |")
+    best = max(f["engines"], key=lambda n: t[n]["r"])
+    lines += ["", f"Target (issue 20): ours reproduces the most: "
+                  f"{verdict(best == 'ours')}."]
+    return "\n".join(lines) + "\n"

@@ -20,7 +20,8 @@ the tables of NAME.json; ``runtime`` the whole-run times; ``advice`` the Advice 
 and ``newton`` the sentence under the five-bar's table (scripts/figures_advice.py);
 ``audit-json`` the keys of ``audit --json``; ``bench-machine``, ``bench-generate``,
 ``bench-audit``, ``bench-read``, ``bench-batch``, ``bench-batch-notes`` the speed figures,
-``bench-corpus`` the audit on the real-world corpus (scripts/figures_bench.py); ``functions``
+``bench-corpus`` the audit on the real-world corpus and ``bench-peers`` the engines
+reproducing its cached values (scripts/figures_bench.py); ``functions``
 the size of the evaluator's function registry.  Everything else in the README is left as written.
 tests/test_readme_figures.py checks the README equals what the script makes from the
 committed data.
@@ -194,6 +195,7 @@ def render(text: str, all_data: dict[str, dict], bench: dict[str, dict] | None =
         "bench-read": lambda _: figures_bench.read_block(need(bench, "read_xlsx", BENCH)),
         "bench-batch": lambda _: figures_bench.batch_block(need(bench, "batch", BENCH)),
         "bench-corpus": lambda _: figures_bench.corpus_block(need(bench, "corpus", BENCH)),
+        "bench-peers": lambda _: figures_bench.peers_block(need(bench, "peers", BENCH)),
         "functions": lambda _: functions_block(),
         "bench-batch-notes": lambda _: figures_bench.batch_notes_block(
             need(bench, "batch", BENCH), need(bench, "generate", BENCH)),
