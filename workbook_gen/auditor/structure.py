@@ -90,7 +90,7 @@ def check_structure(inputs, evaluation, cell_name) -> list[Finding]:
                                    "calculation is on)" if iterate else
                                    "with iterative calculation off they show 0 (LibreOffice: "
                                    "Err:522), as does what takes its value from them")))
-    unknown = getattr(evaluation, "unknown", {})
+    unknown = evaluation.unknown
     findings += _by_function({k: v for k, v in evaluation.unsupported.items()
                               if k not in unknown}, "unsupported_function",
                              "{n} cells call {f}, which the evaluator lacks; they and their "

@@ -14,8 +14,6 @@ broadcast otherwise) returns None, and the caller goes element by element.
 
 from __future__ import annotations
 
-from itertools import chain
-
 import numpy as np
 
 from workbook_gen.formula.values import Range
@@ -26,10 +24,6 @@ NUMERIC_COMPARE = {"=": np.equal, "<>": np.not_equal, "<": np.less, ">": np.grea
                    "<=": np.less_equal, ">=": np.greater_equal}
 COMPARISONS = frozenset(NUMERIC_COMPARE)
 MIN_ELEMENTS = 64  # below this the element loop is as fast
-
-
-def _flat(v: Range) -> list:
-    return list(chain.from_iterable(v.rows))
 
 
 def _numbers(items: list) -> np.ndarray | None:
@@ -58,7 +52,7 @@ def operate(op: str, left, right, scalar_op) -> Range | None:
     if op in COMPARISONS:
         if len(arrays) != 1:
             return None
-        items = _flat(arrays[0])
+        items = list(arrays[0].flat())
         single = right if arrays[0] is left else left
         if isinstance(single, Range):
             return None
@@ -85,7 +79,7 @@ def operate(op: str, left, right, scalar_op) -> Range | None:
     sides = []
     for v in (left, right):
         if isinstance(v, Range):
-            side = _numbers(_flat(v))
+            side = _numbers(list(v.flat()))
         elif type(v) in (float, int, bool):
             side = float(v)
         else:

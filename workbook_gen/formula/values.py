@@ -68,14 +68,14 @@ class Range:
         return len(self.rows), (len(self.rows[0]) if self.rows else 0)
 
     def flat(self):
-        for row in self.rows:
-            yield from row
+        """The values row by row, one iterator (at C speed)."""
+        return chain.from_iterable(self.rows)
 
     def numbers(self) -> list[float] | None:
         """All values as a flat list when every one is a plain number, else None
         (the fast path of MIN, MAX, SUM and MATCH over a column of results)."""
         if self._numbers is False:
-            flat = list(chain.from_iterable(self.rows))
+            flat = list(self.flat())
             kinds = set(map(type, flat))  # (C loops: MAX of a 100,000-row column)
             numbers = flat if kinds == {float} or not flat else None
             object.__setattr__(self, "_numbers", numbers)

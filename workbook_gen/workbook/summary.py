@@ -22,13 +22,13 @@ from xlsxwriter.utility import xl_col_to_name
 
 
 def _extremes(column: xm.XArray, inputs: np.ndarray, status: np.ndarray):
-    """(max, its input, min, its input, rows counted) over the ok rows, as the Summary's
-    formulas give them: #N/A where no row counts."""
+    """(max, its input, min, its input) over the ok rows, as the Summary's formulas give
+    them: #N/A where no row counts."""
     found = ok_extremes(column.val, column.err, status, inputs)
     if not found.counted[0]:
-        return NONE_OK, NONE_OK, NONE_OK, NONE_OK, 0
+        return NONE_OK, NONE_OK, NONE_OK, NONE_OK
     return (float(found.hi[0]), float(found.hi_at[0]), float(found.lo[0]),
-            float(found.lo_at[0]), int(found.counted[0]))
+            float(found.lo_at[0]))
 
 
 # A column whose max - min is within TIE_ULPS ulps of the magnitudes its formula cancels
@@ -92,7 +92,7 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
     for q in result.model.outputs():
         column = result.columns[q.name]
         rng = layout.column(q.name)
-        hi, at_hi, lo, at_lo, _ = _extremes(column, result.inputs, result.status)
+        hi, at_hi, lo, at_lo = _extremes(column, result.inputs, result.status)
         tie = tie_threshold(result, q.name, shared)
         tied = isinstance(hi, float) and isinstance(lo, float) and hi - lo <= tie
         if tied:

@@ -30,7 +30,6 @@ them (a bare value table) hides nothing.
 from __future__ import annotations
 
 import math
-from itertools import chain
 
 from workbook_gen.formula.functions import coerce as c
 from workbook_gen.formula.functions.registry import REGISTRY, register
@@ -67,8 +66,7 @@ def _left_out(ctx, arg, hidden: bool, nested: bool, errors: bool, filtered: bool
                         for r, k in resolver.subtotal_cells(ref.sheet)
                         if ref.row1 <= r < ref.row1 + n_rows
                         and ref.col1 <= k < ref.col1 + n_cols)
-    if not drop and (not errors or ExcelError not in set(map(type, chain.from_iterable(
-            arg.rows)))):
+    if not drop and (not errors or ExcelError not in set(map(type, arg.flat()))):
         return arg
     rows = [[None if (i, j) in drop or (errors and isinstance(v, ExcelError)) else v
              for j, v in enumerate(row)] for i, row in enumerate(arg.rows)]
