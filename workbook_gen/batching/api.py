@@ -57,8 +57,8 @@ def _design(base: Scene, vary, design, sets, samples, seed, cli: bool) -> Design
             raise SceneError(f"{flag('samples', cli)} and {flag('seed', cli)} go with a random "
                              f"{flag('vary', cli)}, not {flag('design', cli)}")
         return from_design(design, names, list(sets), options, cli)
-    return from_specs(vary if isinstance(vary, Mapping) else list(vary or ()), names,
-                      list(sets), samples, seed, options, cli)
+    return from_specs(vary if vary is not None else (), names, list(sets), samples, seed,
+                      options, cli)
 
 
 def _option_models(base: Scene, plan: Design, text: str, source: str, sets, step) -> list:
