@@ -276,3 +276,19 @@ def test_a_bad_option_in_a_design_file_exits_2_naming_row_and_values(tmp_path, c
     err = capsys.readouterr().err
     assert code == 2 and "row 3" in err and "one of open, crossed" in err, err
     assert len(err.strip().splitlines()) == 1 and not out.exists()
+
+
+def test_refused_variants_of_each_branch_read_alike_with_and_without_workbooks(tmp_path):
+    # a non-positive length and a coupler too long to close, in each branch
+    vary = {"branch": ["open", "crossed"], "l_AB": [-1, 120, 500]}
+    slow = batch(FOUR_BAR, vary=vary, out=tmp_path / "slow", jobs=1, step=30.0,
+                 progress=False)
+    fast = batch(FOUR_BAR, vary=vary, out=tmp_path / "fast", jobs=1, step=30.0,
+                 summary_only=True, progress=False)
+    assert [s.split(":")[0] for s in slow["status"]] == ["refused", "ok", "refused"] * 2
+    assert "must be > 0" in slow["status"][3] and "cannot be assembled" in slow["status"][5]
+    a = _rows(tmp_path / "slow/four_bar-batch/summary.csv")
+    b = _rows(tmp_path / "fast/four_bar-batch/summary.csv")
+    for x, y in zip(a, b):
+        x.pop("file"), y.pop("file")
+        assert x == y

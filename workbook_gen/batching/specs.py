@@ -147,9 +147,10 @@ def _body(where: str, name: str, body: str, option: OptionSpec | None) -> Spec:
     return _distinct(where, name, "list", values, where)
 
 
-def parse_vary(text: str, options: Mapping[str, OptionSpec] | None = None) -> Spec:
-    """A command-line ``--vary NAME=SPEC``."""
-    where = f"--vary {text!r}"
+def parse_vary(text: str, options: Mapping[str, OptionSpec] | None = None,
+               cli: bool = True) -> Spec:
+    """A command-line ``--vary NAME=SPEC`` (in Python: an item of a ``vary`` list)."""
+    where = f"--vary {text!r}" if cli else f"vary item {text!r}"
     name, sep, body = text.partition("=")
     name, body = name.strip(), body.strip()
     if not sep or not name or not body:
@@ -184,7 +185,8 @@ def vary_entry(name: object, value: object, options: Mapping[str, OptionSpec] | 
     return _distinct(where, name, "list", values, where)
 
 
-def specs_of(vary: object, options: Mapping[str, OptionSpec] | None = None) -> list[Spec]:
+def specs_of(vary: object, options: Mapping[str, OptionSpec] | None = None,
+             cli: bool = True) -> list[Spec]:
     """The specs of ``vary`` as ``batch()`` takes it: a mapping (Python), or a sequence
     of the command line's ``NAME=SPEC`` texts."""
     if vary is None:
@@ -199,7 +201,7 @@ def specs_of(vary: object, options: Mapping[str, OptionSpec] | None = None) -> l
         if not isinstance(item, str):
             raise SceneError(f"vary: a list item must be a text 'NAME=SPEC', got {item!r} "
                              f"(or give a mapping {{name: values}})")
-        specs.append(parse_vary(item, options))
+        specs.append(parse_vary(item, options, cli))
     return specs
 
 

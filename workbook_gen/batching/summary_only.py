@@ -11,6 +11,7 @@ numbers.  Blocks keep memory bounded whatever the number of variants.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 from dataclasses import dataclass
@@ -140,9 +141,11 @@ def _options_block(spec: JobSpec, variants: Sequence[Variant], options: frozense
                     reason = refused_reason(spec, exc)
                 out["status"][i] = f"refused: {reason}"
             continue
+        # the options as --set for the group: a refusal's reason is generate's
         stripped = [v._replace(values=tuple((n, x) for n, x in v.values if n not in options))
                     for v in members]
-        block = _block(base, plan, spec, stripped)
+        block = _block(base, plan, dataclasses.replace(spec, sets=tuple(spec.sets) + key),
+                       stripped)
         for name in value_columns(plan.model) + ["status"]:
             column, made = out[name], block[name]
             if isinstance(made, np.ndarray):

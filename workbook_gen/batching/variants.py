@@ -86,9 +86,8 @@ def from_specs(texts: Sequence[str] | Mapping[str, object], parameters: Sequence
     template's, which may be varied too; ``cli``: messages name the command line's
     flags, else ``batch()``'s arguments."""
     by_name = {o.name: o for o in options}
-    specs = specs_of(texts, by_name)
-    listed = (lambda name: f"--vary {name!r}") if cli and not isinstance(texts, Mapping) else (
-        lambda name: f"vary[{name!r}]")
+    specs = specs_of(texts, by_name, cli)
+    listed = (lambda name: f"--vary {name!r}") if cli else (lambda name: f"vary[{name!r}]")
     _check_names([s.name for s in specs], parameters, list(by_name), sets, listed, cli)
     random = [s for s in specs if s.kind in ("normal", "uniform")]
     names = tuple(s.name for s in specs)
