@@ -197,13 +197,18 @@ def test_xlsx_design_with_option_columns_as_excel_types(tmp_path):
     assert list(frame["status"]) == ["ok", "ok"]
 
 
-def test_comma_and_semicolon_design_files_give_the_same_summary(tmp_path):
-    comma, semi = tmp_path / "c.csv", tmp_path / "s.csv"
-    comma.write_text("variant,l_AB,l_BC\nlow,30.5,\nhigh,34,104.25\n", encoding="utf-8")
-    semi.write_text("variant;l_AB;l_BC\nlow;30,5;\nhigh;34;104.25\n", encoding="utf-8")
-    for path, out in ((comma, "c"), (semi, "s")):
-        batch(SEWING, design=path, out=tmp_path / out, jobs=1, step=30.0, summary_only=True,
-              progress=False)
+@pytest.mark.parametrize("comma, semi", [
+    ("variant,l_AB,l_BC\nlow,30.5,\nhigh,34,104.25\n",
+     "variant;l_AB;l_BC\nlow;30,5;\nhigh;34;104.25\n"),
+    # one column: Excel writes no separator, only the decimal comma
+    ("l_AB\n30.5\n34\n-0.25\n", "l_AB\r\n30,5\r\n34\r\n-0,25\r\n"),
+])
+def test_comma_and_semicolon_design_files_give_the_same_summary(tmp_path, comma, semi):
+    (tmp_path / "c.csv").write_text(comma, encoding="utf-8")
+    (tmp_path / "s.csv").write_bytes(semi.encode("utf-8"))
+    for name in ("c", "s"):
+        batch(SEWING, design=tmp_path / f"{name}.csv", out=tmp_path / name, jobs=1,
+              step=30.0, summary_only=True, progress=False)
     assert (tmp_path / "c/sewing_machine-batch/summary.csv").read_bytes() == (
         tmp_path / "s/sewing_machine-batch/summary.csv").read_bytes()
 

@@ -1,7 +1,8 @@
 """Reading a ``--design`` table: the rows of a CSV or of an xlsx file's first sheet.
 
 A CSV is what a spreadsheet exports: its separator is ``,`` or ``;`` (the header
-row tells which: the one that splits it into more cells), its text UTF-8 (a
+row tells which: the one that splits it into more cells; a single column of numbers
+with a decimal comma is a ``;`` file), its text UTF-8 (a
 byte-order mark allowed) or, failing that, Windows-1252 (what Excel's plain "CSV"
 writes on Windows).  Excel in a locale with a decimal comma (German, French, ...)
 writes ``;`` between cells and ``32,5`` for 32.5: in a ``;`` file a cell's decimal
@@ -34,10 +35,17 @@ def _text(path: Path, where: str) -> str:
 
 
 def separator(text: str) -> str:
-    """``;`` when it splits the first non-blank line into more cells than ``,`` does."""
-    first = next((line for line in text.splitlines() if line.strip()), "")
+    """``;`` when it splits the first non-blank line into more cells than ``,`` does,
+    or when the table has one column (Excel then writes no separator at all) whose
+    cells are numbers with a decimal comma; else ``,``."""
+    lines = [line for line in text.splitlines() if line.strip()]
+    first = lines[0] if lines else ""
     counts = {sep: len(next(csv.reader([first], delimiter=sep), [])) for sep in ",;"}
-    return ";" if counts[";"] > counts[","] else ","
+    if counts[";"] > counts[","]:
+        return ";"
+    if counts[","] == 1 and any(_DECIMAL_COMMA.fullmatch(line) for line in lines[1:]):
+        return ";"
+    return ","
 
 
 def decimal_comma(cell: object) -> object:
