@@ -28,7 +28,7 @@ import numpy as np
 from ..errors import SceneError
 from ..mechanisms.base import OptionSpec
 from .designfile import decimal_comma, design_rows
-from .specs import MAX_VARIANTS, Spec, number, option_value, parse_vary, specs_of
+from .specs import MAX_VARIANTS, option_value, specs_of
 
 class Variant(NamedTuple):
     """One variant (a named tuple: 100,000 of them are made in a fraction of what frozen
