@@ -9,8 +9,9 @@ compares them (SPEC section 11).
 Layers: ``specs`` (one varied parameter or option and its values), ``designfile``
 (reading a CSV or xlsx design table), ``variants`` (which variants), ``job`` (the unit
 of work: variant -> workbook bytes and summary row, the same code path as
-``generate``), ``runners`` (this process, local processes, Dask), ``summary_only`` (all variants at once over numpy arrays),
-``table``/``summary`` (summary.csv, summary.xlsx), ``folder`` (resuming), ``api``.
+``generate``), ``runners`` (this process, local processes, Dask), ``summary_only``
+(all variants at once over numpy arrays), ``table``/``summary`` (summary.csv,
+summary.xlsx), ``folder`` (resuming), ``api``.
 """
 
 from .api import batch
