@@ -219,7 +219,7 @@ def test_python_vary_mapping_equals_the_command_line_strings(tmp_path, capsys):
                      str(tmp_path / "cli")]) == 0
     batch(SEWING, vary={"l_AB": range(30, 33, 2), "l_BC": "95:105:5"}, step=30.0,
           summary_only=True, out=tmp_path / "api", progress=False)
-    batch(SEWING, vary={"l_AB": np.array([30.0, 32.0]), "l_BC": [95, 100.0, 105]},
+    batch(SEWING, vary={"l_AB": np.array([30.0, 32.0]), "l_BC": [np.int64(95), 100.0, 105]},
           step=30.0, summary_only=True, out=tmp_path / "np", progress=False)
     for name in ("summary.csv", "summary.xlsx"):  # the About sheet's command too
         want = (tmp_path / "cli/sewing_machine-batch" / name).read_bytes()

@@ -178,6 +178,8 @@ def vary_entry(name: object, value: object, options: Mapping[str, OptionSpec] | 
     if hasattr(value, "tolist"):  # a numpy array or scalar
         value = value.tolist()
     items = list(value) if isinstance(value, (list, tuple, range)) else [value]
+    items = [v.item() if hasattr(v, "item") and not isinstance(v, (str, bytes)) else v
+             for v in items]  # numpy scalars in a list
     if option is not None:
         values = tuple(option_value(where, option, v) for v in items)
     else:
