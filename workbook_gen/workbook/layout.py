@@ -103,6 +103,10 @@ A4 = 9  # XlsxWriter's paper index
 excel_text = lru_cache(maxsize=4096)(to_excel)
 
 
+#: Every printed page's footer: the sheet's name left, the page number right.
+FOOTER = "&L&A&Rpage &P"
+
+
 def print_wide(sheet, header_row: int | None = None) -> None:
     """Print a narrow sheet (Parameters, Summary, About) landscape on A4, fitted to the
     page width (as many pages down as it takes), with its header row, if any, repeated
@@ -110,6 +114,7 @@ def print_wide(sheet, header_row: int | None = None) -> None:
     sheet.set_landscape()
     sheet.set_paper(A4)
     sheet.fit_to_pages(1, 0)
+    sheet.set_footer(FOOTER)
     if header_row is not None:
         sheet.repeat_rows(header_row)
 
@@ -153,7 +158,7 @@ def print_columns(workbook, sheet, printed: list[bool], header_row: int,
     sheet.set_paper(A4)
     sheet.set_print_scale(PRINT_SCALE)
     sheet.set_margins(left=0.5, right=0.5, top=0.6, bottom=0.6)
-    sheet.set_footer("&L&A&Rpage &P")  # the sheet's name, the page number
+    sheet.set_footer(FOOTER)
     sheet.repeat_rows(header_row)
     sheet.repeat_columns(0)
     runs = printed_runs(printed)
