@@ -7,6 +7,7 @@ from functools import cached_property, lru_cache
 
 from xlsxwriter.utility import xl_col_to_name
 
+from ..cellref import quoted_sheet
 from ..tabulate import Evaluated
 from ..expr import Node
 from ..expr.excel import ROW, Piece, Row, RowTemplate, row_template, to_excel
@@ -165,7 +166,7 @@ def print_columns(workbook, sheet, printed: list[bool], header_row: int,
     if len(runs) == 1:
         sheet.print_area(0, runs[0][0], last_row, runs[0][1])
         return
-    areas = ",".join(f"{_quoted(sheet.name)}!${xl_col_to_name(first)}$1:"
+    areas = ",".join(f"{quoted_sheet(sheet.name)}!${xl_col_to_name(first)}$1:"
                      f"${xl_col_to_name(last)}${last_row + 1}" for first, last in runs)
     workbook.define_name(f"{sheet.name}!_xlnm.Print_Area", areas)
 
@@ -187,10 +188,6 @@ def wrapped_lines(text: str, width: float) -> int:
         lines += starts
         used = len(word) - (starts - 1) * room
     return max(lines, 1)
-
-
-def _quoted(name: str) -> str:
-    return name if name.isalnum() else "'" + name.replace("'", "''") + "'"
 
 
 def add_sheet(workbook, name: str) -> Sheet:
