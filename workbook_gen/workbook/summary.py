@@ -152,7 +152,7 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
     sheet.write_formula(row, 2, f'=COUNTIF({layout.column(STATUS, absolute=True)},"{OK}")',
                         None, int(np.sum(ok_rows(result.status))))
     _describe(sheet, formats, row, "the max and min above are taken over the ok rows only; "
-                               "the rows counted below are left out")
+                                   "the rows counted below are left out")
     row += 1
     sheet.write_string(row, 0, "rows that cannot be assembled")
     sheet.write_formula(row, 2, f"=SUM({CHECKS}!{flags}{CHECK_FIRST_ROW}:{flags}{last})", None,
@@ -166,5 +166,5 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
     sheet.write_formula(row, 2, f"=SUM({CHECKS}!{flagged}{CHECK_FIRST_ROW}:{flagged}{last})",
                         None, int(sum(int(np.sum(result.status == t)) for t in texts)))
     _describe(sheet, formats, row, "status other than ok (toggle, dead centre, not converged, "
-                               "...): rates there are singular or not to be trusted"
-                               + (f"; {counts}" if counts else ""))
+                                   "...): rates there are singular or not to be trusted"
+                                   + (f"; {counts}" if counts else ""))
