@@ -35,6 +35,10 @@ TEXT_COLUMNS = ("variant", "file", "status", "audit")
 _CSV_SPECIAL = re.compile(r'[,"\r\n]')
 _EXACT_FLOATS = {float, type(None)}
 _PROBE = 64   # rows that tell a column of few distinct numbers from one of many
+# ST_Xstring (ECMA-376 Part 1, 22.9.2.19): what ``xstring`` escapes
+_ESCAPE_LIKE = re.compile("(_x[0-9a-fA-F]{4}_)")
+_CONTROL = re.compile("[\x00-\x08\x0b-\x1f\ufffe\uffff]")
+_XSTRING_SPECIAL = re.compile("_x[0-9a-fA-F]{4}_|[\x00-\x08\x0b-\x1f\ufffe\uffff]")
 
 
 def value_kind(values: Sequence[object]) -> str:
@@ -110,7 +114,20 @@ def _escape(text: str) -> str:
     return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
 
 
+def xstring(text: str) -> str:
+    """A cell's text as ECMA-376 ``ST_Xstring`` holds it (Part 1, 22.9.2.19), as
+    XlsxWriter escapes it: a control character XML 1.0 forbids (and carriage return,
+    which XML readers turn into a line feed) as ``_xHHHH_``, a literal ``_xHHHH_``
+    with its underscore escaped (``_x005F_xHHHH_``), U+FFFE and U+FFFF as
+    ``_xFFFE_``/``_xFFFF_``.  Any other text is returned as it is."""
+    if not _XSTRING_SPECIAL.search(text):
+        return text
+    text = _ESCAPE_LIKE.sub(r"_x005F\1", text)
+    return _CONTROL.sub(lambda m: f"_x{ord(m.group(0)):04X}_", text)
+
+
 def text_cell(ref: str, text: str) -> str:
+    text = xstring(text)
     space = ' xml:space="preserve"' if text != text.strip() else ""
     return f'<c r="{ref}" t="inlineStr"><is><t{space}>{_escape(text)}</t></is></c>'
 
@@ -122,7 +139,7 @@ def _cell(name: str, ref: str, value: object) -> str:
     if name == "file":
         target = _escape(str(value).replace('"', '""'))
         return (f'<c r="{ref}" t="str"><f>HYPERLINK("{target}","{target}")</f>'
-                f"<v>{_escape(str(value))}</v></c>")
+                f"<v>{_escape(xstring(str(value)))}</v></c>")
     if isinstance(value, str):
         return text_cell(ref, value)
     if isinstance(value, bool) or not math.isfinite(value):

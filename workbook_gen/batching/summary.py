@@ -31,6 +31,7 @@ from .sheetzip import DeflatedMember, member_data, splice
 from .rows import figure_columns, snake
 from .specs import shown
 from .table import Table
+from .variants import MAX_CELL_TEXT
 
 DOCUMENT_DATE = dt.datetime(2024, 1, 1)
 _ROWS_PER_WRITE = 2000
@@ -371,5 +372,21 @@ def _about_sheet(book, about: Sequence[tuple[str, str]]) -> None:
     for key, value in about:
         sheet.write_string(row, 0, key, label)
         for line in value.splitlines() or [""]:
-            sheet.write_string(row, 1, line)
-            row += 1
+            for piece in cell_pieces(line):
+                sheet.write_string(row, 1, piece)
+                row += 1
+
+
+def cell_pieces(text: str, limit: int = MAX_CELL_TEXT) -> list[str]:
+    """``text`` cut into pieces of at most ``limit`` UTF-16 code units (what an Excel
+    cell holds), to go in consecutive cells: a command line of thousands of
+    ``--vary`` values is kept whole on the About sheet, over several rows."""
+    pieces = []
+    while True:
+        n = limit
+        while len(text[:n].encode("utf-16-le")) // 2 > limit:  # characters beyond the BMP
+            n -= len(text[:n].encode("utf-16-le")) // 2 - limit
+        pieces.append(text[:n])
+        text = text[n:]
+        if not text:
+            return pieces
