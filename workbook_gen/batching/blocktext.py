@@ -11,8 +11,10 @@ not have).  The bytes are those the cell-by-cell writers gave:
   figure that is a number for some variants and a text for others) as ``%.16G`` in
   the sheet;
 - a text as itself in the CSV (quoted as ``csv.writer`` quotes) and as an inline
-  string in the sheet (``xml:space="preserve"`` when it has outer spaces); the file
-  column a ``HYPERLINK`` formula with the name as cached text.
+  string in the sheet (``xml:space="preserve"`` when it has outer spaces; control
+  characters escaped as ECMA-376's ``ST_Xstring`` says: ``xstring``); the file
+  column a ``HYPERLINK`` formula with the name as cached text; the ``variant`` column a
+  number in the sheet where the label is a variant number (not a design's name).
 
 Columns are formatted whole, not cell by cell: a column's distinct numbers are
 formatted once (``repr`` of a list, in C) and spread by numpy, and a block's rows are
@@ -35,6 +37,7 @@ TEXT_COLUMNS = ("variant", "file", "status", "audit")
 _CSV_SPECIAL = re.compile(r'[,"\r\n]')
 _EXACT_FLOATS = {float, type(None)}
 _PROBE = 64   # rows that tell a column of few distinct numbers from one of many
+_VARIANT_NUMBER = re.compile("[1-9][0-9]{0,14}")  # exactly a double, no leading zero
 # ST_Xstring (ECMA-376 Part 1, 22.9.2.19): what ``xstring`` escapes
 _ESCAPE_LIKE = re.compile("(_x[0-9a-fA-F]{4}_)")
 _CONTROL = re.compile("[\x00-\x08\x0b-\x1f\ufffe\uffff]")
@@ -151,6 +154,8 @@ def _xml_items(name: str, col: int, kind: str, values: Sequence[object],
                texts: list[str] | None, rows: list[str]) -> list:
     """A column's share of each row's XML: constants (str) and per-row lists."""
     letter = xl_col_to_name(col)
+    if name == "variant":
+        return _variant_items(letter, values, rows)
     if kind == "number":
         if all(texts):
             return [f'<c r="{letter}', rows, '"><v>', texts, "</v></c>"]
@@ -170,6 +175,17 @@ def _xml_items(name: str, col: int, kind: str, values: Sequence[object],
         return [[f'<c r="{letter}{r}{bodies[v]}' if v else "" for r, v in zip(rows, values)]]
     cells = [_cell(name, f"{letter}{r}", v) for r, v in zip(rows, values)]
     return [cells] if any(cells) else []
+
+
+def _variant_items(letter: str, labels: Sequence[str], rows: list[str]) -> list:
+    """The ``variant`` column: a number where the label is one (the variants' numbers
+    of a grid, random samples or an unnamed design row: the autofilter then sorts 1, 2,
+    ..., 10), a text where the design names the row (``007`` stays a text)."""
+    numeric = [bool(_VARIANT_NUMBER.fullmatch(v)) for v in labels]
+    if all(numeric):
+        return [f'<c r="{letter}', rows, '"><v>', list(labels), "</v></c>"]
+    return [[f'<c r="{letter}{r}"><v>{v}</v></c>' if n else text_cell(f"{letter}{r}", v)
+             if v else "" for r, v, n in zip(rows, labels, numeric)]]
 
 
 def _join(items: list, count: int) -> str:

@@ -30,6 +30,7 @@ from .blocktext import block_texts
 from .sheetzip import DeflatedMember, member_data, splice
 from .rows import figure_columns, snake
 from .specs import shown
+from .statistics import write_statistics
 from .table import Table
 from .variants import MAX_CELL_TEXT
 
@@ -102,7 +103,7 @@ class SummaryWriter:
         self._csv = os.fdopen(fd, "w", encoding="utf-8", newline="")
         self._book = self._sheet = self._rows = None
         try:
-            csv.writer(self._csv, lineterminator="\n").writerow(table.columns)
+            csv.writer(self._csv, lineterminator="\n").writerow(table.headers)
             self._csv_mark = self._csv.tell()
             self._book, self._sheet = _book(table)
             if len(table.design):  # else XlsxWriter writes the sheet (a header row)
@@ -155,6 +156,7 @@ class SummaryWriter:
             self._format()
             self._csv.close()
             os.chmod(self._csv_temp, 0o644)
+            write_statistics(self._book, table)
             charts = self._book.add_worksheet("Charts")
             _about_sheet(self._book, about)
             _charts_sheet(self._book, charts, table)  # after About: its data sheet comes last
@@ -229,7 +231,7 @@ def _variants_head(book, table: Table):
             "type": "formula", "criteria": rule,
             "format": book.add_format({"bg_color": colour})})
     sheet.autofilter(0, 0, max(1, size), last_col)
-    sheet.write_row(0, 0, table.columns, header)
+    sheet.write_row(0, 0, table.headers, header)
     if size:  # the header row now, then the data rows' place
         sheet._check_dimensions(size, last_col)
         sheet._write_single_row(1)
