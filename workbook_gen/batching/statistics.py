@@ -107,7 +107,11 @@ def write_statistics(book, table: Table) -> None:
     sheet.set_column(0, 0, 22)
     sheet.set_column(1, 1, 9)
     sheet.set_column(2, 2, 6)
-    sheet.set_column(3, 40, 12)
+    k = len(design.names)
+    first_src = len(_STATS) + 2                 # the effects' first column
+    fixed = book.add_format({"num_format": "0.000"})
+    sheet.set_column(3, first_src - 1, 11, book.add_format({"num_format": "#,##0.0###"}))
+    sheet.set_column(first_src, first_src + 2 * k, 9, fixed)
     sheet.write_string(0, 0, "Statistics", bold)
     for row, note in enumerate(NOTES, start=1):
         sheet.write_string(row, 0, note)
@@ -121,11 +125,9 @@ def write_statistics(book, table: Table) -> None:
         return f"Variants!${letter}$2:${letter}${last}"
 
     params = list(design.names)
-    k = len(params)
     p_letters = [xl_col_to_name(table.columns.index(p)) for p in params]
     p_values = [np.array(table.data[p], dtype=float)[ok] for p in params]
     effects = count >= k + 2
-    first_src = len(_STATS) + 2
     r_col = first_src + k + 1
     labels = (["quantity", "unit"] + [s for s, _ in _STATS]
               + ([f"SRC {p}" for p in params] + ["R^2"] + [f"r {p}" for p in params]
@@ -177,12 +179,12 @@ def write_statistics(book, table: Table) -> None:
         for j in range(k):
             _array(sheet, matrix_row + 2 + i, 1 + j,
                    f"{{=CORREL(IF({status},{rng(p_letters[i])}),"
-                   f"IF({status},{rng(p_letters[j])}))}}", float(R[i, j]))
+                   f"IF({status},{rng(p_letters[j])}))}}", float(R[i, j]), fixed)
     _sensitivity_chart(book, sheet, columns, params, top, first_src, r_col + k + 1)
 
 
-def _array(sheet, row: int, col: int, formula: str, value: float) -> None:
-    sheet.write_array_formula(row, col, row, col, formula, None, value)
+def _array(sheet, row: int, col: int, formula: str, value: float, style=None) -> None:
+    sheet.write_array_formula(row, col, row, col, formula, style, value)
 
 
 def _sensitivity_chart(book, sheet, columns: list[Column], params: list[str], top: int,
