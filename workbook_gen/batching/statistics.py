@@ -208,7 +208,7 @@ def _sensitivity_chart(book, sheet, columns: list[Column], params: list[str], to
                      "name_font": {"size": 11}})
     chart.set_x_axis({"name": "SRC (output standard deviations per parameter standard "
                               "deviation)", "major_gridlines": grid})
-    chart.set_y_axis({"reverse": True, "label_position": "low"})
+    chart.set_y_axis({"reverse": True, "label_position": "low", "interval_unit": 1})
     chart.set_legend({"position": "bottom"})
     chart.set_size({"width": 620, "height": 120 + 16 * len(columns) * max(1, len(params))})
     sheet.insert_chart(_HEAD, at_col, chart)
