@@ -17,7 +17,7 @@ import pytest
 from scipy import stats
 
 from workbook_gen import audit, batch
-from workbook_gen.engines.libreoffice import read_formula_values, recalculate
+from workbook_gen.engines.libreoffice import read_formula_values, recalculated_values_many
 
 ROOT = Path(__file__).resolve().parents[1]
 SEWING = str(ROOT / "templates" / "sewing_machine.toml")
@@ -106,24 +106,40 @@ def test_partial_and_refused_variants_are_left_out(study):
                                                                   rel=1e-6)
 
 
-def _numbers(path: Path) -> dict[str, float]:
-    sheet = openpyxl.load_workbook(path, data_only=True)["Statistics"]
-    return {c.coordinate: c.value for row in sheet.iter_rows() for c in row
-            if isinstance(c.value, (int, float))}
+@pytest.fixture(scope="module")
+def speed_study(tmp_path_factory):
+    """One parameter, the crank's speed: the positions do not depend on it (their
+    columns constant: no effect computed), the velocities are proportional to it."""
+    out = tmp_path_factory.mktemp("omega")
+    batch(SEWING, vary=["omega_1=normal:6.28:0.1"], samples=30, seed=2, out=out,
+          summary_only=True, step=30.0, progress=False)
+    return out / "sewing_machine-batch"
 
 
-def test_libreoffice_recalculates_the_statistics_and_our_audit_passes(study, libreoffice,
-                                                                     tmp_path):
-    path = study / "summary.xlsx"
-    formulas = read_formula_values(path)["Statistics"]
-    assert len(formulas) == 33 * 12 + 4  # and the SRC arrays' second cells
-    ours, theirs = _numbers(path), _numbers(recalculate(path, tmp_path))
-    assert len(ours) == 33 * 13 + 4 and set(theirs) == set(ours)
-    for cell, value in ours.items():
-        assert math.isfinite(value), cell
-        assert theirs[cell] == pytest.approx(value, rel=1e-12, abs=1e-12), cell
-    report = audit(path)
-    assert report.ok
+def test_libreoffice_recalculates_the_statistics_and_our_audit_passes(study, speed_study,
+                                                                     libreoffice, tmp_path):
+    paths = [study / "summary.xlsx", tmp_path / "speed.xlsx"]
+    paths[1].write_bytes((speed_study / "summary.xlsx").read_bytes())  # stems must differ
+    theirs = [values["Statistics"] for values in recalculated_values_many(paths)]
+    # 8 statistics a row; 2 SRC, R^2 and 2 r a row, and the 2 x 2 correlations; the speed
+    # study's 34 rows (the exact stroke a number throughout) and its effects on the 20
+    # that vary (not the 10 position extremes, the 3 spans, the exact stroke)
+    for path, lo, cells in zip(paths, theirs, (33 * 13 + 4, 34 * 8 + 20 * 3 + 1)):
+        ours = read_formula_values(path)["Statistics"]
+        assert len(ours) == cells and set(lo) == set(ours)
+        for cell, value in ours.items():
+            assert isinstance(value, float) and math.isfinite(value), cell
+            assert lo[cell] == pytest.approx(value, rel=1e-12, abs=1e-12), (path.name, cell)
+        assert audit(path).ok
+
+
+def test_a_column_that_does_not_vary_gets_no_effect(speed_study):
+    table = _statistics(speed_study)
+    assert table["y_C_min"]["standard deviation"] == 0.0
+    assert table["y_C_min"]["SRC omega_1"] == table["y_C_min"]["R^2"] == "constant"
+    assert table["v_C_max"]["SRC omega_1"] == pytest.approx(1.0, abs=1e-12)  # v = omega x
+    assert table["v_C_min"]["SRC omega_1"] == pytest.approx(-1.0, abs=1e-12)
+    assert table["v_C_max"]["R^2"] == pytest.approx(1.0, abs=1e-12)
 
 
 def test_the_sensitivity_chart_is_a_bar_chart_of_the_src_with_a_legend(study):

@@ -8,8 +8,9 @@ partial variants, whose extremes leave rows out, and refused ones are left out):
 AVERAGE, STDEV.S, MIN, MAX, PERCENTILE.INC (5, 50, 95 %), CORREL.  The effect is the
 standardised regression coefficient (SRC) of a linear fit over the same variants,
 ``SRC = r R^-1`` (``r``: the output's correlations with the parameters, ``R``: the
-parameters' correlation matrix, on the sheet), and ``R^2 = r . SRC`` says how much of
-the output's variance the fit explains.  The cached values are numpy's over the same
+parameters' correlation matrix, on the sheet; each SRC cell
+``INDEX(MMULT(r, MINVERSE(R)), 1, j)``), and ``R^2 = r . SRC`` says how much of the
+output's variance the fit explains.  The cached values are numpy's over the same
 numbers (``np.percentile``'s linear rule is PERCENTILE.INC's).
 
 A column that does not vary (its spread within 1e-6 of its size: rounding, whose
@@ -137,7 +138,7 @@ def write_statistics(book, table: Table) -> None:
     sheet.freeze_panes(_HEAD + 1, 1)
     top = _HEAD + 1
     matrix_row = top + len(columns) + 2          # the parameters' correlation matrix
-    R = np.corrcoef(np.vstack(p_values)) if effects else None
+    R = np.atleast_2d(np.corrcoef(np.vstack(p_values))) if effects else None
     matrix = (f"{xl_rowcol_to_cell(matrix_row + 2, 1, True, True)}:"
               f"{xl_rowcol_to_cell(matrix_row + 1 + k, k, True, True)}")
     for i, column in enumerate(columns):
@@ -159,10 +160,9 @@ def write_statistics(book, table: Table) -> None:
         src = np.linalg.solve(R, r)
         r_row = (f"{xl_rowcol_to_cell(row, r_col, True, True)}:"
                  f"{xl_rowcol_to_cell(row, r_col + k - 1, True, True)}")
-        sheet.write_array_formula(row, first_src, row, first_src + k - 1,
-                                  f"{{=MMULT({r_row},MINVERSE({matrix}))}}", None, float(src[0]))
-        for j in range(1, k):  # the array's other cells: their cached values
-            sheet.write_number(row, first_src + j, float(src[j]))
+        for j in range(k):
+            _array(sheet, row, first_src + j,
+                   f"{{=INDEX(MMULT({r_row},MINVERSE({matrix})),1,{j + 1})}}", float(src[j]))
         sheet.write_formula(row, first_src + k,
                             f"=SUMPRODUCT({r_row},{xl_rowcol_to_cell(row, first_src)}:"
                             f"{xl_rowcol_to_cell(row, first_src + k - 1)})",
