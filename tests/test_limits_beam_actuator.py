@@ -66,6 +66,25 @@ BEAM_SOUND = [
 ]
 
 
+def test_the_eight_bar_reference_rates_are_the_differentiated_constraints():
+    """mp_walking_beam's hand-written J, Phi_t and second derivative against
+    mp_reference.rates (mpmath.diff of the same closure), at a crossed-branch pose with
+    the coupler point off the line; the beam translates (theta_7 = 0, length l_CD)."""
+    import mpmath
+    from mp_reference import mp, rates
+    from mp_walking_beam import EightBar, construction
+    p = dict(l_O1O2=40.0, l_O1A=20.0, l_AB=50.0, l_O2B=50.0, l_AC=100.0, delta_C=30.0,
+             omega_2=-7.0, l_CD=160.0)
+    with mp.workdps(50):
+        m, t = EightBar(p), mpmath.radians(200)
+        start = construction(m, t, -1)
+        q = m.polish([v + mpmath.mpf("1e-3") for v in start], t)   # Newton does the work
+        assert abs(q[4]) < mpmath.mpf(10) ** -40 and abs(q[5] - m.l_cd) < 1e-40
+        ours, numeric = m.rates(q, t), rates(m.phi, q, t, m.w)
+        for k in range(2):
+            assert max(abs(x - y) for x, y in zip(ours[k], numeric[k])) < 1e-35
+
+
 @pytest.mark.parametrize("params, limit", BEAM_SOUND)
 def test_walking_beam_rows_at_a_limit_are_right_or_flagged(params, limit):
     inputs = sorted(set(near(limit, spans=(1e-6, 1e-4, 1e-2, 1.0)) + _far(limit) + [45.0]))
@@ -123,6 +142,20 @@ BISECTION = {"method": "bisection", "halvings": 20}
 def test_actuator_rows_at_a_dead_centre_are_right_or_flagged(params, inputs, options):
     worst, status = assert_sound("actuator_linkage", params, inputs, options)
     assert "dead centre" in set(status)
+
+
+@pytest.mark.parametrize("sign", [1, -1])
+def test_the_halving_stop_test_right_at_epsilon(sign):
+    """s_BC such that f at the first midpoint is +-epsilon to within a few ulps: the
+    stop test |f| < epsilon decides as the exact rule does (or the row says why not)."""
+    def lever(phi):
+        return (PAPER["x_A"] + PAPER["l_A1"] * math.cos(phi) + PAPER["l_A1C"] * math.sin(phi),
+                PAPER["y_A"] + PAPER["l_A1"] * math.sin(phi) - PAPER["l_A1C"] * math.cos(phi))
+    cx, cy = lever((-1.5 + 4.64) / 2)
+    s = math.sqrt((cx - PAPER["x_B"]) ** 2 + (cy - PAPER["y_B"]) ** 2 - sign * 1e-4)
+    inputs = [s * (1 + k * 2.0 ** -52) for k in range(-3, 4)]
+    worst, status = assert_sound("actuator_linkage", {}, inputs, BISECTION)
+    assert worst["phi_2_iter"][0] <= 1e-15
 
 
 def test_actuator_exact_dead_centres_hold_error_rates():
