@@ -296,3 +296,14 @@ def test_the_scenes_hit_their_limits(books):
     assert acts[0.625] == acts[1.875] == "dead centre" and acts[0.5] == "cannot assemble"
     assert set(statuses("act_never_converges").values()) == {"not converged"}
     assert set(statuses("act_bracket_far").values()) == {"ok"}
+
+
+@pytest.mark.parametrize("start", [-720.0, -537.0, -0.5, 359.0, 713.0])
+def test_walking_beam_sweeps_starting_anywhere_pass_their_audit(start, tmp_path):
+    """The template's own scene from anywhere in -720..720 deg, and the crossed branch with
+    the coupler point a few turns round (delta_C = 1085 deg)."""
+    for overrides in ({}, {"branch": "crossed", "delta_C": 1085.0}):
+        scene = load_scene(ROOT / "templates" / "walking_beam.toml", overrides=overrides,
+                           start=start, stop=start + 360.0)
+        report = audit(write_workbook(scene, tmp_path / str(len(overrides))))
+        assert report.ok, [q.name for q in report.mechanics.quantities if not q.ok]
