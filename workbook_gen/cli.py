@@ -7,11 +7,17 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
+import signal
 import sys
 from typing import Sequence
 
 from .errors import SceneError, WorkbookGenError
 from .version import VERSION
+
+# a reader that closes the pipe early (`| head`): exit quietly with the status a Unix tool
+# killed by SIGPIPE has in the shell (128 + 13)
+EXIT_BROKEN_PIPE = 128 + signal.SIGPIPE
 
 
 def _value(text: str) -> int | float | bool | str:
@@ -68,6 +74,9 @@ def _audit(args: argparse.Namespace) -> int:
     from pathlib import Path
     if len(args.paths) > 1 or Path(args.paths[0]).is_dir():
         return _audit_many(args)
+    if not Path(args.paths[0]).exists():
+        from .auditor.many import expand
+        expand(args.paths)  # the one-line refusal (a pattern that matched nothing says so)
     from .auditor import audit
     from .auditor.report import format_report
     if args.annotate:
@@ -119,11 +128,9 @@ def _tradeoff(args: argparse.Namespace) -> int:
     from .tradeoff import format_table, measure, units, write_tradeoff_workbook
     scene = load_scene(args.scene)
     if args.out:
-        from .errors import OutputExistsError
+        from .files import refuse_existing
         from .tradeoff.book import output_path
-        target = output_path(scene, args.out)
-        if target.exists() and not args.force:  # refuse before minutes of measuring
-            raise OutputExistsError(f"{target} exists; use --force to overwrite it")
+        refuse_existing(output_path(scene, args.out), args.force)  # before minutes of work
     with Progress(units(scene), desc="tradeoff", unit="run") as bar:
         result = measure(scene, progress=bar)
     if args.json:
@@ -229,12 +236,39 @@ def parser() -> argparse.ArgumentParser:
     return top
 
 
+def _os_error(exc: OSError) -> str:
+    """An OSError the commands did not foresee (a folder made read-only mid-run, a full
+    disk), as one line: the path(s) and the system's reason."""
+    paths = " -> ".join(str(p) for p in (exc.filename, exc.filename2) if p is not None)
+    return f"{paths}: {exc.strerror or exc}" if paths else str(exc.strerror or exc)
+
+
+def _silence_output() -> None:
+    """After a broken pipe: point stdout and stderr at /dev/null, so that Python's
+    flush at exit does not complain about the reader that went away."""
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            os.dup2(devnull, stream.fileno())
+        except (OSError, ValueError):
+            pass
+    os.close(devnull)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     args = parser().parse_args(argv)
     try:
-        return args.run(args)
+        code = args.run(args)
+        sys.stdout.flush()  # a closed pipe is noticed here, not at the interpreter's exit
+        return code
     except WorkbookGenError as exc:
         print(f"workbook-gen: error: {exc}", file=sys.stderr)
+        return 2
+    except BrokenPipeError:  # `audit --verbose | head`: the reader has what it wanted
+        _silence_output()
+        return EXIT_BROKEN_PIPE
+    except OSError as exc:
+        print(f"workbook-gen: error: {_os_error(exc)}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("workbook-gen: interrupted", file=sys.stderr)

@@ -23,18 +23,25 @@ SUFFIXES = (".xlsx", ".xlsm")
 
 def expand(paths: Iterable[str | Path]) -> list[Path]:
     """The workbooks named: files as given, folders searched recursively (sorted;
-    Excel's ``~$`` lock files skipped). A path that does not exist is an error."""
+    Excel's ``~$`` lock files skipped). A path that does not exist is an error, and so is
+    finding no workbook at all (a CI step must not pass with nothing audited)."""
     out: list[Path] = []
-    for item in paths:
-        path = Path(item)
+    paths = [Path(item) for item in paths]
+    for path in paths:
         if path.is_dir():
             found = sorted(p for p in path.rglob("*") if p.suffix.lower() in SUFFIXES
                            and p.is_file() and not p.name.startswith("~$"))
             out.extend(found)
         elif path.exists():
             out.append(path)
+        elif any(c in str(path) for c in "*?["):  # a pattern the shell left as it was
+            raise WorkbookReadError(f"{path}: no such file or folder (a pattern that "
+                                    "matched no file: nothing to audit)")
         else:
             raise WorkbookReadError(f"{path}: no such file or folder")
+    if not out:
+        where = ", ".join(str(p) for p in paths) or "no path given"
+        raise WorkbookReadError(f"{where}: no workbook (*.xlsx, *.xlsm) found: nothing to audit")
     return out
 
 
