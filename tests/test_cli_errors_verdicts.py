@@ -122,3 +122,74 @@ def test_audit_of_nothing_fails_in_one_line(tmp_path):
     from workbook_gen.errors import WorkbookReadError
     with pytest.raises(WorkbookReadError, match="nothing to audit"):
         list(audit_many([tmp_path / "empty"]))
+
+
+def _theta_4_off_by_2_deg(source: Path, folder: Path, libreoffice: str) -> Path:
+    """The four-bar with theta_4 two degrees off at rows 13-15, recalculated by
+    LibreOffice: every cell agrees with its formula, and the mechanics are wrong there."""
+    import re
+    import zipfile
+    from workbook_gen.engines.libreoffice import recalculate
+    tampered = folder / "theta4.xlsx"
+    with zipfile.ZipFile(source) as zin, zipfile.ZipFile(tampered, "w",
+                                                         zipfile.ZIP_DEFLATED) as zout:
+        for item in zin.infolist():
+            data = zin.read(item.filename)
+            if item.filename == "xl/worksheets/sheet1.xml":  # the Table
+                xml = data.decode()
+                header = openpyxl.load_workbook(source)["Table"]["J1"].value
+                assert header == "theta_4 [deg]", header
+                for row in (13, 14, 15):
+                    xml, n = re.subn(rf'(<c r="J{row}"[^>]*><f>[^<]*)(</f>)',
+                                     lambda m: m.group(1) + "+2" + m.group(2), xml)
+                    assert n == 1
+                data = xml.encode()
+            zout.writestr(item, data)
+    return recalculate(tampered, folder / "recalculated")
+
+
+def test_verdict_names_the_reference_model_and_the_checks_not_cells(
+        libreoffice, small_four_bar, tmp_path):
+    bad = _theta_4_off_by_2_deg(small_four_bar, tmp_path, libreoffice)
+    result = run_cli("audit", str(bad))
+    assert result.returncode == 1, result.stderr
+    verdict = result.stdout.strip().splitlines()[-1]
+    assert verdict.startswith("  FAILED: reference model: theta_4 differs at rows 13-15, "
+                              "max error "), verdict
+    assert "Checks: closure residuals loop_position" in verdict, verdict
+    assert "cells disagree" not in verdict and "disagreement" not in verdict, verdict
+    data = json.loads(run_cli("audit", str(bad), "--json").stdout)
+    assert [c["kind"] for c in data["failed"]] == ["reference", "checks"]
+    assert data["failed"][0]["message"].startswith("reference model: theta_4 differs at "
+                                                   "rows 13-15")
+    # several files: the file's line and the total say why too
+    many = run_cli("audit", str(bad), str(small_four_bar), "--jobs", "1")
+    lines = many.stdout.strip().splitlines()
+    assert many.returncode == 1
+    assert lines[0].startswith("FAIL") and "reference model: theta_4 differs at rows 13-15" \
+        in lines[0], lines[0]
+    assert lines[1].startswith("OK")
+    assert lines[-1].startswith("total: 2 files: 1 ok, 1 failed (1 failing the reference "
+                                "model, 1 failing their Checks), 0 refused"), lines[-1]
+    # a good file's JSON says nothing failed
+    assert json.loads(run_cli("audit", str(small_four_bar), "--json").stdout)["failed"] == []
+
+
+def test_verdict_names_the_disagreeing_cell(small_four_bar, tmp_path):
+    import re
+    import zipfile
+    bad = tmp_path / "cached.xlsx"
+    with zipfile.ZipFile(small_four_bar) as zin, zipfile.ZipFile(bad, "w") as zout:
+        for item in zin.infolist():
+            data = zin.read(item.filename)
+            if item.filename == "xl/worksheets/sheet1.xml":
+                data, n = re.subn(rb'(<c r="J20"[^>]*><f>[^<]*</f><v>)([^<]*)(</v>)',
+                                  lambda m: m.group(1) + repr(float(m.group(2)) + 1e-3
+                                                              ).encode() + m.group(3), data)
+                assert n == 1
+            zout.writestr(item, data)
+    result = run_cli("audit", str(bad))
+    assert result.returncode == 1
+    verdict = result.stdout.strip().splitlines()[-1]
+    assert verdict.startswith("  FAILED: 1 cell disagrees at the source: Table!J20"), verdict
+    assert "reference model" not in verdict  # the cell's own formula is right

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import WorkbookGenError, WorkbookReadError
+from .verdict import KINDS
 
 SUFFIXES = (".xlsx", ".xlsm")
 
@@ -67,7 +68,8 @@ class FileResult:
                 + f", {findings} findings"
                 + (", macros not checked" if s.get("macros") else "")
                 + ("; no cached values: nothing verified" if s.get("saved_without_values")
-                   else ""))
+                   else "")
+                + "".join(f"; {c['message']}" for c in s.get("failed", ())))
 
     def json(self) -> dict:
         if self.error is not None:
@@ -133,8 +135,10 @@ def total_line(results: list[FileResult]) -> str:
     sources = sum(r.summary.get("disagreements", 0) for r in results)
     contract = sum(r.summary.get("cells_by_contract", 0) for r in results)
     unverified = sum(bool(r.summary.get("saved_without_values")) for r in results)
-    return (f"total: {len(results)} files: {ok} ok, {fail} with cells that disagree, "
-            f"{refused} refused"
+    kinds = [c["kind"] for r in results for c in r.summary.get("failed", ())]
+    why = ", ".join(f"{kinds.count(k)} {text}" for k, text in KINDS.items() if k in kinds)
+    return (f"total: {len(results)} files: {ok} ok, {fail} failed" + (f" ({why})" if why else "")
+            + f", {refused} refused"
             + (f" ({unverified} saved without cached values: nothing verified)"
                if unverified else "")
             + f"; {cells} formula cells: {agree} agree, {disagree} disagree ({sources} at the "

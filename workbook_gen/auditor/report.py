@@ -10,6 +10,7 @@ from .compare import ColumnStats
 from .mechanics import REFERENCE_TOLERANCE, MechanicsReport
 from .structure import Finding
 from .tally import NO_CACHED_VALUE, Tally
+from .verdict import causes, verdict_line
 
 MAX_LISTED = 20  # disagreeing cells listed per column in the terminal (--verbose)
 WORST = 5  # disagreeing cells shown in the default summary
@@ -142,6 +143,7 @@ class AuditReport:
     def to_json(self) -> dict:
         out = {
             "ok": self.ok,
+            "failed": [c.json() for c in causes(self)],  # what failed: cells, reference, ...
             "file": self.path,
             "formula_cells": self.formula_cells,
             "cells_checked": self.cells_checked,
@@ -332,22 +334,7 @@ def format_report(report: AuditReport, verbose: bool = False) -> str:
         lines.append(f"  the audit warned {sum(report.warnings.values())} times (its own "
                      "problem, not the file's): " + "; ".join(
                          f"{k} (x{n})" for k, n in list(report.warnings.items())[:3]))
-    if report.ok and report.saved_without_values:
-        verdict = ("  OK: nothing disagrees, but nothing was verified: the file holds no cached "
-                   "values (--engine libreoffice compares with LibreOffice's recalculation)")
-    elif report.ok and report.formula_cells and not report.cells_checked:
-        verdict = (f"  OK: nothing disagrees, but nothing was verified: none of the "
-                   f"{report.formula_cells} formula cells could be checked")
-    elif report.ok:
-        verdict = "  OK: every checked cell agrees"
-        if report.cells_not_checked:
-            verdict += f" ({report.cells_not_checked} not checked)"
-    else:
-        n = report.disagreements
-        verdict = (f"  FAILED: {n} disagreement{'s' * (n != 1)} at the source" if n else
-                   "  FAILED: cells disagree") + (
-            " (see above" + ("" if verbose else "; --verbose lists all") + ")")
-    lines.append(verdict)
+    lines.append(verdict_line(report, verbose))
     return "\n".join(lines)
 
 
