@@ -193,3 +193,23 @@ def test_verdict_names_the_disagreeing_cell(small_four_bar, tmp_path):
     verdict = result.stdout.strip().splitlines()[-1]
     assert verdict.startswith("  FAILED: 1 cell disagrees at the source: Table!J20"), verdict
     assert "reference model" not in verdict  # the cell's own formula is right
+
+
+CORPUS = ROOT.parent / "shared" / "corpus" / "xlsx"
+
+
+def test_libreoffice_own_semantics_are_its_difference_not_the_file_failure(libreoffice):
+    """pycel__stats.xlsx, saved by Excel: SLOPE, INTERCEPT and FORECAST of two areas of
+    different sizes are #N/A there (Microsoft's rule), #VALUE! in LibreOffice."""
+    stats = CORPUS / "pycel__stats.xlsx"
+    assert stats.is_file(), f"the corpus is missing: {stats}"
+    result = run_cli("audit", str(stats), "--engine", "libreoffice", "--json")
+    assert result.returncode == 0, (result.stdout[-2000:], result.stderr)
+    data = json.loads(result.stdout)
+    assert data["ok"] and data["failed"] == [] and data["engine"]["mismatches"] == []
+    differences = {d["cell"]: d for d in data["engine"]["libreoffice_differences"]}
+    assert {"Stats!P3", "Stats!Q3", "Stats!R3", "Stats!P4", "Stats!P5"} <= set(differences)
+    assert differences["Stats!P3"]["formula"] == "=SLOPE(J3:N3,J4:N5)"
+    assert (differences["Stats!P3"]["libreoffice"], differences["Stats!P3"]["excel"]) == (
+        "#VALUE!", "#N/A")
+    assert data["engine"]["libreoffice_semantics"] == len(differences)

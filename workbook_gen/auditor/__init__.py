@@ -38,13 +38,13 @@ from ..evaluator.relnames import relative_names
 from ..evaluator.store import FLOAT, type_mask, value_scale
 from ..evaluator.volatile import Clock
 from ..formula import ast, parse
-from ..formula.functions import Unanswered as fx_unanswered, dialect_of
+from ..formula.functions import dialect_of
 from ..forked import Forked
-from ..formula.scalar import evaluate as evaluate_scalar
-from ..xlerror import ExcelError
 import numpy as np
 
 from .caught import caught
+from .dialects import against_libreoffice, libreoffice_explains as _libreoffice_explains
+from .dialects import _Resolver  # noqa: F401 (tests/differential.py reads it here)
 from .compare import ColumnStats, compare, compare_numbers
 from .findings import find as find_findings
 from .inputs import AuditInputs, read_inputs
@@ -61,54 +61,6 @@ __all__ = ["audit", "AuditReport"]
 def _cell_name(key: tuple[str, int, int]) -> str:
     sheet = key[0] if key[0].replace("_", "").isalnum() else "'" + key[0].replace("'", "''") + "'"
     return f"{sheet}!{xl_rowcol_to_cell(key[1] - 1, key[2] - 1)}"
-
-
-class _Resolver:
-    """The scalar evaluator's view of the recomputed workbook (for re-evaluating a cell
-    with LibreOffice's semantics)."""
-
-    def __init__(self, value_of, names: dict[str, str], sheet: str, clip=None):
-        self.value_of, self.names, self.sheet = value_of, names, sheet
-        self.clip = clip
-        self._upper = {k.upper(): v for k, v in names.items()}
-
-    def cell(self, sheet, row, col):
-        return self.value_of(sheet or self.sheet, row, col)
-
-    def range(self, sheet, row1, col1, row2, col2):
-        if self.clip is not None:  # A:A is read up to the used range only
-            row1, col1, row2, col2 = self.clip(sheet or self.sheet, row1, col1, row2, col2)
-        return [[self.cell(sheet, r, c) for c in range(col1, col2 + 1)]
-                for r in range(row1, row2 + 1)]
-
-    def name(self, name, sheet):
-        text = self._upper.get(name.upper())
-        if text is None:
-            return ExcelError.NAME
-        try:
-            node = parse(str(text).lstrip("="))
-        except FormulaSyntaxError:
-            return ExcelError.NAME
-        return evaluate_scalar(node, self)
-
-
-def _libreoffice_explains(inputs: AuditInputs, key, value_of, cached) -> bool:
-    """Does LibreOffice's evaluation of this cell (its known deviations from Excel:
-    SQRT(-1), ATAN2(0,0), 0^0, odd roots) give the cached value?"""
-    try:
-        node = parse(inputs.text_of(key).removeprefix("{=").removesuffix("}"))
-    except FormulaSyntaxError:
-        return False
-    resolver = _Resolver(value_of, inputs.book.defined_names, key[0],
-                         getattr(value_of, "clip", None))
-    resolver.has_formula = lambda sheet, row, col: inputs.is_formula((sheet or key[0], row, col))
-    try:
-        with np.errstate(all="ignore"):  # overflow is #NUM! there too (engine._floats_quiet)
-            value = evaluate_scalar(node, resolver, dialect="libreoffice")
-    except (ArithmeticError, ValueError, TypeError, IndexError, KeyError, RecursionError,
-            fx_unanswered):
-        return False  # the re-check is a courtesy: a defect in it must not lose the file
-    return compare(cached, value, 0.0).agree
 
 
 PHASES = ("read", "evaluate", "compare", "reference", "findings", "engine")
@@ -422,29 +374,8 @@ def _engine(path, engine: str, inputs: AuditInputs, value_of, scales,
     from ..engines.libreoffice import recalculated_values
     started = time.perf_counter()
     theirs = recalculated_values(path)
-    mismatches, explained, cells = [], 0, 0
-    sheet_of = {s.name: s for s in inputs.book.sheets}
     seen = {k: theirs.get(k[0], {}).get(inputs.ref(k)) for k in inputs.formulas}
     local = _local_evaluation(inputs, seen, dialect="libreoffice",
                               saved=Clock({}, last_saved(path), _agree))
-    for key, formula in inputs.formulas.items():
-        if key in scales_skip:
-            continue
-        sheet = sheet_of[key[0]]
-        ref = inputs.ref(key)
-        if ref not in theirs.get(sheet.name, {}):
-            continue
-        cells += 1
-        value = theirs[sheet.name][ref]
-        if key in local.values:  # an aggregate: what it makes of LibreOffice's own range
-            ours, scale = local.values[key], local.operands_scale[key]
-        else:
-            ours, scale = value_of(*key), scales.get(key, 0.0)
-        if compare(value, ours, scale).agree:
-            continue
-        if _libreoffice_explains(inputs, key, value_of, value):
-            explained += 1
-            continue
-        mismatches.append(Mismatch(_cell_name(key), formula, value, ours))
-    return EngineResult("libreoffice", cells, mismatches, explained,
-                        time.perf_counter() - started)
+    return against_libreoffice(inputs, theirs, local, value_of, scales, scales_skip, started,
+                               _cell_name)

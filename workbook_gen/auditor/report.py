@@ -47,6 +47,8 @@ class EngineResult:
     mismatches: list[Mismatch]
     libreoffice_semantics: int  # cells explained only by LibreOffice's known deviations
     seconds: float
+    # those cells: ``cached`` holds LibreOffice's value, ``recomputed`` ours (Excel's)
+    differences: list[Mismatch] = field(default_factory=list)
 
 
 @dataclass
@@ -185,6 +187,10 @@ class AuditReport:
             out["engine"] = {"name": self.engine.engine, "cells": self.engine.cells,
                              "mismatches": [_mismatch_json(m) for m in self.engine.mismatches],
                              "libreoffice_semantics": self.engine.libreoffice_semantics,
+                             "libreoffice_differences": [
+                                 {"cell": m.cell, "formula": "=" + m.formula,
+                                  "libreoffice": _plain(m.cached), "excel": _plain(m.recomputed)}
+                                 for m in self.engine.differences],
                              "seconds": self.engine.seconds}
         return out
 
@@ -330,6 +336,12 @@ def format_report(report: AuditReport, verbose: bool = False) -> str:
         for m in e.mismatches[:MAX_LISTED if verbose else WORST]:
             lines.append(f"    {m.cell}: ={_cut(m.formula)}: {e.engine} {_cut(_show(m.cached))}, "
                          f"ours {_cut(_show(m.recomputed))}")
+        if e.differences:
+            lines.append(f"  {len(e.differences)} cells differ where LibreOffice's own semantics "
+                         "differ from Excel's (its difference, not the file's; not failed):")
+            for m in e.differences[:MAX_LISTED if verbose else 3]:
+                lines.append(f"    {m.cell}: ={_cut(m.formula)}: LibreOffice "
+                             f"{_cut(_show(m.cached))}, Excel {_cut(_show(m.recomputed))}")
     if report.warnings:
         lines.append(f"  the audit warned {sum(report.warnings.values())} times (its own "
                      "problem, not the file's): " + "; ".join(
