@@ -213,3 +213,69 @@ def test_libreoffice_own_semantics_are_its_difference_not_the_file_failure(libre
     assert (differences["Stats!P3"]["libreoffice"], differences["Stats!P3"]["excel"]) == (
         "#VALUE!", "#N/A")
     assert data["engine"]["libreoffice_semantics"] == len(differences)
+
+
+# (formula on sheet Calc, Excel's value): a reference to a sheet the workbook lacks is
+# #REF! in Excel (as after deleting the sheet); INDIRECT's text names a cell of the
+# calling cell's sheet unless it names another, and the cell it names is computed first
+HOSTILE = {
+    "A1": ("=MAX(Sheet2!A1:A3)", "#REF!"),
+    "A2": ("=Sheet2!A1+1", "#REF!"),
+    "A3": ('=IFERROR(SUM(Sheet2!A1:B2),"gone")', "gone"),
+    "A4": ('=INDIRECT("B1")', 7.0),
+    "A5": ('=SUM(INDIRECT("B1:B2"))*2', 28.0),
+    "A6": ('=INDIRECT("Data!A1")', 9.0),
+    "A7": ('=INDIRECT("Sheet2!A1")', "#REF!"),
+    "A8": ('=SUM(INDIRECT("C1:C3"))', 6.0),
+}
+
+
+def _hostile_cells(sheet, data) -> None:
+    sheet["B1"] = "=3+4"   # a formula INDIRECT reads: computed after it, it would read 0
+    sheet["B2"] = "=B1*1"
+    for r, v in enumerate((1, 2, 3), start=1):
+        sheet[f"C{r}"] = f"={v}*1"
+    data["A1"] = "=4+5"
+
+
+def test_hostile_references_recompute_as_excel_does(tmp_path):
+    import xlsxwriter
+    path = tmp_path / "hostile.xlsx"
+    book = xlsxwriter.Workbook(str(path))
+    data, calc = book.add_worksheet("Data"), book.add_worksheet("Calc")
+    calc.write_formula("B1", "=3+4", None, 7)
+    calc.write_formula("B2", "=B1*1", None, 7)
+    for r, v in enumerate((1, 2, 3)):
+        calc.write_formula(r, 2, f"={v}*1", None, v)
+    data.write_formula("A1", "=4+5", None, 9)
+    for ref, (formula, value) in HOSTILE.items():
+        calc.write_formula(ref, formula, None, value)
+    book.close()
+    from workbook_gen import audit
+    report = audit(path)
+    assert report.ok, [(m.cell, m.cached, m.recomputed) for m in report.mismatches]
+    assert report.cells_checked == report.formula_cells == len(HOSTILE) + 6
+    assert any(f.kind == "unresolved_reference" and "Sheet2" in f.message
+               for f in report.findings)
+
+
+def test_hostile_references_agree_with_libreoffice(libreoffice, tmp_path):
+    from workbook_gen import audit
+    from workbook_gen.engines.libreoffice import recalculate
+    book = openpyxl.Workbook()
+    data = book.active
+    data.title = "Data"
+    calc = book.create_sheet("Calc")
+    _hostile_cells(calc, data)
+    for ref, (formula, _) in HOSTILE.items():
+        calc[ref] = formula
+    book.save(tmp_path / "hostile.xlsx")
+    saved = recalculate(tmp_path / "hostile.xlsx", tmp_path / "lo")
+    values = openpyxl.load_workbook(saved, data_only=True)["Calc"]
+    # LibreOffice reads a missing sheet's reference as an unknown name: #NAME?
+    assert [values[r].value for r in ("A1", "A4", "A5", "A6", "A7", "A8")] == [
+        "#NAME?", 7, 28, 9, "#REF!", 6]
+    report = audit(saved)
+    assert report.semantics == "libreoffice"
+    assert report.ok, [(m.cell, m.cached, m.recomputed) for m in report.mismatches]
+    assert report.cells_checked == report.formula_cells

@@ -48,7 +48,7 @@ import numpy as np
 
 from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.evaluator import calls, cycles, graph, volatile as vol, whatif
-from workbook_gen.evaluator.book import BookInfo, resolve, resolve_fixed
+from workbook_gen.evaluator.book import BookInfo, resolve, resolve_fixed, without_missing_sheets
 from workbook_gen.evaluator.external import ExternalBooks
 from workbook_gen.evaluator.relnames import NameInliner
 from workbook_gen.evaluator.taint import Taint
@@ -238,8 +238,9 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
             result.syntax_errors[cell] = message
             store.put(*cell, SYNTAX_VALUE)
             _source(result, taint, cell, cell, f"formula syntax: {message}")
-    units = _units(runs, vectorize, store, result)
-    units += _array_units(arrays or {}, book, result, taint, store, inliner)
+    known = {s.lower() for s in [*book.sheets, *store.all_sheets]} if book.sheets else set()
+    units = _units(runs, vectorize, store, result, known, dialect)
+    units += _array_units(arrays or {}, book, result, taint, store, inliner, known, dialect)
     _report_functions(units, result, name_table, dialect, stored)
     taint.flush()
 
@@ -367,13 +368,16 @@ def _cube(node: ast.Node) -> bool:
     return any(isinstance(n, ast.Func) and n.name in fx.CACHED_OUTSIDE for n in ast.walk(node))
 
 
-def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -> list[Unit]:
+def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation,
+           sheets=(), dialect: str = "excel") -> list[Unit]:
+    """``sheets``: the workbook's (lower case), a reference to another is an error."""
     units = []
     for run in runs:
         outside = _external(run.node)
         if outside:
             result.external.extend((run.sheet, r, run.col) for r in range(run.first, run.last + 1))
-        unit = Unit(run.sheet, run.col, run.first, run.last, run.node)
+        unit = Unit(run.sheet, run.col, run.first, run.last,
+                    without_missing_sheets(run.node, sheets, dialect))
         if run.last > run.first and (vol.calls(run.node) or calls.guarded(run.node)
                                      or (store.stored and calls.bare_future(run.node))
                                      or outside or _cube(run.node)):
@@ -384,8 +388,8 @@ def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -
             continue
         if vectorize and run.last > run.first:
             try:
-                unit.block = compile_block(run.node, run.sheet, run.col, run.first, run.last,
-                                           store.sheet)
+                unit.block = compile_block(unit.node, run.sheet, run.col, run.first,
+                                           run.last, store.sheet)
             except NotVectorizable as exc:
                 log.debug("cell by cell: %s!%s%s..: %s", run.sheet, run.col, run.first, exc)
         units.extend([unit] if unit.block is not None or run.last == run.first
@@ -394,7 +398,8 @@ def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -
 
 
 def _array_units(arrays, book: BookInfo, result: Evaluation, taint: Taint,
-                 store: Store, inliner: NameInliner | None = None) -> list[Unit]:
+                 store: Store, inliner: NameInliner | None = None, sheets=(),
+                 dialect: str = "excel") -> list[Unit]:
     """One unit per array formula, filling its rectangle."""
     units = []
     for (sheet, row, col), (text, area) in arrays.items():
@@ -411,7 +416,8 @@ def _array_units(arrays, book: BookInfo, result: Evaluation, taint: Taint,
                             f"formula syntax: {exc}")
             continue
         result.runs.append(Run(sheet, col, row, row, node))
-        units.append(Unit(sheet, col, row, row, node, area=area))
+        units.append(Unit(sheet, col, row, row, without_missing_sheets(node, sheets, dialect),
+                          area=area))
     return units
 
 

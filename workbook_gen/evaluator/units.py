@@ -6,6 +6,7 @@ decides what is checked."""
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 from workbook_gen.evaluator import graph
@@ -59,7 +60,33 @@ def _reads(node: ast.Node):
         elif isinstance(n, ast.Func) and n.name in REFERENCE_ONLY:
             stack.extend(a for a in n.args if not isinstance(a, (ast.CellRef, ast.RangeRef)))
         else:
+            if isinstance(n, ast.Func) and n.name == "INDIRECT":
+                yield from _indirect_reads(n)
             stack.extend(ast.children(n))
+
+
+def _indirect_reads(call: ast.Func):
+    """The reference ``INDIRECT("B1")`` reads when its text is a constant in A1 style:
+    the cell it names must be computed before it (``INDIRECT("B1")`` is B1 of the calling
+    cell's sheet, the same from every row of a run). A computed text reads what it
+    evaluates to, which no graph can know ahead."""
+    from workbook_gen.errors import FormulaSyntaxError
+    from workbook_gen.formula.parser import parse
+    if not call.args or not isinstance(call.args[0], ast.String):
+        return
+    if len(call.args) > 1 and not (isinstance(call.args[1], ast.Bool) and call.args[1].value):
+        return
+    try:
+        ref = parse(call.args[0].value.strip())
+    except FormulaSyntaxError:
+        return
+    if isinstance(ref, ast.CellRef):
+        yield dataclasses.replace(ref, row_abs=True, col_abs=True)
+    elif isinstance(ref, ast.RangeRef):
+        fixed = [dataclasses.replace(c, row_abs=True, col_abs=True) for c in (ref.first, ref.last)]
+        yield dataclasses.replace(ref, first=fixed[0], last=fixed[1])
+    elif isinstance(ref, ast.Name):
+        yield ref
 
 
 def shapes_of(unit: Unit, store: Store, names: Names) -> tuple[list[Shape], list[str]]:
