@@ -45,6 +45,17 @@ def _overrides(scene: str, items: Sequence[str]) -> dict[str, object]:
     return values
 
 
+def _cells(text: str) -> int:
+    """--max-cells N: a whole number >= 1 (1200000, 1_200_000 or 1.2e6)."""
+    try:
+        value = float(text.replace("_", "").replace(",", ""))
+    except ValueError:
+        value = 0.0
+    if not (1 <= value < 1e15 and value == int(value)):
+        raise argparse.ArgumentTypeError(f"{text!r}: give a whole number of cells >= 1")
+    return int(value)
+
+
 def _warn(scene) -> None:
     for warning in scene.warnings:
         print(f"workbook-gen: warning: {warning}", file=sys.stderr)
@@ -86,7 +97,8 @@ def _audit(args: argparse.Namespace) -> int:
     from .progress import Progress
     phases = len(PHASES) - (0 if args.engine else 1)
     with Progress(total=phases, desc="audit", unit="phase", delay=1.0) as bar:
-        report = audit(args.paths[0], engine=args.engine, progress=bar)
+        report = audit(args.paths[0], engine=args.engine, progress=bar,
+                       max_cells=args.max_cells)
     if args.json:
         print(json.dumps(report.to_json(), allow_nan=False))
     else:
@@ -111,7 +123,7 @@ def _audit_many(args: argparse.Namespace) -> int:
     results, worst = [], 0
     with Progress(total=count, desc="audit", unit="file") as bar:
         for result in audit_many(args.paths, jobs=args.jobs, engine=args.engine,
-                                 progress=bar):
+                                 progress=bar, max_cells=args.max_cells):
             results.append(result)
             worst = max(worst, result.code)
             text = (json.dumps(result.json(), allow_nan=False) if args.json
@@ -198,6 +210,9 @@ def parser() -> argparse.ArgumentParser:
                    help="also recalculate the file in LibreOffice headless and compare")
     p.add_argument("--verbose", action="store_true",
                    help="list every column, disagreeing cell, cell not checked and finding")
+    p.add_argument("--max-cells", type=_cells, metavar="N",
+                   help="read workbooks of up to N cells (default 1,200,000; about 1 KB "
+                        "of memory a cell)")
     p.set_defaults(run=_audit)
 
     p = sub.add_parser("tradeoff", help="speed against accuracy on a scene: step, method, "

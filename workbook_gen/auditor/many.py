@@ -77,11 +77,12 @@ class FileResult:
         return self.summary
 
 
-def audit_file(path: str, engine: str | None = None) -> FileResult:
+def audit_file(path: str, engine: str | None = None, max_cells: int | None = None
+               ) -> FileResult:
     """One file's result; a refused file is a result, not an exception."""
     from . import audit
     try:
-        report = audit(path, engine=engine)
+        report = audit(path, engine=engine, max_cells=max_cells)
     except WorkbookGenError as exc:
         message = " ".join(str(exc).split())
         return FileResult(path, 2, error=message.removeprefix(f"{path}: "))
@@ -93,20 +94,21 @@ def audit_file(path: str, engine: str | None = None) -> FileResult:
 
 def audit_many(paths: Iterable[str | Path], *, jobs: int | None = None,
                engine: str | None = None,
-               progress: Callable[[str], None] | None = None) -> Iterator[FileResult]:
+               progress: Callable[[str], None] | None = None,
+               max_cells: int | None = None) -> Iterator[FileResult]:
     """Results of ``expand(paths)`` in order, audited by ``jobs`` worker processes
     (default: the CPU count; 1 audits in this process)."""
     files = [str(p) for p in expand(paths)]
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(files) or 1))
     if jobs == 1:
         for path in files:
-            result = audit_file(path, engine)
+            result = audit_file(path, engine, max_cells)
             if progress:
                 progress(Path(path).name)
             yield result
         return
     with ProcessPoolExecutor(max_workers=jobs, initializer=_one_process) as pool:
-        futures = [pool.submit(audit_file, path, engine) for path in files]
+        futures = [pool.submit(audit_file, path, engine, max_cells) for path in files]
         for path, future in zip(files, futures):
             try:
                 result = future.result()

@@ -54,7 +54,8 @@ from workbook_gen.evaluator.relnames import NameInliner
 from workbook_gen.evaluator.taint import Taint
 from workbook_gen.evaluator.grouping import Grouped, Run, group_formulas
 from workbook_gen.evaluator.store import Names, SheetResolver, Store, value_scale
-from workbook_gen.evaluator.units import Unit, evaluate_unit, rects, shapes_of, singles
+from workbook_gen.evaluator.units import (Unit, evaluate_unit, reads_only_above, rects,
+                                          shapes_of, singles)
 from workbook_gen.evaluator.vector import NotVectorizable, compile_block
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
@@ -256,7 +257,14 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
                             if u.area for c in range(u.col + 1, u.area[1] + 1)])
         components = graph.order(deps)
         cyclic = [c for c in components if graph.is_cycle(c, deps)]
-        split = {u for c in cyclic for u in c if units[u].block is not None}
+        chains = set()  # a run reading its own rows above (=A1+1 filled down): in order
+        for c in cyclic:
+            if (len(c) == 1 and units[c[0]].sequential
+                    and reads_only_above(units[c[0]], shapes[c[0]][0])):
+                chains.add(c[0])
+                deps[c[0]] = [d for d in deps[c[0]] if d != c[0]]
+        split = {u for c in cyclic for u in c if u not in chains
+                 and (units[u].block is not None or units[u].sequential)}
         if not split:
             break
         units = [s for i, u in enumerate(units)
@@ -322,7 +330,7 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
             result.groups.vector_groups += 1
             result.groups.vector_cells += u.last - u.first + 1
         else:
-            result.groups.scalar_cells += 1
+            result.groups.scalar_cells += u.last - u.first + 1 if u.sequential else 1
     result.external.sort()
     return result
 
@@ -392,8 +400,10 @@ def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation,
                                            run.last, store.sheet)
             except NotVectorizable as exc:
                 log.debug("cell by cell: %s!%s%s..: %s", run.sheet, run.col, run.first, exc)
-        units.extend([unit] if unit.block is not None or run.last == run.first
-                     else singles(unit))
+        # a run not vectorised is evaluated row after row as one unit (a unit per cell,
+        # each with its tree, would cost ~1.5 KB a cell); split if in a cycle
+        unit.sequential = unit.block is None and run.last > run.first
+        units.append(unit)
     return units
 
 
@@ -495,6 +505,8 @@ def _spread(unit: Unit, shaped: tuple, taint: Taint, result: Evaluation,
     for shape in shapes:
         for lo, hi, origin in taint.hits(shape, n):
             why = result.not_checked.get(origin, "")
+            if unit.sequential:  # every later row may read this one
+                hi = n - 1
             cells = (unit.cells() if unit.area else
                      [(unit.sheet, unit.first + i, unit.col) for i in range(lo, hi + 1)])
             for cell in cells:

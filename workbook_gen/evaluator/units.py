@@ -32,6 +32,9 @@ class Unit:
     node: ast.Node
     block: object = None   # compiled vector Block, or None for a single cell
     area: tuple[int, int] | None = None  # an array formula: its last row and column
+    # a run that reads its own column only above each row (``=A1+1`` filled down: a
+    # chain): evaluated row after row, cell by cell, without a unit per cell
+    sequential: bool = False
 
     def cells(self):
         if self.area is not None:
@@ -40,10 +43,18 @@ class Unit:
         return [(self.sheet, r, self.col) for r in range(self.first, self.last + 1)]
 
 
-def singles(unit: Unit) -> list[Unit]:
-    """A run as single cells, each with its own (shifted) tree."""
-    return [Unit(unit.sheet, unit.col, r, r, ast.shift(unit.node, r - unit.first, 0))
-            for r in range(unit.first, unit.last + 1)]
+def reads_only_above(unit: Unit, shapes: list[Shape]) -> bool:
+    """Does every rectangle the run reads in its own column end above the row reading
+    it (so that its rows, computed in order, never read one not yet computed)?"""
+    return all(s.row2 < unit.first for s in shapes
+               if s.sheet == unit.sheet and s.col1 <= unit.col <= s.col2)
+
+
+def singles(unit: Unit):
+    """A run as single cells, each with its own (shifted) tree, made as they are asked
+    for (``list(singles(u))`` for all at once)."""
+    return (Unit(unit.sheet, unit.col, r, r, ast.shift(unit.node, r - unit.first, 0))
+            for r in range(unit.first, unit.last + 1))
 
 
 def _reads(node: ast.Node):
@@ -155,6 +166,10 @@ def evaluate_unit(unit: Unit, store: Store, names: Names, dialect: str = "excel"
         for i, row in enumerate(values):
             for j, value in enumerate(row):
                 store.put(unit.sheet, unit.first + i, unit.col + j, value, scale)
+        return
+    if unit.sequential:  # each row's tree made when its turn comes, then dropped
+        for single in singles(unit):
+            evaluate_unit(single, store, names, dialect)
         return
     if unit.block is None:
         value = evaluate(unit.node, resolver, dialect=dialect, cell=cell)
