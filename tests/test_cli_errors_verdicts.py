@@ -279,3 +279,61 @@ def test_hostile_references_agree_with_libreoffice(libreoffice, tmp_path):
     assert report.semantics == "libreoffice"
     assert report.ok, [(m.cell, m.cached, m.recomputed) for m in report.mismatches]
     assert report.cells_checked == report.formula_cells
+
+
+def _chain(path: Path, n: int) -> Path:
+    """A1 = 1, A(r) = A(r-1)+1 filled down: n formula cells with Excel's cached values."""
+    import xlsxwriter
+    book = xlsxwriter.Workbook(str(path))
+    sheet = book.add_worksheet("Chain")
+    sheet.write_number(0, 0, 1.0)
+    for r in range(1, n + 1):
+        sheet.write_formula(r, 0, f"=A{r}+1", None, float(r + 1))
+    book.close()
+    return path
+
+
+def test_max_cells_flag_and_argument_read_a_larger_workbook(tmp_path):
+    from workbook_gen import audit
+    from workbook_gen.errors import WorkbookGenError
+    chain = _chain(tmp_path / "chain.xlsx", 1500)  # 1,501 cells
+    message = one_line_exit_2(run_cli("audit", str(chain), "--max-cells", "1000"),
+                              "more than 1000 cells", "--max-cells N")
+    assert "max_cells=N" in message  # the instruction names what exists
+    result = run_cli("audit", str(chain), "--max-cells", "1501")
+    assert result.returncode == 0, result.stderr
+    assert "1500 formula cells: 1500 checked (1500 agree" in result.stdout
+    many = run_cli("audit", str(chain), str(chain), "--max-cells", "1000", "--jobs", "1")
+    assert many.returncode == 2 and many.stdout.startswith("ERROR") and "--max-cells" in many.stdout
+    report = audit(chain, max_cells=1501)
+    assert report.ok and report.cells_checked == 1500
+    with pytest.raises(WorkbookGenError, match="more than 1000 cells"):
+        audit(chain, max_cells=1000)
+    for bad in (0, -5, 2.5, True):
+        with pytest.raises(WorkbookGenError, match="max_cells"):
+            audit(chain, max_cells=bad)
+    for bad in ("0", "x", "inf", "1.5"):
+        result = run_cli("audit", str(chain), "--max-cells", bad)
+        assert result.returncode == 2 and "--max-cells" in result.stderr, (bad, result.stderr)
+
+
+def test_a_chain_is_evaluated_without_a_unit_per_cell():
+    """=A(r-1)*1.0001+SIN(ROW()) filled down 20,000 rows: each row as Python computes it,
+    in a few hundred bytes a cell (a unit and a tree per cell took ~1.4 KB: a
+    million-formula chain peaked at 2.06 GB)."""
+    import math
+    import tracemalloc
+    from workbook_gen.evaluator import evaluate_cells
+    n = 20_000
+    formulas = {("S", r, 1): f"A{r - 1}*1.0001+SIN(ROW())" for r in range(2, n + 2)}
+    tracemalloc.start()
+    try:
+        result = evaluate_cells(formulas, {("S", 1, 1): 1.0}, {})
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    expected = 1.0
+    for r in range(2, n + 2):
+        expected = expected * 1.0001 + math.sin(r)
+        assert result.values[("S", r, 1)] == pytest.approx(expected, rel=1e-12, abs=1e-12), r
+    assert peak / n < 500, f"{peak / n:.0f} bytes a cell"
