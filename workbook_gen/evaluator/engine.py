@@ -502,10 +502,14 @@ def _spread(unit: Unit, shaped: tuple, taint: Taint, result: Evaluation,
             _source(result, taint, cell, cell, reason)
         return
     n = unit.last - unit.first + 1
+    # a chain (a run reading its own column above each row): every later row may read
+    # a row that cannot be recomputed
+    chain = unit.sequential and any(s.sheet == unit.sheet and s.col1 <= unit.col <= s.col2
+                                    for s in shapes)
     for shape in shapes:
         for lo, hi, origin in taint.hits(shape, n):
             why = result.not_checked.get(origin, "")
-            if unit.sequential:  # every later row may read this one
+            if chain:
                 hi = n - 1
             cells = (unit.cells() if unit.area else
                      [(unit.sheet, unit.first + i, unit.col) for i in range(lo, hi + 1)])
