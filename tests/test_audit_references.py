@@ -146,3 +146,25 @@ def test_aggregate_over_a_sheet_scoped_name_among_print_titles(tmp_path):
     book.close()
     report = audit(path)
     assert report.ok and report.cells_checked == 2, report.mismatches
+
+
+def test_a_defined_name_of_several_areas_is_their_union(tmp_path):
+    """A defined name may join areas with a top-level comma (Excel writes the print titles
+    `Table!$A:$A,Table!$1:$1` so, and any multi-area name): the union operator, not a
+    syntax error.  SUM over it adds both areas; no finding."""
+    import xlsxwriter
+    from workbook_gen import audit
+    path = tmp_path / "union.xlsx"
+    book = xlsxwriter.Workbook(path)
+    sheet = book.add_worksheet("Data")
+    sheet.write_column(0, 0, [1.0, 2.0, 4.0])
+    sheet.write_column(0, 2, [8.0, 16.0])
+    book.define_name("Both", "=Data!$A$1:$A$3,Data!$C$1:$C$2")
+    sheet.write_formula("E1", "=SUM(Both)", None, 31.0)
+    sheet.write_formula("E2", "=SUM(Both)+1", None, 30.0)   # wrong on purpose
+    sheet.repeat_rows(0)
+    sheet.repeat_columns(0)
+    book.close()
+    report = audit(path)
+    assert [m.cell for m in report.mismatches] == ["Data!E2"]
+    assert not [f for f in report.findings if f.kind == "defined_name_syntax"]

@@ -12,6 +12,7 @@ import numpy as np
 
 from ..errors import FormulaSyntaxError
 from ..formula import parse
+from ..formula.parser import parse_name
 from ..formula.functions import Unanswered as fx_unanswered
 from ..formula.scalar import evaluate as evaluate_scalar
 from ..xlerror import ExcelError
@@ -43,7 +44,7 @@ class _Resolver:
         if text is None:
             return ExcelError.NAME
         try:
-            node = parse(str(text).lstrip("="))
+            node = parse_name(text)
         except FormulaSyntaxError:
             return ExcelError.NAME
         return evaluate_scalar(node, self)

@@ -15,7 +15,8 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 
 from ..errors import FormulaSyntaxError
-from ..formula import ast, parse
+from ..formula import ast
+from ..formula.parser import parse_name
 from ..xlerror import ExcelError
 
 Key = tuple[str, int, int]
@@ -196,7 +197,7 @@ class Grid:
             node = None
             if text is not None:
                 try:
-                    node = parse(str(text).lstrip("="))
+                    node = parse_name(text)
                 except FormulaSyntaxError:
                     node = None
             self._names[folded] = node

@@ -26,6 +26,7 @@ import numpy as np
 from ..errors import FormulaSyntaxError
 from ..evaluator.relnames import at_cell
 from ..formula import ast, parse
+from ..formula.parser import parse_name
 from .report import Mismatch
 
 Key = tuple[str, int, int]
@@ -48,7 +49,7 @@ def rectangles(node, sheet: str, names: dict[str, str], depth: int = 0,
                 (v for k, v in names.items() if k.upper() == n.name.upper()), None)
             if text is not None:
                 try:
-                    tree = at_cell(parse(str(text).lstrip("=")), *at, None)
+                    tree = at_cell(parse_name(text), *at, None)
                 except FormulaSyntaxError:
                     continue
                 yield from rectangles(tree, sheet, names, depth + 1, at)

@@ -20,7 +20,7 @@ import dataclasses
 
 from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.formula import ast
-from workbook_gen.formula.parser import parse
+from workbook_gen.formula.parser import parse_name
 from workbook_gen.xlerror import ExcelError
 
 MAX_DEPTH = 16  # names through names
@@ -159,7 +159,7 @@ def relative_names(names: dict[str, str]) -> set[str]:
     trees = {}
     for name, text in names.items():
         try:
-            trees[name.upper()] = parse(str(text).lstrip("="))
+            trees[name.upper()] = parse_name(text)
         except FormulaSyntaxError:
             continue
     found = {n for n, tree in trees.items() if cell_dependent(tree)}

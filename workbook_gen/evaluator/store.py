@@ -21,7 +21,7 @@ from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.evaluator.external import ExternalBooks
 from workbook_gen.evaluator.keys import column_groups, pick
 from workbook_gen.formula import ast
-from workbook_gen.formula.parser import parse
+from workbook_gen.formula.parser import parse_name
 from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
 
@@ -408,7 +408,7 @@ class Names:
 
     def _add(self, nodes, key, label, text, prepare) -> None:
         try:
-            node = parse(str(text).lstrip("="))
+            node = parse_name(text)
             nodes[key] = prepare(node) if prepare else node
         except FormulaSyntaxError as exc:
             self.errors[label.upper()] = str(exc)

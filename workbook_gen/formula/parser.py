@@ -40,6 +40,24 @@ def parse(formula: str) -> ast.Node:
     return _Parser(formula).parse()
 
 
+@lru_cache(maxsize=4096)
+def parse_name(text: str) -> ast.Node:
+    """The AST of a defined name's text (the leading ``=`` is optional).  A name may
+    refer to several areas joined by a top-level comma, the union operator there
+    (``_xlnm.Print_Titles``: ``Table!$A:$A,Table!$1:$1``), which a cell's formula writes
+    in parentheses: that reading is tried where the plain one fails on the comma."""
+    text = str(text).lstrip("=")
+    try:
+        return parse(text)
+    except FormulaSyntaxError as plain:
+        if "," not in text:
+            raise
+        try:
+            return parse(f"({text})")
+        except FormulaSyntaxError:
+            raise plain from None
+
+
 class _Parser:
     def __init__(self, formula: str):
         self.text = formula
