@@ -9,6 +9,8 @@ import tempfile
 from pathlib import Path
 from typing import Callable
 
+Place = Callable[[Path, Path], object]   # (finished temporary, target): moves it into place
+
 from .errors import OutputExistsError, WorkbookGenError
 
 
@@ -24,8 +26,10 @@ def refuse_existing(target: Path, force: bool) -> None:
         raise OutputExistsError(f"{target} exists; use --force to overwrite it")
 
 
-def write_atomically(target: Path, build: Callable[[Path], None], *, force: bool) -> Path:
-    """``build(temporary_path)`` writes the file; it then replaces ``target``."""
+def write_atomically(target: Path, build: Callable[[Path], None], *, force: bool,
+                     place: Place = os.replace) -> Path:
+    """``build(temporary_path)`` writes the file; ``place(temporary_path, target)`` (a
+    rename by default) then puts it in place of ``target``."""
     refuse_existing(target, force)
     try:
         target.parent.mkdir(parents=True, exist_ok=True)
@@ -36,7 +40,7 @@ def write_atomically(target: Path, build: Callable[[Path], None], *, force: bool
     try:
         build(Path(temp))
         os.chmod(temp, 0o644)
-        os.replace(temp, target)
+        place(Path(temp), target)
     except BaseException:
         Path(temp).unlink(missing_ok=True)
         raise
