@@ -25,8 +25,8 @@ from workbook_gen import cli
 ROOT = Path(__file__).resolve().parents[1]
 SEWING = str(ROOT / "templates" / "sewing_machine.toml")
 SMALL = ["--vary", "l_BC=95,100,105", "--step", "30"]
-# Enough variants (42, 36 rows each) that a run is killed with most of them to do.
-LONG = ["--vary", "l_BC=95:105:0.5", "--vary", "l_AB=30,32", "--step", "10"]
+# Enough variants (22, 36 rows each) that a run is killed with most of them to do.
+LONG = ["--vary", "l_BC=95:105:1", "--vary", "l_AB=30,32", "--step", "10"]
 FOLDER = "sewing_machine-batch"
 ENV = dict(os.environ, PYTHONPATH=os.pathsep.join(
     [str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]))
@@ -147,7 +147,7 @@ def _spawn(args: list[str], cwd: Path, log: Path) -> subprocess.Popen:
 
 
 def _start_long_batch(run: Path, *extra: str) -> subprocess.Popen:
-    """A `workbook-gen batch` subprocess of 42 variants (``LONG`` and ``extra``),
+    """A `workbook-gen batch` subprocess of 22 variants (``LONG`` and ``extra``),
     returned once it has finished two of them (its journal says so) and is still
     running."""
     run.mkdir(parents=True, exist_ok=True)
@@ -163,10 +163,10 @@ def _start_long_batch(run: Path, *extra: str) -> subprocess.Popen:
     return process
 
 
-def _reference(tmp_path: Path) -> dict[str, bytes]:
+@pytest.fixture(scope="module")
+def reference(tmp_path_factory) -> dict[str, bytes]:
     """The files of an uninterrupted run of the long batch (same relative --out)."""
-    run = tmp_path / "reference"
-    run.mkdir()
+    run = tmp_path_factory.mktemp("reference")
     done = subprocess.run([sys.executable, "-m", "workbook_gen.cli", "batch", SEWING, *LONG,
                            "--out", "out", "--quiet", "--jobs", "2"], env=ENV, cwd=run,
                           capture_output=True, text=True, timeout=PATIENCE)
@@ -182,7 +182,8 @@ def _no_process_left(group: int) -> bool:
     return False
 
 
-def test_sigterm_mid_run_removes_its_temporaries_ends_its_workers_and_exits_143(tmp_path):
+def test_sigterm_mid_run_removes_its_temporaries_ends_its_workers_and_exits_143(tmp_path,
+                                                                                reference):
     run = tmp_path / "run"
     process = _start_long_batch(run, "--jobs", "2")
     folder = run / "out" / FOLDER
@@ -201,11 +202,11 @@ def test_sigterm_mid_run_removes_its_temporaries_ends_its_workers_and_exits_143(
                             "--out", "out", "--quiet", "--jobs", "2"], env=ENV, cwd=run,
                            capture_output=True, text=True, timeout=PATIENCE)
     assert again.returncode == 0 and again.stderr == ""
-    assert _files(folder) == _reference(tmp_path)
+    assert _files(folder) == reference
 
 
 @pytest.mark.parametrize("mode", [[], ["--force"]], ids=["rerun", "force"])
-def test_the_next_run_removes_the_temporaries_of_a_killed_run(tmp_path, mode):
+def test_the_next_run_removes_the_temporaries_of_a_killed_run(tmp_path, mode, reference):
     run = tmp_path / "run"
     process = _start_long_batch(run, "--jobs", "1")
     os.killpg(process.pid, signal.SIGKILL)     # no chance to clean up
@@ -215,13 +216,14 @@ def test_the_next_run_removes_the_temporaries_of_a_killed_run(tmp_path, mode):
     assert any(n.startswith(".summary.") and n.endswith(".csv.tmp") for n in left)
     # What an interrupted write of a workbook leaves (a killed rename), beside a file
     # of the user's that only looks alike.
-    (folder / ".sewing_machine-0040.k2j_h4g5.xlsx.tmp").write_bytes(b"PK\x03\x04")
+    (folder / ".sewing_machine-0020.k2j_h4g5.xlsx.tmp").write_bytes(b"PK\x03\x04")
     (folder / ".notes.k2j_h4g5.csv.tmp").write_text("mine")
     done = subprocess.run([sys.executable, "-m", "workbook_gen.cli", "batch", SEWING, *LONG,
-                           "--out", "out", "--quiet", "--jobs", "1", *mode], env=ENV,
+                           "--out", "out", "--quiet", "--jobs", "2", *mode], env=ENV,
                           cwd=run, capture_output=True, text=True, timeout=PATIENCE)
     assert done.returncode == 0, done.stderr
     assert _temporaries(folder) == [".notes.k2j_h4g5.csv.tmp"]
+    assert _files(folder) == reference
 
 
 def test_a_second_run_into_a_folder_being_written_is_refused(tmp_path, capsys, monkeypatch):
@@ -245,7 +247,7 @@ def test_a_second_run_into_a_folder_being_written_is_refused(tmp_path, capsys, m
             os.killpg(process.pid, signal.SIGKILL)
             process.wait()
     assert _temporaries(run / "out" / FOLDER) == []
-    assert len(list((run / "out" / FOLDER).glob("sewing_machine-*.xlsx"))) == 42
+    assert len(list((run / "out" / FOLDER).glob("sewing_machine-*.xlsx"))) == 22
 
 
 # -- 7. --scheduler with no Dask worker ------------------------------------------------------
@@ -301,7 +303,7 @@ def test_no_dask_worker_is_said_and_the_timeout_gives_up_with_exit_2(tmp_path, l
     assert not (tmp_path / "out").exists()  # nothing written
 
 
-def test_a_worker_started_late_runs_the_waiting_batch(tmp_path, lone_scheduler):
+def test_a_worker_started_late_runs_the_waiting_batch(tmp_path, lone_scheduler, monkeypatch):
     run = tmp_path / "dask"
     run.mkdir()
     log = run / "batch.log"
@@ -324,8 +326,6 @@ def test_a_worker_started_late_runs_the_waiting_batch(tmp_path, lone_scheduler):
             _stop(worker)
     local = tmp_path / "local"
     local.mkdir()
-    done = subprocess.run([sys.executable, "-m", "workbook_gen.cli", "batch", SEWING, *SMALL,
-                           "--out", "out", "--quiet", "--jobs", "1"], env=ENV, cwd=local,
-                          capture_output=True, text=True, timeout=PATIENCE)
-    assert done.returncode == 0, done.stderr
+    monkeypatch.chdir(local)
+    assert cli.main(["batch", SEWING, *SMALL, "--out", "out", "--quiet", "--jobs", "1"]) == 0
     assert _files(run / "out" / FOLDER) == _files(local / "out" / FOLDER)

@@ -85,6 +85,10 @@ class LocalPool:
 def _stop(pool: cf.ProcessPoolExecutor) -> None:
     """Drop the chunks not started and end the workers now (SIGTERM: the work in flight
     is lost, its results not wanted), rather than wait for the chunks they run."""
+    terminate = getattr(pool, "terminate_workers", None)  # Python 3.14
+    if terminate is not None:
+        terminate()
+        return
     processes = list((getattr(pool, "_processes", None) or {}).values())
     pool.shutdown(wait=False, cancel_futures=True)
     for process in processes:
