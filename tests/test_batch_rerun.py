@@ -289,6 +289,17 @@ def lone_scheduler(tmp_path_factory):
         _stop(process)
 
 
+@pytest.mark.parametrize("extra, message", [
+    (["--timeout", "5"], "--timeout goes with --scheduler"),
+    (["--timeout", "0", "--scheduler", "tcp://127.0.0.1:9"], "--timeout must be > 0"),
+])
+def test_a_bad_timeout_exits_2_and_writes_nothing(tmp_path, capsys, extra, message):
+    assert cli.main(["batch", SEWING, *SMALL, "--out", str(tmp_path), "--quiet", *extra]) == 2
+    err = capsys.readouterr().err
+    assert message in err and err.count("\n") == 1
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_no_dask_worker_is_said_and_the_timeout_gives_up_with_exit_2(tmp_path, lone_scheduler,
                                                                      monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
