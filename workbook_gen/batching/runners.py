@@ -95,7 +95,10 @@ def _stop(pool: cf.ProcessPoolExecutor) -> None:
         if process.is_alive():
             process.terminate()
     for process in processes:
-        process.join()
+        process.join(timeout=10)
+        if process.is_alive():  # deaf to SIGTERM
+            process.kill()
+            process.join()
 
 
 class DaskRunner:
