@@ -165,7 +165,8 @@ def _batch(args: argparse.Namespace) -> int:
     if not args.quiet:
         print(f"{frame.attrs['folder']}: {len(frame)} variants, {len(frame) - failed} ok"
               + (f", {failed} not ok (see summary.csv)" if failed else "")
-              + (f", {len(kept)} files kept as edited" if kept else ""))
+              + (f", {len(kept)} file{'s' if len(kept) > 1 else ''} kept as edited"
+                 if kept else ""))
     return 1 if failed or kept else 0
 
 

@@ -219,7 +219,14 @@ class Folder:
 
 class _Journal:
     def __init__(self, path: Path):
+        torn = False
+        with contextlib.suppress(OSError), path.open("rb") as old:
+            if old.seek(0, os.SEEK_END):
+                old.seek(-1, os.SEEK_END)
+                torn = old.read(1) != b"\n"  # a line cut short by a kill
         self.handle = path.open("a", encoding="utf-8")
+        if torn:
+            self.handle.write("\n")
 
     def add(self, index: int, data: bytes | None, row: Mapping[str, object]) -> None:
         entry = {"index": index, "sha256": digest(data) if data is not None else None,
