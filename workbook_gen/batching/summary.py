@@ -29,6 +29,7 @@ from ..version import VERSION
 from .blocktext import block_texts
 from .sheetzip import DeflatedMember, member_data, splice
 from .rows import figure_columns, snake
+from .specs import shown
 from .table import Table
 
 DOCUMENT_DATE = dt.datetime(2024, 1, 1)
@@ -281,18 +282,21 @@ def _charts_sheet(book, sheet, table: Table) -> None:
     sheet.set_landscape()
     sheet.fit_to_pages(1, 0)
     design = table.design
-    if not design.names:
+    numbers = [n for n in design.names if table.kind(n) == "number"]
+    if not numbers:  # only options that are texts vary: nothing to draw against
         return
-    x_name = design.names[0]
+    x_name = numbers[0]
+    x_at = design.names.index(x_name)
     grouped = (design.kind == "grid" and len(design.names) == 2
-               and len(design.levels[1]) <= MAX_SERIES_VALUES)
+               and len(design.levels[1 - x_at]) <= MAX_SERIES_VALUES)
     numeric = set(table.columns) - set(figure_columns(table.model)) | {
         snake(s.label) for s in table.model.spans}
     size = len(design)
     if grouped:
         data = book.add_worksheet("ChartData")
         data.hide()
-        groups = _write_groups(data, table, [c for _, cols in _plotted(table) for c in cols])
+        groups = _write_groups(data, table, [c for _, cols in _plotted(table) for c in cols],
+                               x_at)
     for n, (title, cols) in enumerate(_plotted(table)):
         if not all(c in numeric for c in cols):
             continue
@@ -304,7 +308,8 @@ def _charts_sheet(book, sheet, table: Table) -> None:
                 for c in cols:
                     extreme = c.rsplit("_", 1)[-1] if c.endswith(("_max", "_min")) else ""
                     chart.add_series({
-                        "name": f"{extreme + ', ' if extreme else ''}{design.names[1]} = {value:g}",
+                        "name": f"{extreme + ', ' if extreme else ''}"
+                                f"{design.names[1 - x_at]} = {_level(value)}",
                         "categories": [sheet_name, first, 0, last, 0],
                         "values": [sheet_name, first, col_of[c], last, col_of[c]],
                         "marker": {"type": "circle", "size": 4},
@@ -331,20 +336,25 @@ def _charts_sheet(book, sheet, table: Table) -> None:
         sheet.insert_chart(row * 19, col * 9, chart)
 
 
-def _write_groups(sheet, table: Table, wanted: list[str]):
-    """The data of a two-parameter grid sorted by the second parameter, so each of its
-    values is a contiguous range (a chart series)."""
+def _level(value: object) -> str:
+    return f"{value:g}" if isinstance(value, float) else str(shown(value))
+
+
+def _write_groups(sheet, table: Table, wanted: list[str], x_at: int = 0):
+    """The data of a two-name grid sorted by the name that is not on the x axis (the
+    second, or an option varied first), so each of its values is a contiguous range
+    (a chart series)."""
     design = table.design
-    x_name, g_name = design.names
+    x_name = design.names[x_at]
     sheet.write_row(0, 0, [x_name] + wanted)
     col_of = {c: i + 1 for i, c in enumerate(wanted)}
     groups = {}
     row = 1
     k = len(design.levels[1])
-    for j, value in enumerate(design.levels[1]):
+    for j, value in enumerate(design.levels[1 - x_at]):
         first = row
-        for i in range(len(design.levels[0])):
-            index = i * k + j
+        for i in range(len(design.levels[x_at])):
+            index = i * k + j if x_at == 0 else j * k + i
             sheet.write_number(row, 0, table.data[x_name][index])
             for c in wanted:
                 v = table.data[c][index]
