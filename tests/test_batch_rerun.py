@@ -191,18 +191,42 @@ def test_sigterm_mid_run_removes_its_temporaries_ends_its_workers_and_exits_143(
     os.kill(process.pid, signal.SIGTERM)       # the command only, as `kill PID` does
     assert process.wait(timeout=PATIENCE) == 143, (run / "batch.log").read_text()
     log = (run / "batch.log").read_text()
-    assert log.strip() == "workbook-gen: terminated (SIGTERM)"  # no traceback
-    assert _temporaries(folder) == []
+    assert log.strip() == "workbook-gen: terminated (SIGTERM)", log  # no traceback
+    assert _temporaries(folder) == [], log
     deadline = time.monotonic() + PATIENCE     # the forked workers ended with it
     while not _no_process_left(process.pid) and time.monotonic() < deadline:
         time.sleep(0.05)
-    assert _no_process_left(process.pid)
+    assert _no_process_left(process.pid), subprocess.run(
+        ["ps", "-o", "pid,stat,cmd", "-g", str(process.pid)], capture_output=True,
+        text=True).stdout
     # The journal kept what was done: the rerun completes the batch as an uninterrupted run.
     again = subprocess.run([sys.executable, "-m", "workbook_gen.cli", "batch", SEWING, *LONG,
                             "--out", "out", "--quiet", "--jobs", "2"], env=ENV, cwd=run,
                            capture_output=True, text=True, timeout=PATIENCE)
-    assert again.returncode == 0 and again.stderr == ""
+    assert again.returncode == 0 and again.stderr == "", again.stderr
     assert _files(folder) == reference
+
+
+_MID_RESULT = """
+import sys
+from workbook_gen.batching.runners import LocalPool
+
+def big(spec, part):
+    return b"x" * 50_000_000   # sent through a pipe for a while
+
+run = LocalPool(2).run(big, None, [[i] for i in range(6)])
+next(run), next(run)   # (the first in this process)
+run.close()            # what an error or SIGTERM in the batch does
+print("stopped")
+"""
+
+
+def test_a_pool_stopped_mid_result_lets_the_process_exit():
+    """Workers ended while they send a result must not leave the pool's reading thread
+    (and the interpreter's exit, which waits for it) blocked for ever."""
+    done = subprocess.run([sys.executable, "-c", _MID_RESULT], env=ENV, capture_output=True,
+                          text=True, timeout=PATIENCE)
+    assert done.returncode == 0 and done.stdout == "stopped\n", done.stderr
 
 
 @pytest.mark.parametrize("mode", [[], ["--force"]], ids=["rerun", "force"])

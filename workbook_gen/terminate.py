@@ -24,6 +24,17 @@ class Terminated(BaseException):
     """SIGTERM arrived (a BaseException, as KeyboardInterrupt: not an error to handle)."""
 
 
+_requested = False
+
+
+def check() -> None:
+    """Raise ``Terminated`` if SIGTERM arrived: a long loop calls this between steps, in
+    case the handler's exception was raised inside a ``__del__`` or a callback, where
+    Python prints it and goes on."""
+    if _requested:
+        raise Terminated()
+
+
 @contextlib.contextmanager
 def sigterm_raises():
     """SIGTERM raises ``Terminated`` while inside (in the main thread only)."""
@@ -33,14 +44,19 @@ def sigterm_raises():
     owner = os.getpid()
 
     def handler(signum, frame):
+        global _requested
         signal.signal(signal.SIGTERM, signal.SIG_DFL)  # the next one ends us at once
         if os.getpid() != owner:  # a forked worker: end as by default
             os.kill(os.getpid(), signal.SIGTERM)
             return
+        _requested = True
         raise Terminated()
 
+    global _requested
+    _requested = False
     previous = signal.signal(signal.SIGTERM, handler)
     try:
         yield
     finally:
         signal.signal(signal.SIGTERM, previous)
+        _requested = False

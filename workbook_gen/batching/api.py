@@ -18,6 +18,7 @@ import sys
 from pathlib import Path
 from typing import Mapping, Sequence, Union
 
+from .. import terminate
 from ..errors import SceneError
 from ..mechanisms import get_template
 from ..scene import Scene, parse_scene, read_scene_text
@@ -258,6 +259,7 @@ def _batch(scene, vary, design, out, jobs, client, summary_only, sets, step, sam
                 _summaries_only(spec, plan, table, runner, progress, writer)
             else:
                 kept += _workbooks(spec, plan, table, runner, folder, resume, progress)
+            terminate.check()
             writer.finish(_about(command, source, plan, table, summary_only, base.name,
                                  width, text),
                           place=functools.partial(_place, folder, kept))
@@ -319,6 +321,7 @@ def _summaries_only(spec: JobSpec, plan: Design, table: Table, runner, progress,
                     writer.add(part[0].index, len(part), text)
                 if bar is not None:
                     bar.update(len(part))
+                terminate.check()
     finally:
         if bar is not None:
             bar.close()
@@ -368,6 +371,7 @@ def _workbooks(spec: JobSpec, plan: Design, table: Table, runner, folder: Folder
                     table.put(by_index[outcome.index], outcome.row)
                 if bar is not None:
                     bar.update(len(outcomes))
+                terminate.check()
     finally:
         journal.close()
         if bar is not None:

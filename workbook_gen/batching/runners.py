@@ -89,7 +89,13 @@ def _stop(pool: cf.ProcessPoolExecutor) -> None:
     if terminate is not None:
         terminate()
         return
+    # A worker ended while it sends a result leaves the pool's thread reading the rest
+    # for ever (this process holds the pipe's other end too), and the interpreter's exit
+    # waiting for that thread: closing our end, once the workers are gone, lets the read
+    # end.  Private attributes, taken before shutdown() drops them (the test
+    # test_a_pool_stopped_mid_result_lets_the_process_exit notices a change).
     processes = list((getattr(pool, "_processes", None) or {}).values())
+    writer = getattr(getattr(pool, "_result_queue", None), "_writer", None)
     pool.shutdown(wait=False, cancel_futures=True)
     for process in processes:
         if process.is_alive():
@@ -99,6 +105,8 @@ def _stop(pool: cf.ProcessPoolExecutor) -> None:
         if process.is_alive():  # deaf to SIGTERM
             process.kill()
             process.join()
+    if writer is not None:
+        writer.close()
 
 
 class DaskRunner:
