@@ -21,6 +21,7 @@ import os
 import time
 from typing import Callable, Iterable, Iterator, Sequence, TypeVar
 
+from .. import terminate
 from ..errors import WorkbookGenError
 
 log = logging.getLogger(__name__)
@@ -69,7 +70,9 @@ class LocalPool:
                 if len(pending) >= limit:
                     break
             while pending:
-                done, _ = cf.wait(pending, return_when=cf.FIRST_COMPLETED)
+                done, _ = cf.wait(pending, timeout=terminate.POLL,
+                                  return_when=cf.FIRST_COMPLETED)
+                terminate.check()
                 for future in done:
                     part = pending.pop(future)
                     yield part, future.result()
@@ -170,22 +173,24 @@ def wait_for_workers(client, timeout: float | None = None) -> None:
     WorkbookGenError."""
     address = getattr(client.scheduler, "address", None) or str(client)
     started = time.monotonic()
-    first = NOTICE if timeout is None else min(NOTICE, timeout)
-    try:
-        client.wait_for_workers(1, timeout=first)
-        return
-    except TimeoutError:
-        pass
-    log.warning("waiting for Dask workers at %s: none connected", address)
-    left = None if timeout is None else timeout - (time.monotonic() - started)
-    try:
-        if left is not None and left <= 0:
-            raise TimeoutError
-        client.wait_for_workers(1, timeout=left)
-    except TimeoutError:
-        raise WorkbookGenError(f"--scheduler {address}: no Dask worker connected within "
-                               f"--timeout {timeout:g} s") from None
-    log.warning("Dask workers at %s: %d connected", address, len(client.nthreads()))
+    said = False
+    while True:  # in slices, so that a SIGTERM is seen (terminate.check)
+        waited = time.monotonic() - started
+        if not said and waited >= NOTICE:
+            log.warning("waiting for Dask workers at %s: none connected", address)
+            said = True
+        if timeout is not None and waited >= timeout:
+            raise WorkbookGenError(f"--scheduler {address}: no Dask worker connected "
+                                   f"within --timeout {timeout:g} s")
+        limits = [terminate.POLL] + ([] if said else [NOTICE - waited]) + (
+            [] if timeout is None else [timeout - waited])
+        try:
+            client.wait_for_workers(1, timeout=max(0.01, min(limits)))
+            break
+        except TimeoutError:
+            terminate.check()
+    if said:
+        log.warning("Dask workers at %s: %d connected", address, len(client.nthreads()))
 
 
 def default_jobs() -> int:
