@@ -52,7 +52,8 @@ def test_folder_gives_one_line_per_file_and_a_total_with_the_worst_exit(folder, 
     assert [line.split()[0] for line in lines[:-1]] == ["OK", "FAIL", "OK", "ERROR"]
     assert "a_good.xlsx" in lines[0] and "b_wrong.xlsx" in lines[1] and "c_good.xlsm" in lines[2]
     assert "not a zip" in lines[3] and "Traceback" not in result.stderr
-    assert lines[-1].startswith("total: 4 files: 2 ok, 1 with cells that disagree, 1 refused")
+    assert lines[-1].startswith("total: 4 files: 2 ok, 1 failed (1 with cells that disagree), "
+                               "1 refused")
     only_folder = run_cli("audit", str(folder), "--jobs", "2")
     assert only_folder.returncode == 1  # the worst of ok and disagree
 

@@ -128,6 +128,12 @@ STATS = [
     "NORMINV(0.975,10,2)", "NORMSINV(0.3)", "NORMSDIST(-1.5)", "STANDARDIZE(42,40,1.5)",
     f"SUBTOTAL(9,{NUM})", f"SUBTOTAL(1,{NUM})", f"SUBTOTAL(4,{MIX})",
     f"AGGREGATE(9,6,Data!$D$1:$D$2,{NUM})", f"AGGREGATE(14,6,{NUM},2)",
+    # two areas of different sizes: Excel's #N/A (EXCEL_DOCUMENTED), LibreOffice's #VALUE!
+    *(f"{fn}(Data!$H$1:$H$6,{NUM})" for fn in (
+        "SLOPE", "INTERCEPT", "CORREL", "PEARSON", "RSQ", "STEYX", "COVAR",
+        "_xlfn.COVARIANCE.P", "_xlfn.COVARIANCE.S")),
+    f"FORECAST(7,Data!$H$1:$H$6,{NUM})", f"_xlfn.FORECAST.LINEAR(7,Data!$H$1:$H$6,{NUM})",
+    f"_xlfn.T.TEST(Data!$H$1:$H$6,{NUM},2,1)", f"TTEST(Data!$H$1:$H$6,{NUM},2,1)",
 ]
 TEXT = [
     'LEN("hello")', "LEN(12.5)", 'LEFT("hello",2)', 'LEFT("hello")', 'RIGHT("hello",3)',
@@ -238,6 +244,11 @@ EXCEL_DOCUMENTED = [
     ("MROUND(5,-2)", E.NUM), ("QUOTIENT(-10,3)", -3.0), ("LN(0)", E.NUM),
     ('SUM("3",4)', 7.0), ("TRUE>1", True), ('"x"&TRUE', "xTRUE"), ("POWER(-8,1/3)", E.NUM),
     ("SQRT(-1)", E.NUM), ("ATAN2(0,0)", E.DIV0), ("0^0", E.NUM),
+    # "a different number of data points ... returns the #N/A error value" (SLOPE, CORREL,
+    # COVARIANCE.S, FORECAST, T.TEST paired)
+    ("SLOPE({1,2,3},{1,2})", E.NA), ("CORREL({1,2,3},{1,2})", E.NA),
+    ("COVARIANCE.S({1,2,3},{1,2})", E.NA), ("FORECAST(1,{1,2,3},{1,2})", E.NA),
+    ("T.TEST({1,2,3},{1,2},2,1)", E.NA),
     ("YEARFRAC(DATE(2012,1,1),DATE(2012,7,30))", 0.58055555555556),
     ("YEARFRAC(DATE(2012,1,1),DATE(2012,7,30),1)", 0.57650273),
     ("YEARFRAC(DATE(2012,1,1),DATE(2012,7,30),3)", 0.57808219),

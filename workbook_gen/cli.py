@@ -7,12 +7,18 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
+import signal
 import sys
 from typing import Sequence
 
 from .errors import SceneError, WorkbookGenError
 from .terminate import EXIT_CODE, Terminated
 from .version import VERSION
+
+# a reader that closes the pipe early (`| head`): exit quietly with the status a Unix tool
+# killed by SIGPIPE has in the shell (128 + 13)
+EXIT_BROKEN_PIPE = 128 + signal.SIGPIPE
 
 
 def _value(text: str) -> int | float | bool | str:
@@ -38,6 +44,17 @@ def _overrides(scene: str, items: Sequence[str]) -> dict[str, object]:
                              f"with a number, or an option: branch=crossed)")
         values[name.strip()] = _value(text)
     return values
+
+
+def _cells(text: str) -> int:
+    """--max-cells N: a whole number >= 1 (1200000, 1_200_000 or 1.2e6)."""
+    try:
+        value = float(text.replace("_", "").replace(",", ""))
+    except ValueError:
+        value = 0.0
+    if not (1 <= value < 1e15 and value == int(value)):
+        raise argparse.ArgumentTypeError(f"{text!r}: give a whole number of cells >= 1")
+    return int(value)
 
 
 def _warn(scene) -> None:
@@ -69,6 +86,9 @@ def _audit(args: argparse.Namespace) -> int:
     from pathlib import Path
     if len(args.paths) > 1 or Path(args.paths[0]).is_dir():
         return _audit_many(args)
+    if not Path(args.paths[0]).exists():
+        from .auditor.many import expand
+        expand(args.paths)  # the one-line refusal (a pattern that matched nothing says so)
     from .auditor import audit
     from .auditor.report import format_report
     if args.annotate:
@@ -78,7 +98,8 @@ def _audit(args: argparse.Namespace) -> int:
     from .progress import Progress
     phases = len(PHASES) - (0 if args.engine else 1)
     with Progress(total=phases, desc="audit", unit="phase", delay=1.0) as bar:
-        report = audit(args.paths[0], engine=args.engine, progress=bar)
+        report = audit(args.paths[0], engine=args.engine, progress=bar,
+                       max_cells=args.max_cells)
     if args.json:
         print(json.dumps(report.to_json(), allow_nan=False))
     else:
@@ -103,7 +124,7 @@ def _audit_many(args: argparse.Namespace) -> int:
     results, worst = [], 0
     with Progress(total=count, desc="audit", unit="file") as bar:
         for result in audit_many(args.paths, jobs=args.jobs, engine=args.engine,
-                                 progress=bar):
+                                 progress=bar, max_cells=args.max_cells):
             results.append(result)
             worst = max(worst, result.code)
             text = (json.dumps(result.json(), allow_nan=False) if args.json
@@ -120,11 +141,9 @@ def _tradeoff(args: argparse.Namespace) -> int:
     from .tradeoff import format_table, measure, units, write_tradeoff_workbook
     scene = load_scene(args.scene)
     if args.out:
-        from .errors import OutputExistsError
+        from .files import refuse_existing
         from .tradeoff.book import output_path
-        target = output_path(scene, args.out)
-        if target.exists() and not args.force:  # refuse before minutes of measuring
-            raise OutputExistsError(f"{target} exists; use --force to overwrite it")
+        refuse_existing(output_path(scene, args.out), args.force)  # before minutes of work
     with Progress(units(scene), desc="tradeoff", unit="run") as bar:
         result = measure(scene, progress=bar)
     if args.json:
@@ -211,6 +230,9 @@ def parser() -> argparse.ArgumentParser:
                    help="also recalculate the file in LibreOffice headless and compare")
     p.add_argument("--verbose", action="store_true",
                    help="list every column, disagreeing cell, cell not checked and finding")
+    p.add_argument("--max-cells", type=_cells, metavar="N",
+                   help="read workbooks of up to N cells (default 1,200,000; about 1 KB "
+                        "of memory a cell)")
     p.set_defaults(run=_audit)
 
     p = sub.add_parser("tradeoff", help="speed against accuracy on a scene: step, method, "
@@ -255,12 +277,39 @@ def parser() -> argparse.ArgumentParser:
     return top
 
 
+def _os_error(exc: OSError) -> str:
+    """An OSError the commands did not foresee (a folder made read-only mid-run, a full
+    disk), as one line: the path(s) and the system's reason."""
+    paths = " -> ".join(str(p) for p in (exc.filename, exc.filename2) if p is not None)
+    return f"{paths}: {exc.strerror or exc}" if paths else str(exc.strerror or exc)
+
+
+def _silence_output() -> None:
+    """After a broken pipe: point stdout and stderr at /dev/null, so that Python's
+    flush at exit does not complain about the reader that went away."""
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            os.dup2(devnull, stream.fileno())
+        except (OSError, ValueError):
+            pass
+    os.close(devnull)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     args = parser().parse_args(argv)
     try:
-        return args.run(args)
+        code = args.run(args)
+        sys.stdout.flush()  # a closed pipe is noticed here, not at the interpreter's exit
+        return code
     except WorkbookGenError as exc:
         print(f"workbook-gen: error: {exc}", file=sys.stderr)
+        return 2
+    except BrokenPipeError:  # `audit --verbose | head`: the reader has what it wanted
+        _silence_output()
+        return EXIT_BROKEN_PIPE
+    except OSError as exc:
+        print(f"workbook-gen: error: {_os_error(exc)}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("workbook-gen: interrupted", file=sys.stderr)

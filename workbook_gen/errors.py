@@ -27,6 +27,11 @@ class OutputExistsError(WorkbookGenError):
     """The output file exists and --force was not given."""
 
 
+class OutputError(WorkbookGenError):
+    """An output cannot be written where it was asked for: the folder cannot be written
+    (permissions, a read-only file system), or the file's path is a folder."""
+
+
 class FormulaSyntaxError(WorkbookGenError):
     """A formula's text does not parse."""
 

@@ -38,13 +38,13 @@ from ..evaluator.relnames import relative_names
 from ..evaluator.store import FLOAT, type_mask, value_scale
 from ..evaluator.volatile import Clock
 from ..formula import ast, parse
-from ..formula.functions import Unanswered as fx_unanswered, dialect_of
+from ..formula.functions import dialect_of
 from ..forked import Forked
-from ..formula.scalar import evaluate as evaluate_scalar
-from ..xlerror import ExcelError
 import numpy as np
 
 from .caught import caught
+from .dialects import against_libreoffice, libreoffice_explains as _libreoffice_explains
+from .dialects import _Resolver  # noqa: F401 (tests/differential.py reads it here)
 from .compare import ColumnStats, compare, compare_numbers
 from .findings import find as find_findings
 from .inputs import AuditInputs, read_inputs
@@ -56,54 +56,6 @@ from .tally import NO_CACHED_VALUE, absent as absent_values, no_cached_findings,
 from .structure import check_structure
 
 __all__ = ["audit", "AuditReport"]
-
-
-class _Resolver:
-    """The scalar evaluator's view of the recomputed workbook (for re-evaluating a cell
-    with LibreOffice's semantics)."""
-
-    def __init__(self, value_of, names: dict[str, str], sheet: str, clip=None):
-        self.value_of, self.names, self.sheet = value_of, names, sheet
-        self.clip = clip
-        self._upper = {k.upper(): v for k, v in names.items()}
-
-    def cell(self, sheet, row, col):
-        return self.value_of(sheet or self.sheet, row, col)
-
-    def range(self, sheet, row1, col1, row2, col2):
-        if self.clip is not None:  # A:A is read up to the used range only
-            row1, col1, row2, col2 = self.clip(sheet or self.sheet, row1, col1, row2, col2)
-        return [[self.cell(sheet, r, c) for c in range(col1, col2 + 1)]
-                for r in range(row1, row2 + 1)]
-
-    def name(self, name, sheet):
-        text = self._upper.get(name.upper())
-        if text is None:
-            return ExcelError.NAME
-        try:
-            node = parse(str(text).lstrip("="))
-        except FormulaSyntaxError:
-            return ExcelError.NAME
-        return evaluate_scalar(node, self)
-
-
-def _libreoffice_explains(inputs: AuditInputs, key, value_of, cached) -> bool:
-    """Does LibreOffice's evaluation of this cell (its known deviations from Excel:
-    SQRT(-1), ATAN2(0,0), 0^0, odd roots) give the cached value?"""
-    try:
-        node = parse(inputs.text_of(key).removeprefix("{=").removesuffix("}"))
-    except FormulaSyntaxError:
-        return False
-    resolver = _Resolver(value_of, inputs.book.defined_names, key[0],
-                         getattr(value_of, "clip", None))
-    resolver.has_formula = lambda sheet, row, col: inputs.is_formula((sheet or key[0], row, col))
-    try:
-        with np.errstate(all="ignore"):  # overflow is #NUM! there too (engine._floats_quiet)
-            value = evaluate_scalar(node, resolver, dialect="libreoffice")
-    except (ArithmeticError, ValueError, TypeError, IndexError, KeyError, RecursionError,
-            fx_unanswered):
-        return False  # the re-check is a courtesy: a defect in it must not lose the file
-    return compare(cached, value, 0.0).agree
 
 
 PHASES = ("read", "evaluate", "compare", "reference", "findings", "engine")
@@ -176,11 +128,15 @@ _SHEET_COL = itemgetter(0, 2)
 
 
 def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True,
-          progress=None) -> AuditReport:
+          progress=None, max_cells: int | None = None) -> AuditReport:
     """Recompute and check every formula cell of the workbook at ``path``.
 
     ``progress(label)`` is called as each of the PHASES ends (the last only with
-    ``engine``)."""
+    ``engine``). ``max_cells``: read a workbook of more cells than the reader's default
+    ceiling (``xlsx.limits.MAX_CELLS``, 1.2 million), at about 0.8 KB and 44 us a cell."""
+    if max_cells is not None and (isinstance(max_cells, bool) or not isinstance(max_cells, int)
+                                  or max_cells < 1):
+        raise WorkbookGenError(f"max_cells {max_cells!r}: give a whole number of cells >= 1")
     # The collector would rescan the ~2 million objects read off a large workbook each
     # time the heap grows by a quarter (0.3-0.5 s at 200k cells); they hold no cycles
     # worth collecting before the audit ends (as the reader, which pauses it too).
@@ -188,7 +144,7 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
     gc.disable()
     try:
         with caught() as said:
-            report = _audit(path, engine, vectorize, progress)
+            report = _audit(path, engine, vectorize, progress, max_cells)
         report.warnings = said
         return report
     finally:
@@ -196,11 +152,11 @@ def audit(path: str | Path, *, engine: str | None = None, vectorize: bool = True
             gc.enable()
 
 
-def _audit(path, engine, vectorize, progress) -> AuditReport:
+def _audit(path, engine, vectorize, progress, max_cells=None) -> AuditReport:
     step = progress or (lambda label: None)
     started = time.perf_counter()
     timings: dict[str, float] = {}
-    inputs = read_inputs(path, group=vectorize)
+    inputs = read_inputs(path, group=vectorize, max_cells=max_cells)
     timings["read"] = time.perf_counter() - started
     step("read")
     t = time.perf_counter()
@@ -417,29 +373,8 @@ def _engine(path, engine: str, inputs: AuditInputs, value_of, scales,
     from ..engines.libreoffice import recalculated_values
     started = time.perf_counter()
     theirs = recalculated_values(path)
-    mismatches, explained, cells = [], 0, 0
-    sheet_of = {s.name: s for s in inputs.book.sheets}
     seen = {k: theirs.get(k[0], {}).get(inputs.ref(k)) for k in inputs.formulas}
     local = _local_evaluation(inputs, seen, dialect="libreoffice",
                               saved=Clock({}, last_saved(path), _agree))
-    for key, formula in inputs.formulas.items():
-        if key in scales_skip:
-            continue
-        sheet = sheet_of[key[0]]
-        ref = inputs.ref(key)
-        if ref not in theirs.get(sheet.name, {}):
-            continue
-        cells += 1
-        value = theirs[sheet.name][ref]
-        if key in local.values:  # an aggregate: what it makes of LibreOffice's own range
-            ours, scale = local.values[key], local.operands_scale[key]
-        else:
-            ours, scale = value_of(*key), scales.get(key, 0.0)
-        if compare(value, ours, scale).agree:
-            continue
-        if _libreoffice_explains(inputs, key, value_of, value):
-            explained += 1
-            continue
-        mismatches.append(Mismatch(_cell_name(key), formula, value, ours))
-    return EngineResult("libreoffice", cells, mismatches, explained,
-                        time.perf_counter() - started)
+    return against_libreoffice(inputs, theirs, local, value_of, scales, scales_skip, started,
+                               _cell_name)

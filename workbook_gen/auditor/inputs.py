@@ -158,10 +158,12 @@ def _data_table(inputs: AuditInputs, cell, key: Key) -> None:
                                                cell.data_table))
 
 
-def read_inputs(path: str | Path, group: bool = False) -> AuditInputs:
+def read_inputs(path: str | Path, group: bool = False, max_cells: int | None = None
+                ) -> AuditInputs:
     """The formulas, cached values and constants of the workbook at ``path``; with
     ``group``, also the formulas' runs (``inputs.grouped``), each sheet's grouped as soon
-    as it is read (while the other core still reads a large workbook's other sheets)."""
+    as it is read (while the other core still reads a large workbook's other sheets).
+    ``max_cells``: the reader's ceiling of cells (default ``xlsx.limits.MAX_CELLS``)."""
     if not Path(path).is_file():
         raise WorkbookReadError(f"{path}: no such file")
     inputs = AuditInputs(None)  # type: ignore[arg-type]  (the book once read)
@@ -181,7 +183,8 @@ def read_inputs(path: str | Path, group: bool = False) -> AuditInputs:
             inputs.grouped.merge(part)
             inputs.grouping_seconds += seconds
 
-    inputs.book = read_workbook(path, ready=take, prepare=_grouped if group else None)
+    limit = {} if max_cells is None else {"max_cells": max_cells}
+    inputs.book = read_workbook(path, ready=take, prepare=_grouped if group else None, **limit)
     for table in inputs.data_tables:  # (every sheet read: the cells they fill are known)
         for key in table.cells():
             inputs.table_of[key] = table

@@ -17,24 +17,32 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import WorkbookGenError, WorkbookReadError
+from .verdict import KINDS
 
 SUFFIXES = (".xlsx", ".xlsm")
 
 
 def expand(paths: Iterable[str | Path]) -> list[Path]:
     """The workbooks named: files as given, folders searched recursively (sorted;
-    Excel's ``~$`` lock files skipped). A path that does not exist is an error."""
+    Excel's ``~$`` lock files skipped). A path that does not exist is an error, and so is
+    finding no workbook at all (a CI step must not pass with nothing audited)."""
     out: list[Path] = []
-    for item in paths:
-        path = Path(item)
+    paths = [Path(item) for item in paths]
+    for path in paths:
         if path.is_dir():
             found = sorted(p for p in path.rglob("*") if p.suffix.lower() in SUFFIXES
                            and p.is_file() and not p.name.startswith("~$"))
             out.extend(found)
         elif path.exists():
             out.append(path)
+        elif any(c in str(path) for c in "*?["):  # a pattern the shell left as it was
+            raise WorkbookReadError(f"{path}: no such file or folder (a pattern that "
+                                    "matched no file: nothing to audit)")
         else:
             raise WorkbookReadError(f"{path}: no such file or folder")
+    if not out:
+        where = ", ".join(str(p) for p in paths) or "no path given"
+        raise WorkbookReadError(f"{where}: no workbook (*.xlsx, *.xlsm) found: nothing to audit")
     return out
 
 
@@ -60,7 +68,8 @@ class FileResult:
                 + f", {findings} findings"
                 + (", macros not checked" if s.get("macros") else "")
                 + ("; no cached values: nothing verified" if s.get("saved_without_values")
-                   else ""))
+                   else "")
+                + "".join(f"; {c['message']}" for c in s.get("failed", ())))
 
     def json(self) -> dict:
         if self.error is not None:
@@ -68,11 +77,12 @@ class FileResult:
         return self.summary
 
 
-def audit_file(path: str, engine: str | None = None) -> FileResult:
+def audit_file(path: str, engine: str | None = None, max_cells: int | None = None
+               ) -> FileResult:
     """One file's result; a refused file is a result, not an exception."""
     from . import audit
     try:
-        report = audit(path, engine=engine)
+        report = audit(path, engine=engine, max_cells=max_cells)
     except WorkbookGenError as exc:
         message = " ".join(str(exc).split())
         return FileResult(path, 2, error=message.removeprefix(f"{path}: "))
@@ -84,20 +94,21 @@ def audit_file(path: str, engine: str | None = None) -> FileResult:
 
 def audit_many(paths: Iterable[str | Path], *, jobs: int | None = None,
                engine: str | None = None,
-               progress: Callable[[str], None] | None = None) -> Iterator[FileResult]:
+               progress: Callable[[str], None] | None = None,
+               max_cells: int | None = None) -> Iterator[FileResult]:
     """Results of ``expand(paths)`` in order, audited by ``jobs`` worker processes
     (default: the CPU count; 1 audits in this process)."""
     files = [str(p) for p in expand(paths)]
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(files) or 1))
     if jobs == 1:
         for path in files:
-            result = audit_file(path, engine)
+            result = audit_file(path, engine, max_cells)
             if progress:
                 progress(Path(path).name)
             yield result
         return
     with ProcessPoolExecutor(max_workers=jobs, initializer=_one_process) as pool:
-        futures = [pool.submit(audit_file, path, engine) for path in files]
+        futures = [pool.submit(audit_file, path, engine, max_cells) for path in files]
         for path, future in zip(files, futures):
             try:
                 result = future.result()
@@ -126,8 +137,10 @@ def total_line(results: list[FileResult]) -> str:
     sources = sum(r.summary.get("disagreements", 0) for r in results)
     contract = sum(r.summary.get("cells_by_contract", 0) for r in results)
     unverified = sum(bool(r.summary.get("saved_without_values")) for r in results)
-    return (f"total: {len(results)} files: {ok} ok, {fail} with cells that disagree, "
-            f"{refused} refused"
+    kinds = [c["kind"] for r in results for c in r.summary.get("failed", ())]
+    why = ", ".join(f"{kinds.count(k)} {text}" for k, text in KINDS.items() if k in kinds)
+    return (f"total: {len(results)} files: {ok} ok, {fail} failed" + (f" ({why})" if why else "")
+            + f", {refused} refused"
             + (f" ({unverified} saved without cached values: nothing verified)"
                if unverified else "")
             + f"; {cells} formula cells: {agree} agree, {disagree} disagree ({sources} at the "

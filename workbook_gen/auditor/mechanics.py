@@ -47,6 +47,8 @@ class QuantityCheck:
     worst_row_input: float | None
     wrong_rows: list[str] = field(default_factory=list)  # cells valued where nothing assembles, ...
     flagged_rows: int = 0     # rows flagged singular (toggle, dead centre): not compared
+    # the Table rows (as numbered in the sheet) over the tolerance or in ``wrong_rows``
+    bad_rows: list[int] = field(default_factory=list)
 
     @property
     def ok(self) -> bool:
@@ -206,12 +208,13 @@ def _check_column(name, values, ref, inputs, col, singular, noise, unit) -> Quan
     magnitude and each row's rounding noise; rows flagged singular are counted, not
     compared (the model's Newton loses half its digits at a dead centre)."""
     ours = numbers_or_nan(values)
-    wrong = []
+    wrong, bad = [], []
     for i in np.flatnonzero(np.isfinite(ours) != np.isfinite(ref)):
         if singular[i]:  # a flagged row may hold an error value, or the model none
             continue
         if name in CRANK_PIN and np.isfinite(ours[i]):
             continue
+        bad.append(int(i) + 2)  # the Table's data start at its row 2
         what = "a value where the model has none" if np.isfinite(ours[i]) else (
             f"{values[i]} where the model has {ref[i]:.12g}")
         wrong.append(f"{a1(i + 2, col)}: {what}")
@@ -219,14 +222,15 @@ def _check_column(name, values, ref, inputs, col, singular, noise, unit) -> Quan
     both = finite & ~singular
     skipped = int((finite & singular).sum())
     if not both.any():
-        return QuantityCheck(name, 0, 0.0, None, wrong, skipped)
+        return QuantityCheck(name, 0, 0.0, None, wrong, skipped, bad)
     scale = max(float(np.max(np.abs(ref[both]))), ANGLE_FLOOR.get(unit or "", 0.0), 1e-300)
     if noise is not None:
         scale = np.maximum(scale, NOISE_TO_SCALE * np.where(np.isfinite(noise), noise, 0.0))
     errors = np.where(both, np.abs(_apart(ours, ref, TURN.get(unit or ""))) / scale, 0.0)
     worst = int(np.argmax(errors))
+    bad = sorted(set(bad).union((np.flatnonzero(errors > REFERENCE_TOLERANCE) + 2).tolist()))
     return QuantityCheck(name, int(both.sum()), float(errors[worst]), float(inputs[worst]),
-                         wrong, skipped)
+                         wrong, skipped, bad)
 
 
 def _apart(ours, ref, turn: float | None):

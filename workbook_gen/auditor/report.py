@@ -10,6 +10,7 @@ from .compare import ColumnStats
 from .mechanics import REFERENCE_TOLERANCE, MechanicsReport
 from .structure import Finding
 from .tally import NO_CACHED_VALUE, Tally
+from .verdict import causes, verdict_line
 
 MAX_LISTED = 20  # disagreeing cells listed per column in the terminal (--verbose)
 WORST = 5  # disagreeing cells shown in the default summary
@@ -46,6 +47,8 @@ class EngineResult:
     mismatches: list[Mismatch]
     libreoffice_semantics: int  # cells explained only by LibreOffice's known deviations
     seconds: float
+    # those cells: ``cached`` holds LibreOffice's value, ``recomputed`` ours (Excel's)
+    differences: list[Mismatch] = field(default_factory=list)
 
 
 @dataclass
@@ -142,6 +145,7 @@ class AuditReport:
     def to_json(self) -> dict:
         out = {
             "ok": self.ok,
+            "failed": [c.json() for c in causes(self)],  # what failed: cells, reference, ...
             "file": self.path,
             "formula_cells": self.formula_cells,
             "cells_checked": self.cells_checked,
@@ -183,6 +187,10 @@ class AuditReport:
             out["engine"] = {"name": self.engine.engine, "cells": self.engine.cells,
                              "mismatches": [_mismatch_json(m) for m in self.engine.mismatches],
                              "libreoffice_semantics": self.engine.libreoffice_semantics,
+                             "libreoffice_differences": [
+                                 {"cell": m.cell, "formula": "=" + m.formula,
+                                  "libreoffice": _plain(m.cached), "excel": _plain(m.recomputed)}
+                                 for m in self.engine.differences],
                              "seconds": self.engine.seconds}
         return out
 
@@ -328,26 +336,17 @@ def format_report(report: AuditReport, verbose: bool = False) -> str:
         for m in e.mismatches[:MAX_LISTED if verbose else WORST]:
             lines.append(f"    {m.cell}: ={_cut(m.formula)}: {e.engine} {_cut(_show(m.cached))}, "
                          f"ours {_cut(_show(m.recomputed))}")
+        if e.differences:
+            lines.append(f"  {len(e.differences)} cells differ where LibreOffice's own semantics "
+                         "differ from Excel's (its difference, not the file's; not failed):")
+            for m in e.differences[:MAX_LISTED if verbose else 3]:
+                lines.append(f"    {m.cell}: ={_cut(m.formula)}: LibreOffice "
+                             f"{_cut(_show(m.cached))}, Excel {_cut(_show(m.recomputed))}")
     if report.warnings:
         lines.append(f"  the audit warned {sum(report.warnings.values())} times (its own "
                      "problem, not the file's): " + "; ".join(
                          f"{k} (x{n})" for k, n in list(report.warnings.items())[:3]))
-    if report.ok and report.saved_without_values:
-        verdict = ("  OK: nothing disagrees, but nothing was verified: the file holds no cached "
-                   "values (--engine libreoffice compares with LibreOffice's recalculation)")
-    elif report.ok and report.formula_cells and not report.cells_checked:
-        verdict = (f"  OK: nothing disagrees, but nothing was verified: none of the "
-                   f"{report.formula_cells} formula cells could be checked")
-    elif report.ok:
-        verdict = "  OK: every checked cell agrees"
-        if report.cells_not_checked:
-            verdict += f" ({report.cells_not_checked} not checked)"
-    else:
-        n = report.disagreements
-        verdict = (f"  FAILED: {n} disagreement{'s' * (n != 1)} at the source" if n else
-                   "  FAILED: cells disagree") + (
-            " (see above" + ("" if verbose else "; --verbose lists all") + ")")
-    lines.append(verdict)
+    lines.append(verdict_line(report, verbose))
     return "\n".join(lines)
 
 

@@ -154,10 +154,12 @@ def batch(scene: str | Path | Scene, vary: Vary = None,
           force: bool = False, scheduler: str | None = None,
           progress: bool | None = None, timeout: float | None = None):
     """Make ``out/<name>-batch/<name>-0001.xlsx`` ... and ``summary.csv``/``summary.xlsx``;
-    return the summary as a pandas DataFrame (``frame.attrs["folder"]``: the folder,
+    return the summary as a pandas DataFrame: its columns the summary's names without
+    the units the files' headers carry (``y_C_max``; ``frame.attrs["units"]``:
+    ``{"y_C_max": "mm", ...}``), ``frame.attrs["folder"]``: the folder,
     ``frame.attrs["failed"]``: how many variants are not ``ok``, ``frame.attrs["kept"]``:
-    the files a rerun kept because they differ from what the batch wrote, edited since;
-    ``force`` replaces them).
+    the files a rerun kept because they differ from what the batch wrote, edited since
+    (``force`` replaces them).
 
     ``vary``: a mapping from a parameter or option name to its values, varied as a full
     factorial in the mapping's order (the last fastest).  Values are a list, tuple,

@@ -12,7 +12,8 @@ appended before the rename).  Run again with the same inputs and no --force:
   there by someone else) is kept, not regenerated, and named (``kept``): a rerun never
   destroys work; --force replaces them;
 - the temporary files a killed run left (``.summary.*.csv.tmp``,
-  ``.<name>-0007.*.xlsx.tmp``, ``..batch.*.xlsx.tmp``) are removed, whatever the mode.
+  ``.<name>-0007.*.xlsx.tmp``, ``..batch.*.xlsx.tmp``, the write probe
+  ``.workbook-gen.*.probe``) are removed, whatever the mode.
 
 Different inputs without --force: refused.  While a run writes the folder it holds a
 lock on it (``flock``, released however the process ends), so a second run into the
@@ -137,8 +138,9 @@ class Folder:
 
     def temporaries(self) -> list[Path]:
         """Temporary files a killed run of a batch left in the folder."""
-        pattern = re.compile(r"\.(?:" + re.escape(self.stem) + r"-\d+|summary|\.batch)"
-                             + _RANDOM + r"(?:xlsx|csv)\.tmp")
+        pattern = re.compile(r"\.(?:(?:" + re.escape(self.stem) + r"-\d+|summary|\.batch)"
+                             + _RANDOM + r"(?:xlsx|csv)\.tmp|workbook-gen" + _RANDOM
+                             + r"probe)")
         return [p for p in self.path.iterdir() if pattern.fullmatch(p.name)]
 
     def start(self, resume: bool, command: str) -> None:

@@ -20,7 +20,7 @@ from typing import Iterable, Mapping, Sequence
 
 from ..model import Model
 from .blocktext import TEXT_COLUMNS, value_kind
-from .rows import text_figures, value_columns
+from .rows import column_units, header, text_figures, value_columns
 from .specs import shown
 from .variants import Design, Variant
 
@@ -52,6 +52,10 @@ class Table:
         self.values = merged_columns(models) if self.others else value_columns(self.model)
         self.columns = (["variant", "file", "status"] + list(self.design.names)
                         + self.values + ["audit"])
+        self.units: dict[str, str] = {}
+        for model in reversed(models):  # a column's unit from the first model having it
+            self.units.update(column_units(model, self.design.names))
+        self.headers = [header(name, self.units) for name in self.columns]
         self.data = {name: [None] * size for name in self.columns}
         self.data["variant"] = [v.label for v in self.design.variants]
         varied = {name: self.data[name] for name in self.design.names}
@@ -131,6 +135,7 @@ class Table:
             else:
                 out[name] = values
         frame = pd.DataFrame(out, columns=self.columns)
+        frame.attrs["units"] = dict(self.units)
         if "rows_not_assembled" in frame:
             frame["rows_not_assembled"] = frame["rows_not_assembled"].astype("Int64")
         return frame

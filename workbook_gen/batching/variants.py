@@ -30,6 +30,9 @@ from ..mechanisms.base import OptionSpec
 from .designfile import decimal_comma, design_rows
 from .specs import MAX_VARIANTS, option_value, specs_of
 
+MAX_CELL_TEXT = 32_767  # characters (UTF-16 code units) an Excel cell holds
+
+
 class Variant(NamedTuple):
     """One variant (a named tuple: 100,000 of them are made in a fraction of what frozen
     dataclasses cost)."""
@@ -194,6 +197,9 @@ def from_design(path: str | Path, parameters: Sequence[str], sets: Sequence[str]
                                              by_name.get(name), comma)))
         label = str(row[label_col]).strip() if label_col is not None and not _blank(
             row[label_col]) else str(r - 1)
+        if len(label.encode("utf-16-le")) // 2 > MAX_CELL_TEXT:
+            raise SceneError(f"{where}: row {r}, variant: a name of {len(label):,} "
+                             f"characters, more than the {MAX_CELL_TEXT:,} an Excel cell holds")
         variants.append(Variant(r - 1, label, tuple(values)))
     return Design(tuple(names), tuple(variants), "design",
                   options=tuple(n for n in names if n in by_name))

@@ -239,3 +239,25 @@ def _map(node, fn, info: BookInfo):
     if isinstance(node, ast.Paren):
         return ast.Paren(_map(node.inner, fn, info))
     return node
+
+
+# What a reference to a sheet the workbook does not have evaluates to: Excel, loading a
+# file whose formula names a sheet it lacks, holds #REF! (as after deleting the sheet);
+# LibreOffice 7.4 reads the text as an unknown name: #NAME? (measured, ROWS included)
+MISSING_SHEET = {"excel": ExcelError.REF, "libreoffice": ExcelError.NAME}
+
+
+def without_missing_sheets(node: ast.Node, sheets, dialect: str) -> ast.Node:
+    """``node`` with every reference to a sheet not in ``sheets`` (lower-case names; empty:
+    not known, nothing replaced) made the dialect's error; another workbook's (``[1]``)
+    stays."""
+    if not sheets:
+        return node
+
+    def missing(ref) -> bool:
+        return (ref.sheet is not None and "]" not in ref.sheet
+                and ref.sheet.lower() not in sheets)
+    if not any(isinstance(n, (ast.CellRef, ast.RangeRef)) and missing(n) for n in ast.walk(node)):
+        return node
+    error = ast.ErrorLit(MISSING_SHEET.get(dialect, ExcelError.REF))
+    return ast.map_refs(node, lambda ref: error if missing(ref) else ref)

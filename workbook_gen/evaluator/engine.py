@@ -48,13 +48,14 @@ import numpy as np
 
 from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.evaluator import calls, cycles, graph, volatile as vol, whatif
-from workbook_gen.evaluator.book import BookInfo, resolve, resolve_fixed
+from workbook_gen.evaluator.book import BookInfo, resolve, resolve_fixed, without_missing_sheets
 from workbook_gen.evaluator.external import ExternalBooks
 from workbook_gen.evaluator.relnames import NameInliner
 from workbook_gen.evaluator.taint import Taint
 from workbook_gen.evaluator.grouping import Grouped, Run, group_formulas
 from workbook_gen.evaluator.store import Names, SheetResolver, Store, value_scale
-from workbook_gen.evaluator.units import Unit, evaluate_unit, rects, shapes_of, singles
+from workbook_gen.evaluator.units import (Unit, evaluate_unit, reads_only_above, rects,
+                                          shapes_of, singles)
 from workbook_gen.evaluator.vector import NotVectorizable, compile_block
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
@@ -238,8 +239,9 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
             result.syntax_errors[cell] = message
             store.put(*cell, SYNTAX_VALUE)
             _source(result, taint, cell, cell, f"formula syntax: {message}")
-    units = _units(runs, vectorize, store, result)
-    units += _array_units(arrays or {}, book, result, taint, store, inliner)
+    known = {s.lower() for s in [*book.sheets, *store.all_sheets]} if book.sheets else set()
+    units = _units(runs, vectorize, store, result, known, dialect)
+    units += _array_units(arrays or {}, book, result, taint, store, inliner, known, dialect)
     _report_functions(units, result, name_table, dialect, stored)
     taint.flush()
 
@@ -255,7 +257,14 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
                             if u.area for c in range(u.col + 1, u.area[1] + 1)])
         components = graph.order(deps)
         cyclic = [c for c in components if graph.is_cycle(c, deps)]
-        split = {u for c in cyclic for u in c if units[u].block is not None}
+        chains = set()  # a run reading its own rows above (=A1+1 filled down): in order
+        for c in cyclic:
+            if (len(c) == 1 and units[c[0]].sequential
+                    and reads_only_above(units[c[0]], shapes[c[0]][0])):
+                chains.add(c[0])
+                deps[c[0]] = [d for d in deps[c[0]] if d != c[0]]
+        split = {u for c in cyclic for u in c if u not in chains
+                 and (units[u].block is not None or units[u].sequential)}
         if not split:
             break
         units = [s for i, u in enumerate(units)
@@ -321,7 +330,7 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
             result.groups.vector_groups += 1
             result.groups.vector_cells += u.last - u.first + 1
         else:
-            result.groups.scalar_cells += 1
+            result.groups.scalar_cells += u.last - u.first + 1 if u.sequential else 1
     result.external.sort()
     return result
 
@@ -367,13 +376,16 @@ def _cube(node: ast.Node) -> bool:
     return any(isinstance(n, ast.Func) and n.name in fx.CACHED_OUTSIDE for n in ast.walk(node))
 
 
-def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -> list[Unit]:
+def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation,
+           sheets=(), dialect: str = "excel") -> list[Unit]:
+    """``sheets``: the workbook's (lower case), a reference to another is an error."""
     units = []
     for run in runs:
         outside = _external(run.node)
         if outside:
             result.external.extend((run.sheet, r, run.col) for r in range(run.first, run.last + 1))
-        unit = Unit(run.sheet, run.col, run.first, run.last, run.node)
+        unit = Unit(run.sheet, run.col, run.first, run.last,
+                    without_missing_sheets(run.node, sheets, dialect))
         if run.last > run.first and (vol.calls(run.node) or calls.guarded(run.node)
                                      or (store.stored and calls.bare_future(run.node))
                                      or outside or _cube(run.node)):
@@ -384,17 +396,20 @@ def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation) -
             continue
         if vectorize and run.last > run.first:
             try:
-                unit.block = compile_block(run.node, run.sheet, run.col, run.first, run.last,
-                                           store.sheet)
+                unit.block = compile_block(unit.node, run.sheet, run.col, run.first,
+                                           run.last, store.sheet)
             except NotVectorizable as exc:
                 log.debug("cell by cell: %s!%s%s..: %s", run.sheet, run.col, run.first, exc)
-        units.extend([unit] if unit.block is not None or run.last == run.first
-                     else singles(unit))
+        # a run not vectorised is evaluated row after row as one unit (a unit per cell,
+        # each with its tree, would cost ~1.5 KB a cell); split if in a cycle
+        unit.sequential = unit.block is None and run.last > run.first
+        units.append(unit)
     return units
 
 
 def _array_units(arrays, book: BookInfo, result: Evaluation, taint: Taint,
-                 store: Store, inliner: NameInliner | None = None) -> list[Unit]:
+                 store: Store, inliner: NameInliner | None = None, sheets=(),
+                 dialect: str = "excel") -> list[Unit]:
     """One unit per array formula, filling its rectangle."""
     units = []
     for (sheet, row, col), (text, area) in arrays.items():
@@ -411,7 +426,8 @@ def _array_units(arrays, book: BookInfo, result: Evaluation, taint: Taint,
                             f"formula syntax: {exc}")
             continue
         result.runs.append(Run(sheet, col, row, row, node))
-        units.append(Unit(sheet, col, row, row, node, area=area))
+        units.append(Unit(sheet, col, row, row, without_missing_sheets(node, sheets, dialect),
+                          area=area))
     return units
 
 
@@ -486,9 +502,15 @@ def _spread(unit: Unit, shaped: tuple, taint: Taint, result: Evaluation,
             _source(result, taint, cell, cell, reason)
         return
     n = unit.last - unit.first + 1
+    # a chain (a run reading its own column above each row): every later row may read
+    # a row that cannot be recomputed
+    chain = unit.sequential and any(s.sheet == unit.sheet and s.col1 <= unit.col <= s.col2
+                                    for s in shapes)
     for shape in shapes:
         for lo, hi, origin in taint.hits(shape, n):
             why = result.not_checked.get(origin, "")
+            if chain:
+                hi = n - 1
             cells = (unit.cells() if unit.area else
                      [(unit.sheet, unit.first + i, unit.col) for i in range(lo, hi + 1)])
             for cell in cells:

@@ -6,6 +6,7 @@ decides what is checked."""
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 from workbook_gen.evaluator import graph
@@ -31,6 +32,9 @@ class Unit:
     node: ast.Node
     block: object = None   # compiled vector Block, or None for a single cell
     area: tuple[int, int] | None = None  # an array formula: its last row and column
+    # a run that reads its own column only above each row (``=A1+1`` filled down: a
+    # chain): evaluated row after row, cell by cell, without a unit per cell
+    sequential: bool = False
 
     def cells(self):
         if self.area is not None:
@@ -39,10 +43,18 @@ class Unit:
         return [(self.sheet, r, self.col) for r in range(self.first, self.last + 1)]
 
 
-def singles(unit: Unit) -> list[Unit]:
-    """A run as single cells, each with its own (shifted) tree."""
-    return [Unit(unit.sheet, unit.col, r, r, ast.shift(unit.node, r - unit.first, 0))
-            for r in range(unit.first, unit.last + 1)]
+def reads_only_above(unit: Unit, shapes: list[Shape]) -> bool:
+    """Does every rectangle the run reads in its own column end above the row reading
+    it (so that its rows, computed in order, never read one not yet computed)?"""
+    return all(s.row2 < unit.first for s in shapes
+               if s.sheet == unit.sheet and s.col1 <= unit.col <= s.col2)
+
+
+def singles(unit: Unit):
+    """A run as single cells, each with its own (shifted) tree, made as they are asked
+    for (``list(singles(u))`` for all at once)."""
+    return (Unit(unit.sheet, unit.col, r, r, ast.shift(unit.node, r - unit.first, 0))
+            for r in range(unit.first, unit.last + 1))
 
 
 def _reads(node: ast.Node):
@@ -59,7 +71,33 @@ def _reads(node: ast.Node):
         elif isinstance(n, ast.Func) and n.name in REFERENCE_ONLY:
             stack.extend(a for a in n.args if not isinstance(a, (ast.CellRef, ast.RangeRef)))
         else:
+            if isinstance(n, ast.Func) and n.name == "INDIRECT":
+                yield from _indirect_reads(n)
             stack.extend(ast.children(n))
+
+
+def _indirect_reads(call: ast.Func):
+    """The reference ``INDIRECT("B1")`` reads when its text is a constant in A1 style:
+    the cell it names must be computed before it (``INDIRECT("B1")`` is B1 of the calling
+    cell's sheet, the same from every row of a run). A computed text reads what it
+    evaluates to, which no graph can know ahead."""
+    from workbook_gen.errors import FormulaSyntaxError
+    from workbook_gen.formula.parser import parse
+    if not call.args or not isinstance(call.args[0], ast.String):
+        return
+    if len(call.args) > 1 and not (isinstance(call.args[1], ast.Bool) and call.args[1].value):
+        return
+    try:
+        ref = parse(call.args[0].value.strip())
+    except FormulaSyntaxError:
+        return
+    if isinstance(ref, ast.CellRef):
+        yield dataclasses.replace(ref, row_abs=True, col_abs=True)
+    elif isinstance(ref, ast.RangeRef):
+        fixed = [dataclasses.replace(c, row_abs=True, col_abs=True) for c in (ref.first, ref.last)]
+        yield dataclasses.replace(ref, first=fixed[0], last=fixed[1])
+    elif isinstance(ref, ast.Name):
+        yield ref
 
 
 def shapes_of(unit: Unit, store: Store, names: Names) -> tuple[list[Shape], list[str]]:
@@ -128,6 +166,10 @@ def evaluate_unit(unit: Unit, store: Store, names: Names, dialect: str = "excel"
         for i, row in enumerate(values):
             for j, value in enumerate(row):
                 store.put(unit.sheet, unit.first + i, unit.col + j, value, scale)
+        return
+    if unit.sequential:  # each row's tree made when its turn comes, then dropped
+        for single in singles(unit):
+            evaluate_unit(single, store, names, dialect)
         return
     if unit.block is None:
         value = evaluate(unit.node, resolver, dialect=dialect, cell=cell)

@@ -131,6 +131,11 @@ class Evaluator:
         except FormulaSyntaxError:
             return None
         if isinstance(node, (ast.CellRef, ast.RangeRef)):
+            if node.sheet is not None and "]" not in node.sheet and (
+                    getattr(self.resolver, "sheet_number", None) is not None
+                    and self.resolver.sheet_count()
+                    and self.resolver.sheet_number(node.sheet) is None):
+                return ExcelError.REF  # no such sheet (Excel and LibreOffice alike)
             return self.reference(node)
         if isinstance(node, ast.Name):
             value = self.arg(node)

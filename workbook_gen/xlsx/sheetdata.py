@@ -94,8 +94,9 @@ def read_sheet(pkg: Package, part: str, sheet: Sheet, strings: list[str], budget
                 continue
             count += 1
             if count > budget:
-                raise pkg.error(where, f"more than {max_cells} cells (max_cells); "
-                                       "raise max_cells to read this workbook")
+                raise pkg.error(where, f"more than {max_cells} cells: read it with "
+                                       "--max-cells N (audit(path, max_cells=N)), at "
+                                       "about 1 KB of memory a cell")
             ref = c.get("r")
             if ref is not None and ref.endswith(row_digits) and (
                     col := cols.get(ref[:-len(row_digits)], 0)):

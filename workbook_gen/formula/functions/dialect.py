@@ -98,6 +98,12 @@ LIBREOFFICE_ERRORS: dict[str, dict[ExcelError, ExcelError]] = {
     **{name: {ExcelError.NA: ExcelError.VALUE} for name in (
         "SUMXMY2", "SUMX2MY2", "SUMX2PY2", "PERCENTRANK", "PERCENTRANK.INC", "PERCENTRANK.EXC")},
     "DGET": {ExcelError.NUM: ExcelError.VALUE},
+    # two areas of different sizes: Microsoft's #N/A ("a different number of data points",
+    # support.microsoft.com SLOPE, CORREL, ...), LibreOffice 7.4's #VALUE! (measured)
+    **{name: {ExcelError.NA: ExcelError.VALUE} for name in (
+        "SLOPE", "INTERCEPT", "FORECAST", "FORECAST.LINEAR", "CORREL", "PEARSON", "RSQ",
+        "STEYX", "COVAR", "COVARIANCE.P", "COVARIANCE.S")},
+    **{name: {**_INVALID, ExcelError.NA: ExcelError.VALUE} for name in ("T.TEST", "TTEST")},
 }
 
 
