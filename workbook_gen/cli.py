@@ -13,6 +13,7 @@ import sys
 from typing import Sequence
 
 from .errors import SceneError, WorkbookGenError
+from .terminate import EXIT_CODE, Terminated
 from .version import VERSION
 
 # a reader that closes the pipe early (`| head`): exit quietly with the status a Unix tool
@@ -156,17 +157,36 @@ def _tradeoff(args: argparse.Namespace) -> int:
 
 
 def _batch(args: argparse.Namespace) -> int:
+    import logging
+    from pathlib import Path
     from .batching.api import run_batch
-    frame = run_batch(args.scene, args.vary, args.design, args.out, args.jobs,
-                      summary_only=args.summary_only, sets=_overrides(args.scene, args.set),
-                      step=args.step, samples=args.samples, seed=args.seed, audit=args.audit,
-                      force=args.force, scheduler=args.scheduler,
-                      progress=False if args.quiet else None)
-    failed = frame.attrs["failed"]
+    from .terminate import sigterm_raises
+    said = logging.StreamHandler(sys.stderr)  # the wait for Dask workers, as it happens
+    said.setFormatter(logging.Formatter("workbook-gen: %(message)s"))
+    said.setLevel(logging.WARNING)
+    logger = logging.getLogger("workbook_gen.batching")
+    logger.addHandler(said)
+    try:
+        with sigterm_raises():
+            frame = run_batch(args.scene, args.vary, args.design, args.out, args.jobs,
+                              summary_only=args.summary_only,
+                              sets=_overrides(args.scene, args.set), step=args.step,
+                              samples=args.samples, seed=args.seed, audit=args.audit,
+                              force=args.force, scheduler=args.scheduler,
+                              progress=False if args.quiet else None, timeout=args.timeout)
+    finally:
+        logger.removeHandler(said)
+    failed, kept = frame.attrs["failed"], frame.attrs["kept"]
+    for name in kept:
+        print(f"workbook-gen: kept {Path(frame.attrs['folder']) / name}: it differs from "
+              f"what this batch wrote (edited since?), so it was not regenerated; --force "
+              f"replaces it", file=sys.stderr)
     if not args.quiet:
         print(f"{frame.attrs['folder']}: {len(frame)} variants, {len(frame) - failed} ok"
-              + (f", {failed} not ok (see summary.csv)" if failed else ""))
-    return 1 if failed else 0
+              + (f", {failed} not ok (see summary.csv)" if failed else "")
+              + (f", {len(kept)} file{'s' if len(kept) > 1 else ''} kept as edited"
+                 if kept else ""))
+    return 1 if failed or kept else 0
 
 
 def parser() -> argparse.ArgumentParser:
@@ -243,11 +263,15 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--jobs", type=int, metavar="N", help="worker processes (default: all cores)")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="run on a Dask cluster, e.g. tcp://host:8786")
+    p.add_argument("--timeout", type=float, metavar="S",
+                   help="with --scheduler: give up (exit 2) if no Dask worker has connected "
+                        "after S seconds (default: wait)")
     p.add_argument("--summary-only", action="store_true",
                    help="only the summaries, all variants evaluated at once")
     p.add_argument("--audit", action="store_true", help="audit each workbook where it is made")
     p.add_argument("--force", action="store_true",
-                   help="replace a batch folder made by another command")
+                   help="replace a batch folder made by another command, and files "
+                        "edited since the batch wrote them")
     p.add_argument("--quiet", action="store_true", help="no progress bar, no closing line")
     p.set_defaults(run=_batch)
     return top
@@ -290,6 +314,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("workbook-gen: interrupted", file=sys.stderr)
         return 130
+    except Terminated:
+        print("workbook-gen: terminated (SIGTERM)", file=sys.stderr)
+        return EXIT_CODE
 
 
 if __name__ == "__main__":

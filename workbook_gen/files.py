@@ -12,6 +12,8 @@ from typing import Callable
 
 from .errors import OutputError, OutputExistsError
 
+Place = Callable[[Path, Path], object]   # (finished temporary, target): moves it into place
+
 
 def refuse_existing(target: Path, force: bool) -> None:
     """Refuse before any work: an existing file without ``force``, a folder that is a
@@ -45,8 +47,10 @@ def probe_writable(folder: Path) -> None:
     os.unlink(name)
 
 
-def write_atomically(target: Path, build: Callable[[Path], None], *, force: bool) -> Path:
-    """``build(temporary_path)`` writes the file; it then replaces ``target``."""
+def write_atomically(target: Path, build: Callable[[Path], None], *, force: bool,
+                     place: Place = os.replace) -> Path:
+    """``build(temporary_path)`` writes the file; ``place(temporary_path, target)`` (a
+    rename by default) then puts it in place of ``target``."""
     _refuse(target, force)  # (creating the temporary file is the probe)
     try:
         target.parent.mkdir(parents=True, exist_ok=True)
@@ -58,7 +62,7 @@ def write_atomically(target: Path, build: Callable[[Path], None], *, force: bool
     try:
         build(Path(temp))
         os.chmod(temp, 0o644)
-        os.replace(temp, target)
+        place(Path(temp), target)
     except OSError as exc:
         Path(temp).unlink(missing_ok=True)
         if exc.filename in (None, temp, str(target)):  # the writing failed, not a read

@@ -9,6 +9,7 @@ it in the folder's journal; the summaries are written last.
 from __future__ import annotations
 
 import contextlib
+import functools
 import gc
 import json
 import logging
@@ -17,6 +18,7 @@ import sys
 from pathlib import Path
 from typing import Mapping, Sequence, Union
 
+from .. import terminate
 from ..errors import SceneError
 from ..mechanisms import get_template
 from ..scene import Scene, parse_scene, read_scene_text
@@ -24,7 +26,7 @@ from ..files import write_bytes_atomically
 from ..model import select
 from ..version import VERSION
 from . import runners
-from .folder import Folder, digest
+from .folder import Folder, Resumed, digest
 from .job import JobSpec, run_chunk
 from .summary import SummaryWriter
 from .summary_only import SummaryJob, block_size, summary_rows
@@ -150,11 +152,14 @@ def batch(scene: str | Path | Scene, vary: Vary = None,
           sets: Mapping[str, object] | None = None, step: float | None = None,
           samples: int | None = None, seed: int | None = None, audit: bool = False,
           force: bool = False, scheduler: str | None = None,
-          progress: bool | None = None):
+          progress: bool | None = None, timeout: float | None = None):
     """Make ``out/<name>-batch/<name>-0001.xlsx`` ... and ``summary.csv``/``summary.xlsx``;
     return the summary as a pandas DataFrame: its columns the summary's names without
     the units the files' headers carry (``y_C_max``; ``frame.attrs["units"]``:
-    ``{"y_C_max": "mm", ...}``), ``frame.attrs["folder"]``: the folder.
+    ``{"y_C_max": "mm", ...}``), ``frame.attrs["folder"]``: the folder,
+    ``frame.attrs["failed"]``: how many variants are not ``ok``, ``frame.attrs["kept"]``:
+    the files a rerun kept because they differ from what the batch wrote, edited since
+    (``force`` replaces them).
 
     ``vary``: a mapping from a parameter or option name to its values, varied as a full
     factorial in the mapping's order (the last fastest).  Values are a list, tuple,
@@ -168,22 +173,24 @@ def batch(scene: str | Path | Scene, vary: Vary = None,
     decimal comma is read) or xlsx table, one variant per row, columns named for
     parameters and options.  ``sets``: parameters or options for every variant.
     ``jobs``: local worker processes (default: all cores); ``client`` (a Dask
-    ``Client``) or ``scheduler`` (its address) runs the variants on a Dask cluster.
-    ``summary_only``: the summary without the workbooks, evaluated over all variants at
+    ``Client``) or ``scheduler`` (its address) runs the variants on a Dask cluster; with
+    no worker connected it logs a warning after a few seconds and waits, at most
+    ``timeout`` seconds (None: no limit).  ``summary_only``: the summary without the workbooks, evaluated over all variants at
     once.  Raises SceneError (bad input, the message naming the argument) before
     writing anything."""
     return run_batch(scene, vary, design, out, jobs, client, summary_only, sets=sets,
                      step=step, samples=samples, seed=seed, audit=audit, force=force,
-                     scheduler=scheduler, progress=progress, cli=False)
+                     scheduler=scheduler, progress=progress, timeout=timeout, cli=False)
 
 
 def run_batch(scene, vary=None, design=None, out="outputs", jobs=None, client=None,
               summary_only=False, *, sets=None, step=None, samples=None, seed=None,
-              audit=False, force=False, scheduler=None, progress=None, cli=True):
+              audit=False, force=False, scheduler=None, progress=None, timeout=None,
+              cli=True):
     """``batch()``, its messages naming the command line's flags when ``cli``."""
     with _no_cycle_collection():
         return _batch(scene, vary, design, out, jobs, client, summary_only, sets, step,
-                      samples, seed, audit, force, scheduler, progress, cli)
+                      samples, seed, audit, force, scheduler, progress, timeout, cli)
 
 
 @contextlib.contextmanager
@@ -201,7 +208,7 @@ def _no_cycle_collection():
 
 
 def _batch(scene, vary, design, out, jobs, client, summary_only, sets, step, samples, seed,
-           audit, force, scheduler, progress, cli):
+           audit, force, scheduler, progress, timeout, cli):
     text, source, given_sets, given_step = _read(scene)
     sets = {**given_sets, **dict(sets or {})}
     step = step if step is not None else given_step
@@ -214,6 +221,12 @@ def _batch(scene, vary, design, out, jobs, client, summary_only, sets, step, sam
         raise SceneError(f"{flag('jobs', cli)} and {flag('scheduler', cli)}"
                          f"{'' if cli else ' (or client)'}: give one (the cluster's workers "
                          f"do the work)")
+    if timeout is not None and (client is None and scheduler is None):
+        raise SceneError(f"{flag('timeout', cli)} goes with {flag('scheduler', cli)}"
+                         f"{'' if cli else ' (or client)'} (how long to wait for a Dask "
+                         f"worker)")
+    if timeout is not None and not timeout > 0:
+        raise SceneError(f"{flag('timeout', cli)} must be > 0 seconds, got {timeout:g}")
     base = parse_scene(text, source, sets or None, step)
     plan = _design(base, vary, design, sets, samples, seed, cli)
     folder_path = Path(out) / f"{base.name}-batch"
@@ -226,23 +239,32 @@ def _batch(scene, vary, design, out, jobs, client, summary_only, sets, step, sam
         "variants": digest(variants_json(plan.variants).encode())}
     folder = Folder(folder_path, base.name, identity)
     resume = folder.check(force)
-    own = runners.connect(scheduler) if scheduler is not None and client is None else None
+    own = runners.connect(scheduler, timeout) if scheduler is not None and client is None else None
     command = _command(source, vary, design, sets, step, samples, seed, summary_only, audit)
     writer = None
+    kept: list[str] = []
     try:
+        if client is not None or own is not None:
+            runners.wait_for_workers(own if client is None else client, timeout)
         folder_path.mkdir(parents=True, exist_ok=True)
-        folder.start(resume, command)
-        models = _option_models(base, plan, text, source, sets, step) or [
-            select(base.template, base.outputs)]
-        defaults = {**base.parameters, **{o.name: base.options.get(o.name, o.default)
-                                          for o in get_template(base.mechanism).options}}
-        table = Table(plan, models[0], defaults, others=models[1:])
-        writer = SummaryWriter(table, folder_path / "summary.csv", folder_path / "summary.xlsx")
-        runner = runners.pick(jobs, client or own)
-        if summary_only:
-            _summaries_only(spec, plan, table, runner, progress, writer)
-        else:
-            _workbooks(spec, plan, table, runner, folder, resume, progress)
+        with folder.locked():
+            folder.start(resume, command)
+            models = _option_models(base, plan, text, source, sets, step) or [
+                select(base.template, base.outputs)]
+            defaults = {**base.parameters, **{o.name: base.options.get(o.name, o.default)
+                                              for o in get_template(base.mechanism).options}}
+            table = Table(plan, models[0], defaults, others=models[1:])
+            writer = SummaryWriter(table, folder_path / "summary.csv",
+                                   folder_path / "summary.xlsx")
+            runner = runners.pick(jobs, client or own)
+            if summary_only:
+                _summaries_only(spec, plan, table, runner, progress, writer)
+            else:
+                kept += _workbooks(spec, plan, table, runner, folder, resume, progress)
+            terminate.check()
+            writer.finish(_about(command, source, plan, table, summary_only, base.name,
+                                 width, text),
+                          place=functools.partial(_place, folder, kept))
     except BaseException:
         if writer is not None:
             writer.abort()
@@ -250,16 +272,26 @@ def _batch(scene, vary, design, out, jobs, client, summary_only, sets, step, sam
     finally:
         if own is not None:
             own.close()
-    about = [("command", command), ("scene file", source), ("generator", f"workbook-gen {VERSION}"),
-             ("variants", f"{len(plan)} ({plan.kind}); varied: {', '.join(plan.names)}"),
-             ("statuses", _counts(table)), ("workbooks", "none (--summary-only)" if summary_only
-                                            else f"{base.name}-{'0' * (width - 1)}1.xlsx ..."),
-             ("scene as given", text)]
-    writer.finish(about)
     frame = table.frame()
     frame.attrs["folder"] = str(folder_path)
     frame.attrs["failed"] = sum(table.failed())
+    frame.attrs["kept"] = kept
     return frame
+
+
+def _place(folder: Folder, kept: list[str], temporary: Path, target: Path) -> None:
+    if not folder.place_summary(temporary, target):
+        log.info("%s differs from what this batch wrote: kept", target)
+        kept.append(target.name)
+
+
+def _about(command, source, plan, table, summary_only, name, width, text):
+    return [("command", command), ("scene file", source),
+            ("generator", f"workbook-gen {VERSION}"),
+            ("variants", f"{len(plan)} ({plan.kind}); varied: {', '.join(plan.names)}"),
+            ("statuses", _counts(table)), ("workbooks", "none (--summary-only)" if summary_only
+                                           else f"{name}-{'0' * (width - 1)}1.xlsx ..."),
+            ("scene as given", text)]
 
 
 def _counts(table: Table) -> str:
@@ -284,12 +316,14 @@ def _summaries_only(spec: JobSpec, plan: Design, table: Table, runner, progress,
         job = SummaryJob(spec, plan.names, tuple(table.values), frozenset(table.figures),
                          plan.options, table.text_options,
                          tuple((n, table.defaults_shown[n]) for n in plan.names))
-        for part, (block, text) in runner.run(summary_rows, job, parts):
-            table.put_block(part, block)
-            if text is not None:  # formatted by the worker: written as soon as in order
-                writer.add(part[0].index, len(part), text)
-            if bar is not None:
-                bar.update(len(part))
+        with contextlib.closing(runner.run(summary_rows, job, parts)) as run:
+            for part, (block, text) in run:
+                table.put_block(part, block)
+                if text is not None:  # formatted by the worker: written in order
+                    writer.add(part[0].index, len(part), text)
+                if bar is not None:
+                    bar.update(len(part))
+                terminate.check()
     finally:
         if bar is not None:
             bar.close()
@@ -311,28 +345,37 @@ def workbook_chunks(todo: Sequence[Variant], jobs: int) -> list[Sequence[Variant
 
 
 def _workbooks(spec: JobSpec, plan: Design, table: Table, runner, folder: Folder,
-               resume: bool, progress) -> None:
-    done = folder.finished() if resume else {}
+               resume: bool, progress) -> list[str]:
+    """Make the workbooks still to make; the names of those kept because they differ
+    from what the batch wrote (a rerun never destroys work)."""
+    found = folder.finished() if resume else Resumed()
     for variant in plan.variants:
-        if variant.index in done:
-            table.put(variant, done[variant.index])
-    todo = [v for v in plan.variants if v.index not in done]
-    log.info("%d variants, %d complete, %d to make", len(plan), len(done), len(todo))
-    bar = _progress(len(plan), len(done), progress)
+        if variant.index in found.rows:
+            table.put(variant, found.rows[variant.index])
+    kept = list(found.edited.values())
+    todo = [v for v in plan.variants if v.index not in found.rows]
+    log.info("%d variants, %d complete, %d to make", len(plan), len(found.rows), len(todo))
+    bar = _progress(len(plan), len(found.rows), progress)
     journal = folder.journal()
     jobs = getattr(runner, "jobs", 1)
     by_index = {v.index: v for v in todo}
     try:
-        for _, outcomes in runner.run(run_chunk, spec, workbook_chunks(todo, jobs)):
-            for outcome in outcomes:
-                if outcome.data is not None:
-                    write_bytes_atomically(folder.path / outcome.row["file"], outcome.data,
-                                           force=True)
-                journal.add(outcome.index, outcome.data, outcome.row)
-                table.put(by_index[outcome.index], outcome.row)
-            if bar is not None:
-                bar.update(len(outcomes))
+        with contextlib.closing(runner.run(run_chunk, spec, workbook_chunks(todo, jobs))) as run:
+            for _, outcomes in run:
+                for outcome in outcomes:
+                    if outcome.data is not None:
+                        name = outcome.row["file"]
+                        if not (resume and (folder.path / name).exists()):
+                            write_bytes_atomically(folder.path / name, outcome.data, force=True)
+                        elif folder.differs(name, outcome.data):
+                            kept.append(name)  # not the batch's: the journal says what is
+                    journal.add(outcome.index, outcome.data, outcome.row)
+                    table.put(by_index[outcome.index], outcome.row)
+                if bar is not None:
+                    bar.update(len(outcomes))
+                terminate.check()
     finally:
         journal.close()
         if bar is not None:
             bar.close()
+    return sorted(kept)  # numbered names of one width: in variant order

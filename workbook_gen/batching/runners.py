@@ -4,22 +4,29 @@ schedule and collect (the results are the same whichever runs them).
 
 - ``InProcess``: this process, one chunk after the other;
 - ``LocalPool``: ``jobs`` worker processes, each importing the package once and running
-  many chunks, a bounded number of chunks in flight;
+  many chunks, a bounded number of chunks in flight; stopped at once (the chunks in
+  flight dropped) when the caller stops early (an error, SIGTERM, Ctrl-C);
 - ``DaskRunner``: an existing Dask distributed cluster (``Client``): tasks return their
   results to this process, at most a few per worker thread are in flight, ``pure=False``
-  and ``retries`` so a chunk lost with a killed worker is run again.
+  and ``retries`` so a chunk lost with a killed worker is run again.  ``wait_for_workers``
+  says when none is connected, and waits (or gives up after a timeout).
 """
 
 from __future__ import annotations
 
 import concurrent.futures as cf
+import logging
 import multiprocessing
 import os
+import time
 from typing import Callable, Iterable, Iterator, Sequence, TypeVar
 
+from .. import terminate
 from ..errors import WorkbookGenError
 
+log = logging.getLogger(__name__)
 T = TypeVar("T")
+NOTICE = 2.0    # seconds without a Dask worker before saying so
 Chunk = Sequence
 
 
@@ -55,20 +62,54 @@ class LocalPool:
             if first is None:
                 return
             yield first, fn(spec, first)
-        with cf.ProcessPoolExecutor(self.jobs, mp_context=context) as pool:
+        pool = cf.ProcessPoolExecutor(self.jobs, mp_context=context)
+        try:
             pending: dict[cf.Future, Chunk] = {}
             for part in parts:
                 pending[pool.submit(fn, spec, part)] = part
                 if len(pending) >= limit:
                     break
             while pending:
-                done, _ = cf.wait(pending, return_when=cf.FIRST_COMPLETED)
+                done, _ = cf.wait(pending, timeout=terminate.POLL,
+                                  return_when=cf.FIRST_COMPLETED)
+                terminate.check()
                 for future in done:
                     part = pending.pop(future)
                     yield part, future.result()
                     for more in parts:
                         pending[pool.submit(fn, spec, more)] = more
                         break
+        except BaseException:  # GeneratorExit too: the caller stopped early
+            _stop(pool)
+            raise
+        pool.shutdown(wait=True)
+
+
+def _stop(pool: cf.ProcessPoolExecutor) -> None:
+    """Drop the chunks not started and end the workers now (SIGTERM: the work in flight
+    is lost, its results not wanted), rather than wait for the chunks they run."""
+    terminate = getattr(pool, "terminate_workers", None)  # Python 3.14
+    if terminate is not None:
+        terminate()
+        return
+    # A worker ended while it sends a result leaves the pool's thread reading the rest
+    # for ever (this process holds the pipe's other end too), and the interpreter's exit
+    # waiting for that thread: closing our end, once the workers are gone, lets the read
+    # end.  Private attributes, taken before shutdown() drops them (the test
+    # test_a_pool_stopped_mid_result_lets_the_process_exit notices a change).
+    processes = list((getattr(pool, "_processes", None) or {}).values())
+    writer = getattr(getattr(pool, "_result_queue", None), "_writer", None)
+    pool.shutdown(wait=False, cancel_futures=True)
+    for process in processes:
+        if process.is_alive():
+            process.terminate()
+    for process in processes:
+        process.join(timeout=10)
+        if process.is_alive():  # deaf to SIGTERM
+            process.kill()
+            process.join()
+    if writer is not None:
+        writer.close()
 
 
 class DaskRunner:
@@ -110,17 +151,46 @@ class DaskRunner:
             yield part, result
 
 
-def connect(address: str):
-    """A Dask client for ``--scheduler ADDRESS`` (WorkbookGenError if it cannot connect)."""
+def connect(address: str, timeout: float | None = None):
+    """A Dask client for ``--scheduler ADDRESS`` (WorkbookGenError if it cannot connect
+    within 10 s, or ``timeout`` if shorter)."""
     try:
         from distributed import Client
     except ImportError:
         raise WorkbookGenError("--scheduler needs Dask distributed: pip install "
                                "'workbook-gen[distributed]'") from None
+    limit = 10.0 if timeout is None else min(10.0, timeout)
     try:
-        return Client(address, timeout="10s")
+        return Client(address, timeout=f"{limit}s")
     except (OSError, TimeoutError, ValueError) as exc:
         raise WorkbookGenError(f"--scheduler {address}: cannot connect: {exc}") from None
+
+
+def wait_for_workers(client, timeout: float | None = None) -> None:
+    """Return once a worker is connected to the client's cluster.  After ``NOTICE``
+    seconds without one, log a warning ("waiting for Dask workers at ADDRESS: none
+    connected") and go on waiting; after ``timeout`` seconds (None: no limit) raise
+    WorkbookGenError."""
+    address = getattr(client.scheduler, "address", None) or str(client)
+    started = time.monotonic()
+    said = False
+    while True:  # in slices, so that a SIGTERM is seen (terminate.check)
+        waited = time.monotonic() - started
+        if not said and waited >= NOTICE:
+            log.warning("waiting for Dask workers at %s: none connected", address)
+            said = True
+        if timeout is not None and waited >= timeout:
+            raise WorkbookGenError(f"--scheduler {address}: no Dask worker connected "
+                                   f"within --timeout {timeout:g} s")
+        limits = [terminate.POLL] + ([] if said else [NOTICE - waited]) + (
+            [] if timeout is None else [timeout - waited])
+        try:
+            client.wait_for_workers(1, timeout=max(0.01, min(limits)))
+            break
+        except TimeoutError:
+            terminate.check()
+    if said:
+        log.warning("Dask workers at %s: %d connected", address, len(client.nthreads()))
 
 
 def default_jobs() -> int:

@@ -24,7 +24,7 @@ import xlsxwriter
 import xlsxwriter.workbook
 from xlsxwriter.utility import xl_col_to_name
 
-from ..files import write_atomically
+from ..files import Place, write_atomically
 from ..version import VERSION
 from .blocktext import block_texts
 from .sheetzip import DeflatedMember, member_data, splice
@@ -140,7 +140,9 @@ class SummaryWriter:
             self._rows.write(xml_text.encode())
         self._next = size + 1
 
-    def finish(self, about: Sequence[tuple[str, str]]) -> None:
+    def finish(self, about: Sequence[tuple[str, str]], place: Place = os.replace) -> None:
+        """Write the rest and put both files in place: ``place(temporary, target)``
+        (a rename by default; the batch folder's keeps a summary edited since)."""
         table = self.table
         try:
             if not all(text.fits(table) for text in self._written):
@@ -162,9 +164,10 @@ class SummaryWriter:
                 self._book.close()
             self._book = None
             book = stream.getvalue()
-            os.replace(self._csv_temp, self.csv_path)
+            place(self._csv_temp, self.csv_path)
             if self._rows is None:
-                write_atomically(self.xlsx_path, lambda temp: temp.write_bytes(book), force=True)
+                write_atomically(self.xlsx_path, lambda temp: temp.write_bytes(book), force=True,
+                                 place=place)
                 return
             prefix, suffix = member_data(book, VARIANTS).split(_ROWS.encode())
             if prefix != self._prefix:  # the sheet starts otherwise: its rows again after it
@@ -178,7 +181,7 @@ class SummaryWriter:
             def build(temp: Path) -> None:
                 with temp.open("wb") as handle:
                     splice(book, VARIANTS, self._rows, handle)
-            write_atomically(self.xlsx_path, build, force=True)
+            write_atomically(self.xlsx_path, build, force=True, place=place)
             self._rows.discard()
         except BaseException:
             self.abort()
