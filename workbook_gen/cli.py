@@ -137,15 +137,15 @@ def _tradeoff(args: argparse.Namespace) -> int:
 
 
 def _batch(args: argparse.Namespace) -> int:
-    from .batching import batch
-    frame = batch(args.scene, args.vary, args.design, args.out, args.jobs,
-                  summary_only=args.summary_only, sets=_overrides(args.scene, args.set),
-                  step=args.step, samples=args.samples, seed=args.seed, audit=args.audit,
-                  force=args.force, scheduler=args.scheduler,
-                  progress=False if args.quiet else None)
-    failed = frame.attrs["failed"]
+    from .batching.api import run
+    done = run(args.scene, args.vary, args.design, args.out, args.jobs,
+               summary_only=args.summary_only, sets=_overrides(args.scene, args.set),
+               step=args.step, samples=args.samples, seed=args.seed, audit=args.audit,
+               force=args.force, scheduler=args.scheduler,
+               progress=False if args.quiet else None)
+    failed = done.failed
     if not args.quiet:
-        print(f"{frame.attrs['folder']}: {len(frame)} variants, {len(frame) - failed} ok"
+        print(f"{done.folder}: {done.count} variants, {done.count - failed} ok"
               + (f", {failed} not ok (see summary.csv)" if failed else ""))
     return 1 if failed else 0
 

@@ -14,6 +14,7 @@ import json
 import logging
 import math
 import sys
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Mapping, Sequence
 
@@ -117,6 +118,53 @@ def batch(scene: str | Path | Scene, vary: Sequence[str] | None = None,
     ``client`` (a Dask ``Client``) or ``scheduler`` (its address) runs the variants on
     a Dask cluster.  ``summary_only``: the summary without the workbooks, evaluated over
     all variants at once.  Raises SceneError (bad input) before writing anything."""
+    done = run(scene, vary, design, out, jobs, client, summary_only, sets=sets, step=step,
+               samples=samples, seed=seed, audit=audit, force=force, scheduler=scheduler,
+               progress=progress)
+    return done.frame()
+
+
+@dataclass(frozen=True)
+class Finished:
+    """A finished batch: its folder, its number of variants, those not ok (or failing
+    their audit), and its table (``frame``: the summary as a DataFrame)."""
+
+    folder: Path
+    count: int
+    failed: int
+    table: Table
+
+    def frame(self):
+        """The summary as a DataFrame: from the table, or from summary.parquet when the
+        table kept no rows (--summary-only; the figures a text may hold as in the
+        Parquet file)."""
+        if self.table.keep:
+            frame = self.table.frame()
+        else:
+            frame = _parquet_frame(self.folder / "summary.parquet")
+        frame.attrs["folder"] = str(self.folder)
+        frame.attrs["failed"] = self.failed
+        return frame
+
+
+def _parquet_frame(path: Path):
+    import pandas as pd
+    frame = pd.read_parquet(path)
+    frame["variant"] = frame["variant"].astype(str)
+    if "rows_not_assembled" in frame:
+        frame["rows_not_assembled"] = frame["rows_not_assembled"].astype("Int64")
+    return frame
+
+
+def run(scene: str | Path | Scene, vary: Sequence[str] | None = None,
+        design: str | Path | None = None, out: str | Path = "outputs",
+        jobs: int | None = None, client=None, summary_only: bool = False, *,
+        sets: Mapping[str, object] | None = None, step: float | None = None,
+        samples: int | None = None, seed: int | None = None, audit: bool = False,
+        force: bool = False, scheduler: str | None = None,
+        progress: bool | None = None) -> Finished:
+    """``batch`` without making the DataFrame (the command line: a million variants'
+    summary need not be read back)."""
     with _no_cycle_collection():
         return _batch(scene, vary, design, out, jobs, client, summary_only, sets, step,
                       samples, seed, audit, force, scheduler, progress)
@@ -165,7 +213,8 @@ def _batch(scene, vary, design, out, jobs, client, summary_only, sets, step, sam
     try:
         folder_path.mkdir(parents=True, exist_ok=True)
         folder.start(resume, command)
-        table = Table(plan, select(base.template, base.outputs), base.parameters)
+        table = Table(plan, select(base.template, base.outputs), base.parameters,
+                      keep=not summary_only)
         writer = SummaryWriter(table, folder_path / "summary.csv", folder_path / "summary.xlsx")
         runner = runners.pick(jobs, client or own)
         if summary_only:
@@ -185,18 +234,13 @@ def _batch(scene, vary, design, out, jobs, client, summary_only, sets, step, sam
                                             else f"{base.name}-{'0' * (width - 1)}1.xlsx ..."),
              ("scene as given", text)]
     writer.finish(about)
-    frame = table.frame()
-    frame.attrs["folder"] = str(folder_path)
-    frame.attrs["failed"] = sum(table.failed())
-    return frame
+    return Finished(folder_path, len(plan), table.failed_count(), table)
 
 
 def _counts(table: Table) -> str:
-    statuses = table.statuses()
-    refused = sum(s.startswith("refused") for s in statuses)
-    fails = sum(a == "fail" for a in table.data["audit"])
-    return (f"ok {statuses.count('ok')}, partial {statuses.count('partial')}, refused "
-            f"{refused}" + (f", audit failed {fails}" if fails else ""))
+    statuses, fails = table.tally()
+    return (f"ok {statuses['ok']}, partial {statuses['partial']}, refused "
+            f"{statuses['refused']}" + (f", audit failed {fails}" if fails else ""))
 
 
 def _summaries_only(spec: JobSpec, plan: Design, table: Table, runner, progress,
@@ -214,7 +258,10 @@ def _summaries_only(spec: JobSpec, plan: Design, table: Table, runner, progress,
         for part, (block, text) in runner.run(summary_rows, job, parts):
             table.put_block(part, block)
             if text is not None:  # formatted by the worker: written as soon as in order
-                writer.add(part[0].index, len(part), text)
+                writer.add(part[0].index, len(part), text, part, block)
+            elif not table.keep:
+                raise RuntimeError("a block of variants not consecutive: the summary "
+                                   "keeps no rows to write it from")
             if bar is not None:
                 bar.update(len(part))
     finally:

@@ -1,5 +1,5 @@
-"""summary.csv and summary.xlsx of a batch (written last, atomically, same bytes for
-the same command).
+"""summary.csv, summary.parquet and summary.xlsx of a batch (written last, atomically,
+same bytes for the same command).
 
 summary.xlsx: a Variants sheet (frozen header, autofilter, the file column a
 HYPERLINK to each workbook (a formula: no limit of 65,530 links per sheet), rows not ``ok`` marked by conditional formats), a Charts sheet (each
@@ -27,8 +27,9 @@ from xlsxwriter.utility import xl_col_to_name
 from ..files import write_atomically
 from ..version import VERSION
 from .blocktext import block_texts
+from .columnar import ParquetSink
 from .sheetzip import DeflatedMember, member_data, splice
-from .rows import figure_columns, snake
+from .rows import figure_columns, snake, text_figures
 from .table import Table
 
 DOCUMENT_DATE = dt.datetime(2024, 1, 1)
@@ -85,12 +86,13 @@ class BlockText:
 
 
 class SummaryWriter:
-    """summary.csv and summary.xlsx of a batch (each written atomically, same bytes for
-    the same command).  Blocks of rows formatted elsewhere may be added as they
-    arrive, in any order: each is written (and its sheet XML deflated) when the rows
-    before it are; at ``finish`` the rest (all of them for a file batch) are formatted
-    here from the table, and all of them if a block was formatted with a kind the
-    whole table does not have."""
+    """summary.csv, summary.parquet and summary.xlsx of a batch (each written
+    atomically, same bytes for the same command).  Blocks of rows formatted
+    elsewhere may be added as they arrive, in any order: each is written (its sheet
+    XML deflated, its values appended to the Parquet file) when the rows before it
+    are; at ``finish`` the rest (all of them for a file batch) are formatted here from
+    the table, and all of them if a block was formatted with a kind the whole table
+    does not have (read back from the Parquet file when the table keeps no rows)."""
 
     def __init__(self, table: Table, csv_path: Path, xlsx_path: Path):
         self.table, self.csv_path, self.xlsx_path = table, csv_path, xlsx_path
@@ -98,8 +100,13 @@ class SummaryWriter:
                                     dir=csv_path.parent)
         self._csv_temp = Path(temp)
         self._csv = os.fdopen(fd, "w", encoding="utf-8", newline="")
-        self._book = self._sheet = self._rows = None
+        self._book = self._sheet = self._rows = self._sink = None
+        self._sunk = 1                      # the next variant index to append to Parquet
         try:
+            self._sink = ParquetSink(
+                csv_path.with_suffix(".parquet"), table.columns, table.design.names,
+                text_figures(table.model),
+                all(v.label == str(v.index) for v in table.design.variants))
             csv.writer(self._csv, lineterminator="\n").writerow(table.columns)
             self._csv_mark = self._csv.tell()
             self._book, self._sheet = _book(table)
@@ -114,15 +121,62 @@ class SummaryWriter:
         self._waiting: dict[int, tuple[int, BlockText]] = {}
         self._written: list[BlockText] = []
 
-    def add(self, first: int, count: int, text: BlockText) -> None:
-        """Rows ``first .. first + count - 1`` (variant indices), formatted."""
-        self._waiting[first] = (count, text)
+    def add(self, first: int, count: int, text: BlockText, variants=None, block=None
+            ) -> None:
+        """Rows ``first .. first + count - 1`` (variant indices), formatted, and their
+        ``variants`` and summary columns (``block``) for the Parquet file."""
+        self._waiting[first] = (count, text, variants, block)
         while self._next in self._waiting:
-            count, text = self._waiting.pop(self._next)
+            count, text, variants, block = self._waiting.pop(self._next)
             self._csv.write(text.csv)
             self._rows.write(text.xml)
             self._written.append(BlockText("", b"", text.kinds, text.filled))  # not the text
+            if block is not None:
+                self._sink.write(self._full(variants, block), count)
+                self._sunk += count
             self._next += count
+
+    def _full(self, variants, block) -> dict[str, object]:
+        """A block's every column: its summary columns, the variants' labels and
+        varied parameters."""
+        data = dict(block)
+        data["variant"] = [v.label for v in variants]
+        chosen = [dict(v.values) for v in variants]
+        for name in self.table.design.names:
+            default = self.table.defaults[name]
+            data[name] = [values.get(name, default) for values in chosen]
+        return data
+
+    def _columns(self, names: list[str]) -> dict[str, list]:
+        """Whole columns (a chart's data sheet)."""
+        if self.table.keep:
+            return self.table.data
+        self._next = 1
+        out: dict[str, list] = {name: [] for name in names}
+        for _, data in self._stored(names):
+            for name in names:
+                out[name] += data[name]
+        self._next = len(self.table.design) + 1
+        return out
+
+    def _stored(self, names=None):
+        """The rows from ``self._next`` on, ``ROWS_PER_WRITE`` or so at a time, from the
+        table or (a table that keeps none) the Parquet file."""
+        table = self.table
+        names = list(names or table.columns)
+        if table.keep:
+            for lo in range(self._next - 1, len(table.design), _ROWS_PER_WRITE):
+                hi = min(len(table.design), lo + _ROWS_PER_WRITE)
+                yield lo, {name: table.data[name][lo:hi] for name in names}
+            return
+        self._sink.close()
+        lo = 0
+        for data in self._sink.batches(names):
+            count = len(data[names[0]])
+            if lo + count > self._next - 1:
+                skip = max(0, self._next - 1 - lo)
+                yield lo + skip, {name: values[skip:] for name, values in data.items()}
+            lo += count
 
     def _format(self, csv_too: bool = True) -> None:
         """The rows from ``self._next`` on, formatted here from the table."""
@@ -131,13 +185,15 @@ class SummaryWriter:
         if not size:
             return
         columns, kinds = table.columns, {name: table.kind(name) for name in table.columns}
-        for lo in range(self._next - 1, size, _ROWS_PER_WRITE):
-            hi = min(size, lo + _ROWS_PER_WRITE)
-            data = {name: table.data[name][lo:hi] for name in columns}
-            csv_text, xml_text = block_texts(columns, kinds, data, lo + 2, hi - lo)
+        for lo, data in self._stored():
+            count = len(data["variant"])
+            csv_text, xml_text = block_texts(columns, kinds, data, lo + 2, count)
             if csv_too:
                 self._csv.write(csv_text)
             self._rows.write(xml_text.encode())
+            if lo + 1 >= self._sunk:  # not yet in the Parquet file
+                self._sink.write(data, count)
+                self._sunk = lo + 1 + count
         self._next = size + 1
 
     def finish(self, about: Sequence[tuple[str, str]]) -> None:
@@ -155,7 +211,8 @@ class SummaryWriter:
             os.chmod(self._csv_temp, 0o644)
             charts = self._book.add_worksheet("Charts")
             _about_sheet(self._book, about)
-            _charts_sheet(self._book, charts, table)  # after About: its data sheet comes last
+            _charts_sheet(self._book, charts, table, self._columns)  # after About: its
+            # data sheet comes last
             stream = self._book.filename
             with _fast_deflate():
                 self._book.close()
@@ -163,6 +220,7 @@ class SummaryWriter:
             book = stream.getvalue()
             os.replace(self._csv_temp, self.csv_path)
             if self._rows is None:
+                self._sink.finish({name: table.kind(name) for name in table.columns})
                 write_atomically(self.xlsx_path, lambda temp: temp.write_bytes(book), force=True)
                 return
             prefix, suffix = member_data(book, VARIANTS).split(_ROWS.encode())
@@ -173,6 +231,7 @@ class SummaryWriter:
                 self._format(csv_too=False)
             self._rows.write(suffix)
             self._rows.close()
+            self._sink.finish({name: table.kind(name) for name in table.columns})
 
             def build(temp: Path) -> None:
                 with temp.open("wb") as handle:
@@ -188,6 +247,8 @@ class SummaryWriter:
         if not self._csv.closed:
             self._csv.close()
         self._csv_temp.unlink(missing_ok=True)
+        if self._sink is not None:
+            self._sink.abort()
         if self._rows is not None:
             self._rows.discard()
         sheet = self._sheet
@@ -274,7 +335,7 @@ def _plotted(table: Table) -> list[tuple[str, list[str]]]:
     return charts
 
 
-def _charts_sheet(book, sheet, table: Table) -> None:
+def _charts_sheet(book, sheet, table: Table, columns) -> None:
     sheet.set_landscape()
     sheet.fit_to_pages(1, 0)
     design = table.design
@@ -289,7 +350,8 @@ def _charts_sheet(book, sheet, table: Table) -> None:
     if grouped:
         data = book.add_worksheet("ChartData")
         data.hide()
-        groups = _write_groups(data, table, [c for _, cols in _plotted(table) for c in cols])
+        wanted = [c for _, cols in _plotted(table) for c in cols]
+        groups = _write_groups(data, table, wanted, columns(list(design.names[:1]) + wanted))
     for n, (title, cols) in enumerate(_plotted(table)):
         if not all(c in numeric for c in cols):
             continue
@@ -328,7 +390,7 @@ def _charts_sheet(book, sheet, table: Table) -> None:
         sheet.insert_chart(row * 19, col * 9, chart)
 
 
-def _write_groups(sheet, table: Table, wanted: list[str]):
+def _write_groups(sheet, table: Table, wanted: list[str], columns):
     """The data of a two-parameter grid sorted by the second parameter, so each of its
     values is a contiguous range (a chart series)."""
     design = table.design
@@ -342,9 +404,9 @@ def _write_groups(sheet, table: Table, wanted: list[str]):
         first = row
         for i in range(len(design.levels[0])):
             index = i * k + j
-            sheet.write_number(row, 0, table.data[x_name][index])
+            sheet.write_number(row, 0, columns[x_name][index])
             for c in wanted:
-                v = table.data[c][index]
+                v = columns[c][index]
                 if isinstance(v, (int, float)) and v == v and v is not None:
                     sheet.write_number(row, col_of[c], v)
             row += 1
