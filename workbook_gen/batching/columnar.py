@@ -28,7 +28,7 @@ import numpy as np
 
 from .blocktext import number_texts
 
-ROW_GROUP = 1 << 16      # rows per row group (a block of variants is ~1,000)
+ROW_GROUP = 1 << 14      # rows per row group (a block of variants is ~1,000)
 _TEXT = ("file", "status", "audit")
 
 
@@ -62,13 +62,21 @@ class ParquetSink:
         self._numbered = numbered
         self._main = self._temp(".parquet.tmp")
         self._side = self._temp(".texts.parquet.tmp") if self.texts else None
-        self._writer = pa.parquet.ParquetWriter(self._main, self.schema)
+        # dictionary encoding for the texts only: for the float columns (distinct
+        # values) it would hold a dictionary and its hash table per column, ~4 MB each
+        self._writer = pa.parquet.ParquetWriter(
+            self._main, self.schema, use_dictionary=self._texts(self.schema))
         self._side_schema = pa.schema([pa.field(n, pa.string()) for n in self.texts])
         self._side_writer = (pa.parquet.ParquetWriter(self._side, self._side_schema)
                              if self.texts else None)
         self._buffer: list[tuple[object, object]] = []
         self._buffered = 0
         self.has_text = dict.fromkeys(self.texts, False)
+
+    @staticmethod
+    def _texts(schema) -> list[str]:
+        pa = _pa()
+        return [f.name for f in schema if f.type == pa.string()]
 
     def _temp(self, suffix: str) -> Path:
         fd, name = tempfile.mkstemp(prefix=f".{self.path.stem}.", suffix=suffix,
@@ -125,14 +133,21 @@ class ParquetSink:
                 writer.close()
         self._writer = self._side_writer = None
 
-    def batches(self, names: Sequence[str] | None = None) -> Iterator[dict[str, list]]:
-        """The rows written (after ``close``), a row group at a time: each column's
-        values as written (a text-capable figure's texts back in place)."""
+    def batches(self, names: Sequence[str] | None = None, start: int = 0
+                ) -> Iterator[tuple[int, dict[str, list]]]:
+        """The rows written (after ``close``) from row ``start`` (0-based) on, a row
+        group at a time: (its first row, each column's values as written, a
+        text-capable figure's texts back in place)."""
         pa = _pa()
         names = list(names or self.columns)
         main = pa.parquet.ParquetFile(self._main)
         side = pa.parquet.ParquetFile(self._side) if self.texts else None
+        first = 0
         for group in range(main.num_row_groups):
+            count = main.metadata.row_group(group).num_rows
+            first, lo = first + count, first
+            if first <= start:
+                continue
             table = main.read_row_group(group, columns=names)
             words = side.read_row_group(group) if side is not None else None
             out = {}
@@ -143,8 +158,8 @@ class ParquetSink:
                 if name in self.has_text and self.has_text[name]:
                     texts = words.column(name).to_pylist()
                     values = [t if t is not None else v for v, t in zip(values, texts)]
-                out[name] = values
-            yield out
+                out[name] = values[max(0, start - lo):]
+            yield max(lo, start), out
 
     def finish(self, kinds: Mapping[str, str]) -> None:
         """summary.parquet at ``path`` (``kinds``: each column's kind in the whole
@@ -163,7 +178,8 @@ class ParquetSink:
         main = pa.parquet.ParquetFile(self._main)
         side = pa.parquet.ParquetFile(self._side)
         try:
-            with pa.parquet.ParquetWriter(final, schema) as writer:
+            with pa.parquet.ParquetWriter(final, schema,
+                                          use_dictionary=self._texts(schema)) as writer:
                 for group in range(main.num_row_groups):
                     table = main.read_row_group(group)
                     words = side.read_row_group(group)

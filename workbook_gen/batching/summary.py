@@ -170,13 +170,7 @@ class SummaryWriter:
                 yield lo, {name: table.data[name][lo:hi] for name in names}
             return
         self._sink.close()
-        lo = 0
-        for data in self._sink.batches(names):
-            count = len(data[names[0]])
-            if lo + count > self._next - 1:
-                skip = max(0, self._next - 1 - lo)
-                yield lo + skip, {name: values[skip:] for name, values in data.items()}
-            lo += count
+        yield from self._sink.batches(names, self._next - 1)
 
     def _format(self, csv_too: bool = True) -> None:
         """The rows from ``self._next`` on, formatted here from the table."""
