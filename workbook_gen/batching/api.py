@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import contextlib
 import gc
+import hashlib
 import json
 import logging
 import math
@@ -62,9 +63,27 @@ def variants_json(variants: Sequence[Variant]) -> str:
     folder's key: same text), written directly: a float's repr needs no escaping, a
     label of ASCII letters and digits none either (others go through json). A grid's
     values repeat: each (name, value) pair's text is made once."""
+    return "".join(_json_pieces(variants))
+
+
+def variants_digest(variants: Sequence[Variant]) -> str:
+    """``digest(variants_json(variants).encode())``, the text hashed as it is made (a
+    million variants' text is ~50 MB)."""
+    hasher = hashlib.sha256()
+    pieces: list[str] = []
+    for piece in _json_pieces(variants):
+        pieces.append(piece)
+        if len(pieces) >= 4096:
+            hasher.update("".join(pieces).encode())
+            pieces = []
+    hasher.update("".join(pieces).encode())
+    return hasher.hexdigest()
+
+
+def _json_pieces(variants: Sequence[Variant]):
     pairs: dict[tuple[str, float], str] = {}
-    parts = []
-    for v in variants:
+    yield "["
+    for n, v in enumerate(variants):
         label = v.label
         label = f'"{label}"' if label.isascii() and label.isalnum() else json.dumps(label)
         cells = []
@@ -75,8 +94,8 @@ def variants_json(variants: Sequence[Variant]) -> str:
                 if pair[1]:  # 0.0 and -0.0 are equal keys, and their texts differ
                     pairs[pair] = text
             cells.append(text)
-        parts.append(f"[{label}, [{', '.join(cells)}]]")
-    return f"[{', '.join(parts)}]"
+        yield f"{', ' if n else ''}[{label}, [{', '.join(cells)}]]"
+    yield "]"
 
 
 def _command(source, vary, design, sets, step, samples, seed, summary_only, audit) -> str:
@@ -204,7 +223,7 @@ def _batch(scene, vary, design, out, jobs, client, summary_only, sets, step, sam
     identity = {"version": VERSION, "scene": source, "text": text, "sets": sorted(
         (k, repr(v)) for k, v in sets.items()), "step": step, "summary_only": summary_only,
         "audit": audit, "names": list(plan.names), "count": len(plan),
-        "variants": digest(variants_json(plan.variants).encode())}
+        "variants": variants_digest(plan.variants)}
     folder = Folder(folder_path, base.name, identity)
     resume = folder.check(force)
     own = runners.connect(scheduler) if scheduler is not None and client is None else None

@@ -106,7 +106,8 @@ class SummaryWriter:
             self._sink = ParquetSink(
                 csv_path.with_suffix(".parquet"), table.columns, table.design.names,
                 text_figures(table.model),
-                all(v.label == str(v.index) for v in table.design.variants))
+                table.design.kind != "design" or all(
+                    v.label == str(v.index) for v in table.design.variants))
             csv.writer(self._csv, lineterminator="\n").writerow(table.columns)
             self._csv_mark = self._csv.tell()
             self._book, self._sheet = _book(table)
