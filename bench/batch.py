@@ -83,7 +83,7 @@ def summary_only(out: Path, count: int, jobs: int) -> tuple[float, ...]:
     --summary-only`` in a child (as the command line runs it: the summary not read
     back as a DataFrame)."""
     vary = summary_grid(count)
-    code = ("import resource, sys, time; from workbook_gen.batching.api import run; "
+    code = ("import resource, sys, time; from workbook_gen.batching.api import run_batch as run; "
             "import pyarrow.parquet as pq; t = time.perf_counter(); "
             f"f = run({SCENE!r}, vary={vary!r}, out={str(out)!r}, jobs={jobs}, "
             "summary_only=True, progress=False); s = time.perf_counter() - t; "

@@ -227,7 +227,7 @@ def test_summary_only_keeps_no_row_in_memory(tmp_path, monkeypatch):
         original(self)
 
     monkeypatch.setattr(columnar.ParquetSink, "_flush", flush)
-    done = api.run(SEWING, GRID, out=tmp_path, jobs=1, step=30.0, summary_only=True,
+    done = api.run_batch(SEWING, GRID, out=tmp_path, jobs=1, step=30.0, summary_only=True,
                    progress=False)
     assert not done.table.keep and done.table.data == {}
     assert done.count == 22 and seen["groups"] >= 3

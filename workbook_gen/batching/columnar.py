@@ -2,9 +2,10 @@
 DuckDB read it natively), written in row groups as the rows arrive, so a batch of a
 million variants never holds its table in memory.
 
-Columns and order are summary.csv's.  Types: ``variant`` int64 (text where a design
-file names the variants), ``file``, ``status``, ``audit`` text, the varied parameters
-and every figure float64 (NaN: no number), ``rows_not_assembled`` int64 (null for a
+Columns, their names (with units) and order are summary.csv's.  Types: ``variant``
+int64 (text where a design file names the variants), ``file``, ``status``, ``audit``
+text, the varied parameters and every figure float64 (NaN: no number), a varied
+option text (true/false too) or int64, ``rows_not_assembled`` int64 (null for a
 refused variant).  A template figure that may be a text (``n/a: needs ...``, a
 Grashof class) is float64 while every variant has a number or none, text when every
 one is a text or none, and text for all when it is a mix (numbers as summary.csv
@@ -22,7 +23,7 @@ from __future__ import annotations
 import os
 import tempfile
 from pathlib import Path
-from typing import Iterator, Mapping, Sequence
+from typing import Iterable, Iterator, Mapping, Sequence
 
 import numpy as np
 
@@ -42,22 +43,31 @@ class ParquetSink:
     """The rows of ``columns`` appended in order (``write``), then made summary.parquet
     at ``path`` (``finish``), or removed (``abort``)."""
 
-    def __init__(self, path: Path, columns: Sequence[str], varied: Sequence[str],
-                 texts: Sequence[str], numbered: bool):
+    def __init__(self, path: Path, columns: Sequence[str], headers: Sequence[str],
+                 texts: Iterable[str], numbered: bool, texts_always: Iterable[str] = (),
+                 integers: Iterable[str] = ()):
+        """``columns``: the summary's names (``headers``: as the files name them, with
+        units); ``texts``: the figures that may hold texts; ``numbered``: every
+        variant's label its number; ``texts_always``, ``integers``: varied options
+        whose values are texts (true/false too), integers."""
         pa = _pa()
         self.path, self.columns = Path(path), list(columns)
-        self.texts = [name for name in columns if name in set(texts)]
+        texts = set(texts)
+        self.texts = [name for name in columns if name in texts]
+        always, integers = set(texts_always) | set(_TEXT), set(integers) | {
+            "rows_not_assembled"}
         fields = []
-        for name in self.columns:
+        for name, head in zip(self.columns, headers):
             if name == "variant":
                 kind = pa.int64() if numbered else pa.string()
-            elif name in _TEXT:
+            elif name in always:
                 kind = pa.string()
-            elif name == "rows_not_assembled":
+            elif name in integers:
                 kind = pa.int64()
             else:
                 kind = pa.float64()
-            fields.append(pa.field(name, kind))
+            fields.append(pa.field(head, kind))
+        self._head = dict(zip(columns, headers))
         self.schema = pa.schema(fields)
         self._numbered = numbered
         self._main = self._temp(".parquet.tmp")
@@ -89,8 +99,8 @@ class ParquetSink:
         texts; a text-capable figure's numbers and texts)."""
         pa = _pa()
         arrays, side = [], []
-        for field in self.schema:
-            name, values = field.name, data[field.name]
+        for field, name in zip(self.schema, self.columns):
+            values = data[name]
             if name == "variant" and self._numbered:
                 arrays.append(pa.array(np.asarray(values, dtype=np.int64)))
             elif name in self.has_text:
@@ -148,11 +158,11 @@ class ParquetSink:
             first, lo = first + count, first
             if first <= start:
                 continue
-            table = main.read_row_group(group, columns=names)
+            table = main.read_row_group(group, columns=[self._head[n] for n in names])
             words = side.read_row_group(group) if side is not None else None
             out = {}
             for name in names:
-                values = table.column(name).to_pylist()
+                values = table.column(self._head[name]).to_pylist()
                 if name == "variant" and self._numbered:
                     values = [str(v) for v in values]
                 if name in self.has_text and self.has_text[name]:
@@ -172,7 +182,8 @@ class ParquetSink:
             self._remove(self._side)
             return
         pa = _pa()
-        schema = pa.schema([pa.field(f.name, pa.string()) if f.name in texts else f
+        heads = {self._head[n] for n in texts}
+        schema = pa.schema([pa.field(f.name, pa.string()) if f.name in heads else f
                             for f in self.schema])
         final = self._temp(".final.parquet.tmp")
         main = pa.parquet.ParquetFile(self._main)
@@ -184,12 +195,13 @@ class ParquetSink:
                     table = main.read_row_group(group)
                     words = side.read_row_group(group)
                     for name in texts:
-                        numbers = number_texts(table.column(name).to_numpy(
+                        head = self._head[name]
+                        numbers = number_texts(table.column(head).to_numpy(
                             zero_copy_only=False))
                         column = [t if t is not None else (n or None) for n, t in zip(
                             numbers, words.column(name).to_pylist())]
-                        table = table.set_column(table.schema.get_field_index(name),
-                                                 pa.field(name, pa.string()),
+                        table = table.set_column(table.schema.get_field_index(head),
+                                                 pa.field(head, pa.string()),
                                                  pa.array(column, pa.string()))
                     writer.write_table(table, row_group_size=max(1, table.num_rows))
             os.chmod(final, 0o644)

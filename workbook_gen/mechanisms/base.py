@@ -173,6 +173,18 @@ class Mass:
 
 
 @dataclass(frozen=True)
+class PointMass:
+    """A mass carried by a link: ``m`` (kg) at (``u``, ``v``) in the link's frame, all trees."""
+
+    label: str      # column suffix: the link's name, or cw_crank for a counterweight
+    link: Link
+    m: Node
+    u: Node
+    v: Node
+    description: str
+
+
+@dataclass(frozen=True)
 class Template:
     id: str
     title: str
