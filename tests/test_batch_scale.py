@@ -165,6 +165,12 @@ def mixed(tmp_path_factory):
         return _run(tmp_path_factory.mktemp("mixed"), RANDOM, samples=60, seed=3)
 
 
+def _named(frame: pd.DataFrame, name: str) -> str:
+    """The header of summary column ``name`` (``y_C_max [mm]``)."""
+    found, = [c for c in frame.columns if c == name or c.startswith(name + " [")]
+    return found
+
+
 def _check_parquet(folder: Path) -> pd.DataFrame:
     """summary.parquet read by pandas against summary.csv: same columns, same values,
     numbers as float64, variant as int64, texts as texts."""
@@ -189,10 +195,11 @@ def test_parquet_has_the_csv_columns_and_values(mixed):
     frame = _check_parquet(mixed)
     statuses = {s.split(":")[0] for s in frame["status"]}
     assert statuses == {"ok", "partial", "refused"}
-    texts = frame["needle_stroke_exact"].dropna()   # a mix of numbers and texts: texts
+    texts = frame[_named(frame, "needle_stroke_exact")].dropna()   # a mix of numbers and texts: texts
     assert len(texts) > 30 and texts.map(type).isin([str]).all()
     assert any(v.startswith("n/a") for v in texts)
-    assert frame["y_C_max"].dtype == np.float64 and frame["l_AB"].dtype == np.float64
+    assert frame[_named(frame, "y_C_max")].dtype == np.float64
+    assert frame[_named(frame, "l_AB")].dtype == np.float64
     # blocks of 5 variants, a row group from 16 rows on: 3 of 20
     assert pq.ParquetFile(mixed / "summary.parquet").num_row_groups == 3
     assert not list(mixed.glob(".summary.*"))   # no temporary file left
@@ -206,7 +213,7 @@ def test_parquet_of_a_file_batch_and_of_a_grid(tmp_path, monkeypatch):
     frame = _check_parquet(folder)
     assert frame["file"].iloc[4] == "sewing_machine-0005.xlsx"
     grid = _check_parquet(_run(tmp_path / "grid"))
-    assert grid["needle_stroke_exact"].dtype == np.float64   # numbers only: numbers
+    assert grid[_named(grid, "needle_stroke_exact")].dtype == np.float64   # numbers: numbers
 
 
 # -- rows streamed, variants as columns ----------------------------------------------------
@@ -214,26 +221,31 @@ def test_parquet_of_a_file_batch_and_of_a_grid(tmp_path, monkeypatch):
 def test_summary_only_keeps_no_row_in_memory(tmp_path, monkeypatch):
     """The table of a --summary-only batch holds no rows: its summaries are written
     as the blocks arrive (Parquet row groups before the last block comes)."""
-    from workbook_gen.batching import api
+    from workbook_gen.batching import api, summary
     monkeypatch.setattr(summary_only, "BLOCK_ELEMENTS", 70)
     monkeypatch.setattr(columnar, "ROW_GROUP", 10)
-    seen = {}
-    original = columnar.ParquetSink._flush
+    seen = {"groups": 0, "sizes": []}
+    flush, finish = columnar.ParquetSink._flush, summary.SummaryWriter.finish
 
-    def flush(self):
-        seen.setdefault("groups", 0)
+    def flushed(self):
         seen["groups"] += bool(self._buffer)
-        seen.setdefault("sizes", []).append(self._main.stat().st_size)
-        original(self)
+        seen["sizes"].append(self._main.stat().st_size)
+        flush(self)
 
-    monkeypatch.setattr(columnar.ParquetSink, "_flush", flush)
+    def finished(self, about):
+        seen["held"] = (self.table.keep, dict(self.table.data))   # after the last block
+        finish(self, about)
+
+    monkeypatch.setattr(columnar.ParquetSink, "_flush", flushed)
+    monkeypatch.setattr(summary.SummaryWriter, "finish", finished)
     done = api.run_batch(SEWING, GRID, out=tmp_path, jobs=1, step=30.0, summary_only=True,
-                   progress=False)
-    assert not done.table.keep and done.table.data == {}
+                         progress=False)
+    assert seen["held"] == (False, {})
     assert done.count == 22 and seen["groups"] >= 3
     assert seen["sizes"][1] > seen["sizes"][0]   # rows on disk while the batch ran
     frame = done.frame()
     assert len(frame) == 22 and frame.attrs["failed"] == done.failed == 0
+    assert frame.attrs["units"]["y_C_max"] == "mm" and "y_C_max" in frame
 
 
 def test_a_million_grid_variants_are_columns_and_equal_the_factorial():

@@ -171,6 +171,21 @@ class ParquetSink:
                 out[name] = values[max(0, start - lo):]
             yield max(lo, start), out
 
+    def column(self, name: str):
+        """A whole column written (after ``close``): a float64 array for a column of
+        numbers (8 bytes a value), else a list of the values as written."""
+        pa = _pa()
+        head = self._head[name]
+        values = pa.parquet.read_table(self._main, columns=[head]).column(head)
+        if name in self.has_text and self.has_text[name]:
+            texts = pa.parquet.read_table(self._side, columns=[name]).column(name)
+            return [t if t is not None else v for v, t in zip(values.to_pylist(),
+                                                               texts.to_pylist())]
+        if values.type == pa.float64():
+            return values.to_numpy()      # null (None) as NaN: no number, as written
+        return values.to_pylist() if name != "variant" or not self._numbered else [
+            str(v) for v in values.to_pylist()]
+
     def finish(self, kinds: Mapping[str, str]) -> None:
         """summary.parquet at ``path`` (``kinds``: each column's kind in the whole
         table, as ``Table.kind`` gives it)."""

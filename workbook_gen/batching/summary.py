@@ -183,7 +183,7 @@ class SummaryWriter:
             self._csv.close()
             os.chmod(self._csv_temp, 0o644)
             if not table.keep:  # the columns they read, back from the Parquet file
-                table.data = _Stored(self)
+                table.data = _Stored(self._sink)
             write_statistics(self._book, table)
             charts = self._book.add_worksheet("Charts")
             _about_sheet(self._book, about)
@@ -236,20 +236,16 @@ class SummaryWriter:
 
 class _Stored(dict):
     """A table's columns read back from the Parquet file when first asked (the
-    Statistics and Charts sheets of a table that keeps no rows)."""
+    Statistics and Charts sheets of a table that keeps no rows): numbers as float64
+    arrays."""
 
-    def __init__(self, writer: SummaryWriter):
+    def __init__(self, sink: ParquetSink):
         super().__init__()
-        self._writer = writer
+        self._sink = sink
 
-    def __missing__(self, name: str) -> list:
-        writer = self._writer
-        start, writer._next = writer._next, 1
-        column: list = []
-        for _, data in writer._stored([name]):
-            column += data[name]
-        writer._next = start
-        self[name] = column
+    def __missing__(self, name: str):
+        self._sink.close()
+        column = self[name] = self._sink.column(name)
         return column
 
 
