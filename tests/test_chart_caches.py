@@ -80,3 +80,38 @@ def test_legend_where_several_series_and_axes_cross_at_the_minimum(generate):
         # both value axes cross the other at its minimum, labels low: outside the plot
         assert xml.count('<c:crosses val="min"/>') == 2, xml[-800:]
         assert xml.count('<c:tickLblPos val="low"/>') == 2
+
+
+@pytest.mark.parametrize("vary, samples", [
+    ({"l_BC": "95:105:5", "l_AB": "28,32"}, None),       # a grid: grouped series
+    ({"l_AB": "normal:32:0.05", "l_BC": "uniform:99.9:100.1"}, 30),  # Statistics' chart too
+])
+def test_batch_summary_charts_cache_their_points(tmp_path, vary, samples):
+    """The summary's charts cache the points the Variants and Statistics cells hold, as
+    read back by openpyxl (issue 22 item 16: no empty charts in a preview)."""
+    import openpyxl
+    from workbook_gen.batching import batch
+    options = {"samples": samples, "seed": 1} if samples else {}
+    frame = batch("templates/sewing_machine.toml", vary=vary, out=str(tmp_path),
+                  summary_only=True, **options)
+    path = f"{frame.attrs['folder']}/summary.xlsx"
+    book = openpyxl.load_workbook(path, data_only=True)
+    series = 0
+    with zipfile.ZipFile(path) as z:
+        charts = [z.read(n).decode() for n in z.namelist() if n.startswith("xl/charts/chart")]
+    ref = re.compile(r"<c:f>'?(\w+)'?!\$([A-Z]+)\$(\d+):\$[A-Z]+\$(\d+)</c:f>"
+                     r"<c:(?:num|str)Cache>(.*?)</c:(?:num|str)Cache>")
+    for xml in charts:
+        for sheet, letters, first, last, cache in ref.findall(xml):
+            cells = [book[sheet][f"{letters}{r}"].value for r in range(int(first), int(last) + 1)]
+            points = {int(i): v for i, v in _POINT.findall(cache)}
+            assert re.search(r'<c:ptCount val="(\d+)"/>', cache).group(1) == str(len(cells))
+            for i, cell in enumerate(cells):
+                if isinstance(cell, (int, float)):
+                    assert float(points[i]) == pytest.approx(cell, rel=1e-15, abs=1e-300)
+                elif isinstance(cell, str):
+                    assert points[i] == cell
+                else:
+                    assert i not in points
+            series += 1
+    assert series >= 8

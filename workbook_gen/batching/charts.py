@@ -83,19 +83,22 @@ def charts_sheet(book, sheet, table: Table) -> None:
             x = table.columns.index(x_name)
             chart = book.add_chart({"type": "scatter"})  # lines (or none) set per series
             if grid2 and x_at == 0 and by_second is not None:
-                _grouped_series(chart, cols, names[1], by_second)
+                _grouped_series(chart, table, cols, names[1], by_second)
             elif grid2 and x_at == 1 and len(design.levels[0]) <= MAX_SERIES_VALUES:
                 k = len(design.levels[1])  # the Variants rows of each first value, in order
                 by_first = {value: ("Variants", 1 + i * k, (i + 1) * k,
-                                    {c: table.columns.index(c) for c in cols}, x)
+                                    {c: table.columns.index(c) for c in cols}, x,
+                                    list(range(i * k, (i + 1) * k)), x_name)
                             for i, value in enumerate(design.levels[0])}
-                _grouped_series(chart, cols, names[0], by_first)
+                _grouped_series(chart, table, cols, names[0], by_first)
             else:
                 for c in cols:
                     y = table.columns.index(c)
                     chart.add_series({"name": table.headers[y],
                                       "categories": ["Variants", 1, x, size, x],
                                       "values": ["Variants", 1, y, size, y],
+                                      "categories_data": _cache(table.data[x_name]),
+                                      "values_data": _cache(table.data[c]),
                                       **_style(c, 0, line and len(names) == 1)})
             grid = {"visible": True, "line": {"color": "#D9D9D9"}}
             chart.set_x_axis({"name": table.headers[x], "label_position": "low",
@@ -111,19 +114,40 @@ def charts_sheet(book, sheet, table: Table) -> None:
             sheet.insert_chart(row * 19, col * 9, chart)
 
 
+#: Series of at most this many points cache them in the chart (<c:numCache>), as Excel
+#: does, so that a viewer that does not calculate (a file preview) draws them; a larger
+#: batch's charts are left for the spreadsheet to fill (their XML would outweigh the data).
+CACHED_POINTS = 50_000
+
+
+def _cache(values) -> list | None:
+    """The points of a series as XlsxWriter caches them: a number, or None for a cell
+    that holds none (a refused variant)."""
+    values = list(values)
+    if len(values) > CACHED_POINTS:
+        return None
+    return [v if isinstance(v, (int, float)) and not isinstance(v, bool) and v == v else None
+            for v in values]
+
+
 def _level(value: object) -> str:
     return f"{value:g}" if isinstance(value, float) else str(shown(value))
 
 
-def _grouped_series(chart, cols: list[str], g_name: str, groups: dict) -> None:
-    """One series per value of the grouping parameter and plotted column."""
-    for g, (value, (sheet_name, first, last, col_of, x)) in enumerate(groups.items()):
+def _grouped_series(chart, table: Table, cols: list[str], g_name: str, groups: dict) -> None:
+    """One series per value of the grouping parameter and plotted column; ``groups``:
+    value -> (sheet, first row, last row, column of each plotted name, x column, the
+    variants' indices in those rows, the x parameter's name)."""
+    for g, (value, (sheet_name, first, last, col_of, x, rows, x_name)) \
+            in enumerate(groups.items()):
         for c in cols:
             extreme = c.rsplit("_", 1)[-1] if c.endswith(("_max", "_min")) else ""
             chart.add_series({
                 "name": f"{extreme + ', ' if extreme else ''}{g_name} = {_level(value)}",
                 "categories": [sheet_name, first, x, last, x],
                 "values": [sheet_name, first, col_of[c], last, col_of[c]],
+                "categories_data": _cache(table.data[x_name][i] for i in rows),
+                "values_data": _cache(table.data[c][i] for i in rows),
                 **_style(c, g, True)})
 
 
@@ -139,6 +163,7 @@ def _write_groups(sheet, table: Table, wanted: list[str]):
     k = len(design.levels[1])
     for j, value in enumerate(design.levels[1]):
         first = row
+        indices = [i * k + j for i in range(len(design.levels[0]))]
         for i in range(len(design.levels[0])):
             index = i * k + j
             sheet.write_number(row, 0, table.data[x_name][index])
@@ -147,5 +172,5 @@ def _write_groups(sheet, table: Table, wanted: list[str]):
                 if isinstance(v, (int, float)) and v == v and v is not None:
                     sheet.write_number(row, col_of[c], v)
             row += 1
-        groups[value] = ("ChartData", first, row - 1, col_of, 0)
+        groups[value] = ("ChartData", first, row - 1, col_of, 0, indices, x_name)
     return groups

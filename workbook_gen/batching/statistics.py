@@ -141,8 +141,10 @@ def write_statistics(book, table: Table) -> None:
     R = np.atleast_2d(np.corrcoef(np.vstack(p_values))) if effects else None
     matrix = (f"{xl_rowcol_to_cell(matrix_row + 2, 1, True, True)}:"
               f"{xl_rowcol_to_cell(matrix_row + 1 + k, k, True, True)}")
+    cached: list[list] = []  # each column's SRCs (None where "constant"), for the chart
     for i, column in enumerate(columns):
         row = top + i
+        cached.append([None] * k)
         sheet.write_string(row, 0, column.name)
         sheet.write_string(row, 1, column.unit)
         inside = f"IF({status},{rng(column.letter)})"
@@ -158,6 +160,7 @@ def write_statistics(book, table: Table) -> None:
             continue
         r = np.array([np.corrcoef(x, column.values)[0, 1] for x in p_values])
         src = np.linalg.solve(R, r)
+        cached[-1] = [float(v) for v in src]
         r_row = (f"{xl_rowcol_to_cell(row, r_col, True, True)}:"
                  f"{xl_rowcol_to_cell(row, r_col + k - 1, True, True)}")
         for j in range(k):
@@ -180,7 +183,7 @@ def write_statistics(book, table: Table) -> None:
             _array(sheet, matrix_row + 2 + i, 1 + j,
                    f"{{=CORREL(IF({status},{rng(p_letters[i])}),"
                    f"IF({status},{rng(p_letters[j])}))}}", float(R[i, j]), fixed)
-    _sensitivity_chart(book, sheet, columns, params, top, first_src, r_col + k + 1)
+    _sensitivity_chart(book, sheet, columns, params, top, first_src, r_col + k + 1, cached)
 
 
 def _array(sheet, row: int, col: int, formula: str, value: float, style=None) -> None:
@@ -188,9 +191,9 @@ def _array(sheet, row: int, col: int, formula: str, value: float, style=None) ->
 
 
 def _sensitivity_chart(book, sheet, columns: list[Column], params: list[str], top: int,
-                       first_src: int, at_col: int) -> None:
+                       first_src: int, at_col: int, cached: list[list]) -> None:
     """A bar chart of the SRCs: one bar per parameter for each output, in the table's
-    order from the top."""
+    order from the top; ``cached``: the SRCs per output, which the chart caches."""
     chart = book.add_chart({"type": "bar"})
     last = top + len(columns) - 1
     palette = ("#1F77B4", "#D62728", "#2CA02C", "#9467BD", "#FF7F0E", "#8C564B",
@@ -201,6 +204,8 @@ def _sensitivity_chart(book, sheet, columns: list[Column], params: list[str], to
             "name": [SHEET, _HEAD, first_src + j],
             "categories": [SHEET, top, 0, last, 0],
             "values": [SHEET, top, first_src + j, last, first_src + j],
+            "name_data": [p], "categories_data": [c.name for c in columns],
+            "values_data": [src[j] for src in cached],
             "fill": {"color": colour}, "border": {"color": colour},
         })
     grid = {"visible": True, "line": {"color": "#D9D9D9"}}

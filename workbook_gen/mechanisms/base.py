@@ -30,6 +30,7 @@ class InputSpec:
     start: float = 0.0
     stop: float = 360.0
     step: float = 10.0
+    positive: bool = False   # a length: the sweep must start above 0
 
 
 @dataclass(frozen=True)
