@@ -183,8 +183,9 @@ def main() -> None:
                   f"{cpu:.1f} s (command) + {cpu_workers:.1f} s (workers); "
                   f"{int(columns)} columns in summary.csv, .parquet and .xlsx", flush=True)
             print(f"   plain numpy, y_C's extremes only (1 of {int(columns)} columns, nothing "
-                  f"written), one process: {peer:.1f} s, peak {peer_mb:.0f} MB; the batch "
-                  f"takes {seconds / peer:.0f}x its time", flush=True)
+                  f"written), one process: {peer:.2f} s, peak {peer_mb:.0f} MB; the batch "
+                  f"takes {seconds / peer:.0f}x its time ({(cpu + cpu_workers) / peer:.0f}x in "
+                  f"CPU)", flush=True)
         if "3" in args.parts:
             from distributed import Client, LocalCluster
             os.environ["PYTHONPATH"] = os.pathsep.join(
