@@ -18,6 +18,7 @@ import xlsxwriter
 
 from workbook_gen import batch, cli
 from workbook_gen.batching import api, blocktext, summary_only
+from workbook_gen.batching.table import Table
 
 ROOT = Path(__file__).resolve().parents[1]
 SEWING = str(ROOT / "templates" / "sewing_machine.toml")
@@ -78,7 +79,9 @@ def formatted_here(tmp_path_factory):
     ignored): the reference the workers' blocks must give byte for byte."""
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(summary_only, "BLOCK_ELEMENTS", 70)  # 5 variants of 13 rows a block
-        patch.setattr(api.SummaryWriter, "add", lambda self, first, count, text: None)
+        patch.setattr(api.SummaryWriter, "add", lambda self, *block: None)
+        patch.setattr(api, "Table", lambda *args, keep, **kw: Table(*args, **kw))  # the rows held by
+        # the table, as a file batch's (--summary-only streams them)
         return _run(tmp_path_factory.mktemp("here"), jobs=1)
 
 

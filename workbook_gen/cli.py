@@ -168,7 +168,7 @@ def _batch(args: argparse.Namespace) -> int:
     logger.addHandler(said)
     try:
         with sigterm_raises():
-            frame = run_batch(args.scene, args.vary, args.design, args.out, args.jobs,
+            done = run_batch(args.scene, args.vary, args.design, args.out, args.jobs,
                               summary_only=args.summary_only,
                               sets=_overrides(args.scene, args.set), step=args.step,
                               samples=args.samples, seed=args.seed, audit=args.audit,
@@ -176,13 +176,13 @@ def _batch(args: argparse.Namespace) -> int:
                               progress=False if args.quiet else None, timeout=args.timeout)
     finally:
         logger.removeHandler(said)
-    failed, kept = frame.attrs["failed"], frame.attrs["kept"]
+    failed, kept = done.failed, done.kept
     for name in kept:
-        print(f"workbook-gen: kept {Path(frame.attrs['folder']) / name}: it differs from "
+        print(f"workbook-gen: kept {Path(done.folder) / name}: it differs from "
               f"what this batch wrote (edited since?), so it was not regenerated; --force "
               f"replaces it", file=sys.stderr)
     if not args.quiet:
-        print(f"{frame.attrs['folder']}: {len(frame)} variants, {len(frame) - failed} ok"
+        print(f"{done.folder}: {done.count} variants, {done.count - failed} ok"
               + (f", {failed} not ok (see summary.csv)" if failed else "")
               + (f", {len(kept)} file{'s' if len(kept) > 1 else ''} kept as edited"
                  if kept else ""))

@@ -11,10 +11,12 @@ from __future__ import annotations
 import contextlib
 import functools
 import gc
+import hashlib
 import json
 import logging
 import math
 import sys
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Mapping, Sequence, Union
 
@@ -87,9 +89,27 @@ def variants_json(variants: Sequence[Variant]) -> str:
     folder's key: same text), written directly: a float's repr needs no escaping, a
     label of ASCII letters and digits none either (others go through json). A grid's
     values repeat: each (name, value) pair's text is made once."""
+    return "".join(_json_pieces(variants))
+
+
+def variants_digest(variants: Sequence[Variant]) -> str:
+    """``digest(variants_json(variants).encode())``, the text hashed as it is made (a
+    million variants' text is ~50 MB)."""
+    hasher = hashlib.sha256()
+    pieces: list[str] = []
+    for piece in _json_pieces(variants):
+        pieces.append(piece)
+        if len(pieces) >= 4096:
+            hasher.update("".join(pieces).encode())
+            pieces = []
+    hasher.update("".join(pieces).encode())
+    return hasher.hexdigest()
+
+
+def _json_pieces(variants: Sequence[Variant]):
     pairs: dict[tuple[str, float], str] = {}
-    parts = []
-    for v in variants:
+    yield "["
+    for n, v in enumerate(variants):
         label = v.label
         label = f'"{label}"' if label.isascii() and label.isalnum() else json.dumps(label)
         cells = []
@@ -100,8 +120,8 @@ def variants_json(variants: Sequence[Variant]) -> str:
                 if pair[1]:  # 0.0 and -0.0 are equal keys, and their texts differ
                     pairs[pair] = text
             cells.append(text)
-        parts.append(f"[{label}, [{', '.join(cells)}]]")
-    return f"[{', '.join(parts)}]"
+        yield f"{', ' if n else ''}[{label}, [{', '.join(cells)}]]"
+    yield "]"
 
 
 def _vary_words(vary) -> list[str]:
@@ -180,14 +200,52 @@ def batch(scene: str | Path | Scene, vary: Vary = None,
     writing anything."""
     return run_batch(scene, vary, design, out, jobs, client, summary_only, sets=sets,
                      step=step, samples=samples, seed=seed, audit=audit, force=force,
-                     scheduler=scheduler, progress=progress, timeout=timeout, cli=False)
+                     scheduler=scheduler, progress=progress, timeout=timeout, cli=False).frame()
+
+
+@dataclass(frozen=True)
+class Finished:
+    """A finished batch: its folder, its number of variants, those not ok (or failing
+    their audit), and its table (``frame``: the summary as a DataFrame)."""
+
+    folder: Path
+    count: int
+    failed: int
+    table: Table
+    kept: tuple[str, ...] = ()  # the files a rerun kept: they differ from what it wrote
+
+    def frame(self):
+        """The summary as a DataFrame: from the table, or from summary.parquet when the
+        table kept no rows (--summary-only; a figure that holds texts as in the Parquet
+        file)."""
+        if self.table.keep:
+            frame = self.table.frame()
+        else:
+            frame = _parquet_frame(self.folder / "summary.parquet", self.table)
+        frame.attrs["folder"] = str(self.folder)
+        frame.attrs["failed"] = self.failed
+        frame.attrs["kept"] = list(self.kept)
+        return frame
+
+
+def _parquet_frame(path: Path, table: Table):
+    import pandas as pd
+    frame = pd.read_parquet(path)
+    frame.columns = table.columns    # the names without the headers' units
+    frame["variant"] = frame["variant"].astype(str)
+    if "rows_not_assembled" in frame:
+        frame["rows_not_assembled"] = frame["rows_not_assembled"].astype("Int64")
+    frame.attrs["units"] = dict(table.units)
+    return frame
 
 
 def run_batch(scene, vary=None, design=None, out="outputs", jobs=None, client=None,
               summary_only=False, *, sets=None, step=None, samples=None, seed=None,
               audit=False, force=False, scheduler=None, progress=None, timeout=None,
               cli=True):
-    """``batch()``, its messages naming the command line's flags when ``cli``."""
+    """``batch()`` without making the DataFrame (the command line: a million variants'
+    summary need not be read back), its messages naming the command line's flags when
+    ``cli``."""
     with _no_cycle_collection():
         return _batch(scene, vary, design, out, jobs, client, summary_only, sets, step,
                       samples, seed, audit, force, scheduler, progress, timeout, cli)
@@ -236,7 +294,7 @@ def _batch(scene, vary, design, out, jobs, client, summary_only, sets, step, sam
     identity = {"version": VERSION, "scene": source, "text": text, "sets": sorted(
         (k, repr(v)) for k, v in sets.items()), "step": step, "summary_only": summary_only,
         "audit": audit, "names": list(plan.names), "count": len(plan),
-        "variants": digest(variants_json(plan.variants).encode())}
+        "variants": variants_digest(plan.variants)}
     folder = Folder(folder_path, base.name, identity)
     resume = folder.check(force)
     own = runners.connect(scheduler, timeout) if scheduler is not None and client is None else None
@@ -253,7 +311,8 @@ def _batch(scene, vary, design, out, jobs, client, summary_only, sets, step, sam
                 select(base.template, base.outputs)]
             defaults = {**base.parameters, **{o.name: base.options.get(o.name, o.default)
                                               for o in get_template(base.mechanism).options}}
-            table = Table(plan, models[0], defaults, others=models[1:])
+            table = Table(plan, models[0], defaults, others=models[1:],
+                          keep=not summary_only)
             writer = SummaryWriter(table, folder_path / "summary.csv",
                                    folder_path / "summary.xlsx")
             runner = runners.pick(jobs, client or own)
@@ -272,11 +331,7 @@ def _batch(scene, vary, design, out, jobs, client, summary_only, sets, step, sam
     finally:
         if own is not None:
             own.close()
-    frame = table.frame()
-    frame.attrs["folder"] = str(folder_path)
-    frame.attrs["failed"] = sum(table.failed())
-    frame.attrs["kept"] = kept
-    return frame
+    return Finished(folder_path, len(plan), table.failed_count(), table, tuple(kept))
 
 
 def _place(folder: Folder, kept: list[str], temporary: Path, target: Path) -> None:
@@ -295,11 +350,9 @@ def _about(command, source, plan, table, summary_only, name, width, text):
 
 
 def _counts(table: Table) -> str:
-    statuses = table.statuses()
-    refused = sum(s.startswith("refused") for s in statuses)
-    fails = sum(a == "fail" for a in table.data["audit"])
-    return (f"ok {statuses.count('ok')}, partial {statuses.count('partial')}, refused "
-            f"{refused}" + (f", audit failed {fails}" if fails else ""))
+    statuses, fails = table.tally()
+    return (f"ok {statuses['ok']}, partial {statuses['partial']}, refused "
+            f"{statuses['refused']}" + (f", audit failed {fails}" if fails else ""))
 
 
 def _summaries_only(spec: JobSpec, plan: Design, table: Table, runner, progress,
@@ -319,8 +372,11 @@ def _summaries_only(spec: JobSpec, plan: Design, table: Table, runner, progress,
         with contextlib.closing(runner.run(summary_rows, job, parts)) as run:
             for part, (block, text) in run:
                 table.put_block(part, block)
-                if text is not None:  # formatted by the worker: written in order
-                    writer.add(part[0].index, len(part), text)
+                if text is not None:  # formatted by the worker: written as soon as in order
+                    writer.add(part[0].index, len(part), text, part, block)
+                elif not table.keep:
+                    raise RuntimeError("a block of variants not consecutive: the summary "
+                                       "keeps no rows to write it from")
                 if bar is not None:
                     bar.update(len(part))
                 terminate.check()

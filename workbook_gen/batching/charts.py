@@ -97,8 +97,8 @@ def charts_sheet(book, sheet, table: Table) -> None:
                     chart.add_series({"name": table.headers[y],
                                       "categories": ["Variants", 1, x, size, x],
                                       "values": ["Variants", 1, y, size, y],
-                                      "categories_data": _cache(table.data[x_name]),
-                                      "values_data": _cache(table.data[c]),
+                                      "categories_data": _cache(table, x_name),
+                                      "values_data": _cache(table, c),
                                       **_style(c, 0, line and len(names) == 1)})
             grid = {"visible": True, "line": {"color": "#D9D9D9"}}
             chart.set_x_axis({"name": table.headers[x], "label_position": "low",
@@ -120,12 +120,15 @@ def charts_sheet(book, sheet, table: Table) -> None:
 CACHED_POINTS = 50_000
 
 
-def _cache(values) -> list | None:
-    """The points of a series as XlsxWriter caches them: a number, or None for a cell
-    that holds none (a refused variant)."""
-    values = list(values)
-    if len(values) > CACHED_POINTS:
+def _cache(table: Table, name: str, rows: list[int] | None = None) -> list | None:
+    """The points of a series (column ``name``, its ``rows`` or all) as XlsxWriter
+    caches them: a number, or None for a cell that holds none (a refused variant).
+    A series too long to cache reads no values (a --summary-only table reads them
+    back from its Parquet file)."""
+    if (len(table.design) if rows is None else len(rows)) > CACHED_POINTS:
         return None
+    column = table.data[name]
+    values = list(column) if rows is None else [column[i] for i in rows]
     return [v if isinstance(v, (int, float)) and not isinstance(v, bool) and v == v else None
             for v in values]
 
@@ -146,8 +149,8 @@ def _grouped_series(chart, table: Table, cols: list[str], g_name: str, groups: d
                 "name": f"{extreme + ', ' if extreme else ''}{g_name} = {_level(value)}",
                 "categories": [sheet_name, first, x, last, x],
                 "values": [sheet_name, first, col_of[c], last, col_of[c]],
-                "categories_data": _cache(table.data[x_name][i] for i in rows),
-                "values_data": _cache(table.data[c][i] for i in rows),
+                "categories_data": _cache(table, x_name, rows),
+                "values_data": _cache(table, c, rows),
                 **_style(c, g, True)})
 
 

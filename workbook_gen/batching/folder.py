@@ -11,7 +11,7 @@ appended before the rename).  Run again with the same inputs and no --force:
 - a workbook or summary that differs from what the batch wrote (edited since, or put
   there by someone else) is kept, not regenerated, and named (``kept``): a rerun never
   destroys work; --force replaces them;
-- the temporary files a killed run left (``.summary.*.csv.tmp``,
+- the temporary files a killed run left (``.summary.*.csv.tmp``, ``.summary.*.parquet.tmp``,
   ``.<name>-0007.*.xlsx.tmp``, ``..batch.*.xlsx.tmp``, the write probe
   ``.workbook-gen.*.probe``) are removed, whatever the mode.
 
@@ -139,7 +139,7 @@ class Folder:
     def temporaries(self) -> list[Path]:
         """Temporary files a killed run of a batch left in the folder."""
         pattern = re.compile(r"\.(?:(?:" + re.escape(self.stem) + r"-\d+|summary|\.batch)"
-                             + _RANDOM + r"(?:xlsx|csv)\.tmp|workbook-gen" + _RANDOM
+                             + _RANDOM + r"(?:xlsx|csv|parquet|texts\.parquet|final\.parquet)\.tmp|workbook-gen" + _RANDOM
                              + r"probe)")
         return [p for p in self.path.iterdir() if pattern.fullmatch(p.name)]
 

@@ -1,5 +1,5 @@
-"""summary.csv and summary.xlsx of a batch (written last, atomically, same bytes for
-the same command).
+"""summary.csv, summary.parquet and summary.xlsx of a batch (written last, atomically,
+same bytes for the same command).
 
 summary.xlsx: a Variants sheet (headers with units, frozen, autofilter, the file
 column a HYPERLINK to each workbook (a formula: no limit of 65,530 links per sheet),
@@ -27,6 +27,7 @@ from xlsxwriter.utility import xl_col_to_name
 from ..files import Place, write_atomically
 from ..version import VERSION
 from .blocktext import block_texts
+from .columnar import ParquetSink
 from .sheetzip import DeflatedMember, member_data, splice
 from .charts import charts_sheet
 from .statistics import write_statistics
@@ -85,12 +86,13 @@ class BlockText:
 
 
 class SummaryWriter:
-    """summary.csv and summary.xlsx of a batch (each written atomically, same bytes for
-    the same command).  Blocks of rows formatted elsewhere may be added as they
-    arrive, in any order: each is written (and its sheet XML deflated) when the rows
-    before it are; at ``finish`` the rest (all of them for a file batch) are formatted
-    here from the table, and all of them if a block was formatted with a kind the
-    whole table does not have."""
+    """summary.csv, summary.parquet and summary.xlsx of a batch (each written
+    atomically, same bytes for the same command).  Blocks of rows formatted
+    elsewhere may be added as they arrive, in any order: each is written (its sheet
+    XML deflated, its values appended to the Parquet file) when the rows before it
+    are; at ``finish`` the rest (all of them for a file batch) are formatted here from
+    the table, and all of them if a block was formatted with a kind the whole table
+    does not have (read back from the Parquet file when the table keeps no rows)."""
 
     def __init__(self, table: Table, csv_path: Path, xlsx_path: Path):
         self.table, self.csv_path, self.xlsx_path = table, csv_path, xlsx_path
@@ -98,8 +100,15 @@ class SummaryWriter:
                                     dir=csv_path.parent)
         self._csv_temp = Path(temp)
         self._csv = os.fdopen(fd, "w", encoding="utf-8", newline="")
-        self._book = self._sheet = self._rows = None
+        self._book = self._sheet = self._rows = self._sink = None
+        self._sunk = 1                      # the next variant index to append to Parquet
         try:
+            self._sink = ParquetSink(
+                csv_path.with_suffix(".parquet"), table.columns, table.headers,
+                table.figures, table.design.kind != "design" or all(
+                    v.label == str(v.index) for v in table.design.variants),
+                texts_always=table.text_options,
+                integers=set(table.design.options) - table.text_options)
             csv.writer(self._csv, lineterminator="\n").writerow(table.headers)
             self._csv_mark = self._csv.tell()
             self._book, self._sheet = _book(table)
@@ -114,15 +123,33 @@ class SummaryWriter:
         self._waiting: dict[int, tuple[int, BlockText]] = {}
         self._written: list[BlockText] = []
 
-    def add(self, first: int, count: int, text: BlockText) -> None:
-        """Rows ``first .. first + count - 1`` (variant indices), formatted."""
-        self._waiting[first] = (count, text)
+    def add(self, first: int, count: int, text: BlockText, variants=None, block=None
+            ) -> None:
+        """Rows ``first .. first + count - 1`` (variant indices), formatted, and their
+        every column (``block``, as ``summary_rows`` gives them) for the Parquet file."""
+        self._waiting[first] = (count, text, variants, block)
         while self._next in self._waiting:
-            count, text = self._waiting.pop(self._next)
+            count, text, variants, block = self._waiting.pop(self._next)
             self._csv.write(text.csv)
             self._rows.write(text.xml)
             self._written.append(BlockText("", b"", text.kinds, text.filled))  # not the text
+            if block is not None:
+                self._sink.write(block, count)
+                self._sunk += count
             self._next += count
+
+    def _stored(self, names=None):
+        """The rows from ``self._next`` on, ``ROWS_PER_WRITE`` or so at a time, from the
+        table or (a table that keeps none) the Parquet file."""
+        table = self.table
+        names = list(names or table.columns)
+        if table.keep:
+            for lo in range(self._next - 1, len(table.design), _ROWS_PER_WRITE):
+                hi = min(len(table.design), lo + _ROWS_PER_WRITE)
+                yield lo, {name: table.data[name][lo:hi] for name in names}
+            return
+        self._sink.close()
+        yield from self._sink.batches(names, self._next - 1)
 
     def _format(self, csv_too: bool = True) -> None:
         """The rows from ``self._next`` on, formatted here from the table."""
@@ -131,13 +158,15 @@ class SummaryWriter:
         if not size:
             return
         columns, kinds = table.columns, {name: table.kind(name) for name in table.columns}
-        for lo in range(self._next - 1, size, _ROWS_PER_WRITE):
-            hi = min(size, lo + _ROWS_PER_WRITE)
-            data = {name: table.data[name][lo:hi] for name in columns}
-            csv_text, xml_text = block_texts(columns, kinds, data, lo + 2, hi - lo)
+        for lo, data in self._stored():
+            count = len(data["variant"])
+            csv_text, xml_text = block_texts(columns, kinds, data, lo + 2, count)
             if csv_too:
                 self._csv.write(csv_text)
             self._rows.write(xml_text.encode())
+            if lo + 1 >= self._sunk:  # not yet in the Parquet file
+                self._sink.write(data, count)
+                self._sunk = lo + 1 + count
         self._next = size + 1
 
     def finish(self, about: Sequence[tuple[str, str]], place: Place = os.replace) -> None:
@@ -155,6 +184,8 @@ class SummaryWriter:
             self._format()
             self._csv.close()
             os.chmod(self._csv_temp, 0o644)
+            if not table.keep:  # the columns they read, back from the Parquet file
+                table.data = _Stored(self._sink)
             write_statistics(self._book, table)
             charts = self._book.add_worksheet("Charts")
             _about_sheet(self._book, about)
@@ -166,6 +197,7 @@ class SummaryWriter:
             book = stream.getvalue()
             place(self._csv_temp, self.csv_path)
             if self._rows is None:
+                self._sink.finish({name: table.kind(name) for name in table.columns})
                 write_atomically(self.xlsx_path, lambda temp: temp.write_bytes(book), force=True,
                                  place=place)
                 return
@@ -177,6 +209,7 @@ class SummaryWriter:
                 self._format(csv_too=False)
             self._rows.write(suffix)
             self._rows.close()
+            self._sink.finish({name: table.kind(name) for name in table.columns})
 
             def build(temp: Path) -> None:
                 with temp.open("wb") as handle:
@@ -192,6 +225,8 @@ class SummaryWriter:
         if not self._csv.closed:
             self._csv.close()
         self._csv_temp.unlink(missing_ok=True)
+        if self._sink is not None:
+            self._sink.abort()
         if self._rows is not None:
             self._rows.discard()
         sheet = self._sheet
@@ -200,6 +235,21 @@ class SummaryWriter:
                 sheet.row_data_fh.close()
             Path(sheet.row_data_filename).unlink(missing_ok=True)
         self._book = None
+
+
+class _Stored(dict):
+    """A table's columns read back from the Parquet file when first asked (the
+    Statistics and Charts sheets of a table that keeps no rows): numbers as float64
+    arrays."""
+
+    def __init__(self, sink: ParquetSink):
+        super().__init__()
+        self._sink = sink
+
+    def __missing__(self, name: str):
+        self._sink.close()
+        column = self[name] = self._sink.column(name)
+        return column
 
 
 def write_summaries(table: Table, csv_path: Path, xlsx_path: Path,

@@ -184,8 +184,9 @@ class SummaryJob:
 
 def summary_rows(job: SummaryJob, variants: Sequence[Variant]
                  ) -> tuple[dict[str, list[object]], BlockText | None]:
-    """The summary columns of ``variants`` and, if they are consecutive, their rows
-    formatted for summary.csv and the Variants sheet (the kinds of the figure
+    """The summary columns of ``variants`` (with their labels and varied values when
+    consecutive) and, if they are consecutive, their rows formatted for summary.csv
+    and the Variants sheet (the kinds of the figure
     columns taken from this block: the command checks them against the whole
     table's)."""
     base, plan = _prepared(job.spec)
@@ -217,4 +218,4 @@ def summary_rows(job: SummaryJob, variants: Sequence[Variant]
     own = tuple((name, kinds[name]) for name in columns if name in figures
                 and name not in job.names and name not in TEXT_COLUMNS)
     filled = frozenset(name for name, _ in own if has_value(data[name]))
-    return block, BlockText(csv_text, xml_text.encode(), own, filled)
+    return data, BlockText(csv_text, xml_text.encode(), own, filled)  # every column

@@ -9,10 +9,17 @@ is none (a refused variant, a figure whose formula is an error).  Varied options
 change which quantities a variant has (``balance`` adds the counterweights' columns):
 the columns are those of every option combination, in order, and a variant has no
 value in the columns its combination lacks.
+
+A table made with ``keep=False`` (``--summary-only``: up to a million variants) holds
+no rows: each block goes on to the summaries' writer, and the table keeps only what
+the summaries need of the whole (each figure column's kinds of value, the counts of
+statuses and failing audits; the Statistics and Charts sheets read the columns they
+need back from the Parquet file).
 """
 
 from __future__ import annotations
 
+from collections import Counter
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -44,6 +51,7 @@ class Table:
     model: Model
     defaults: Mapping[str, object]    # the scene's parameters and options (with --set)
     data: dict[str, list[object]] = field(default_factory=dict)
+    keep: bool = True                 # hold the rows (else only what ``kind`` needs)
     others: Sequence[Model] = ()      # the models of the other option combinations
 
     def __post_init__(self) -> None:
@@ -56,6 +64,20 @@ class Table:
         for model in reversed(models):  # a column's unit from the first model having it
             self.units.update(column_units(model, self.design.names))
         self.headers = [header(name, self.units) for name in self.columns]
+        self._kinds: dict[str, str] = {}
+        self.figures = self._figures = set().union(*map(text_figures, models))
+        self.defaults_shown = {name: shown(self.defaults[name]) for name in self.design.names}
+        options = set(self.design.options)
+        self.text_options = frozenset(  # int options are numbers
+            name for name in options if not isinstance(self.defaults[name], int)
+            or isinstance(self.defaults[name], bool))
+        self._done = 0
+        if not self.keep:
+            self.data = {}
+            self._types: dict[str, set] = {name: set() for name in self._figures}
+            self._statuses: Counter = Counter()
+            self._audit_failed = self._failed = 0
+            return
         self.data = {name: [None] * size for name in self.columns}
         self.data["variant"] = [v.label for v in self.design.variants]
         varied = {name: self.data[name] for name in self.design.names}
@@ -67,12 +89,6 @@ class Table:
                 if name in varied:
                     varied[name][i] = shown(value) if name in options else value
         self._filled = [False] * size
-        self._kinds: dict[str, str] = {}
-        self.figures = self._figures = set().union(*map(text_figures, models))
-        self.defaults_shown = {name: shown(self.defaults[name]) for name in self.design.names}
-        self.text_options = frozenset(  # int options are numbers
-            name for name in options if not isinstance(self.defaults[name], int)
-            or isinstance(self.defaults[name], bool))
 
     def put(self, variant: Variant, row: Mapping[str, object]) -> None:
         i = variant.index - 1
@@ -81,6 +97,15 @@ class Table:
         self._filled[i] = True
 
     def put_block(self, variants: Sequence[Variant], block: Mapping[str, list[object]]) -> None:
+        if not self.keep:
+            for name, types in self._types.items():
+                types.update(map(type, block[name]))
+            self._statuses.update(s.split(":")[0] for s in block["status"])
+            self._audit_failed += sum(a == "fail" for a in block["audit"])
+            self._failed += sum(s != "ok" or a == "fail"
+                                for s, a in zip(block["status"], block["audit"]))
+            self._done += len(variants)
+            return
         first = variants[0].index - 1
         contiguous = variants[-1].index - variants[0].index == len(variants) - 1
         for name, values in block.items():
@@ -109,11 +134,30 @@ class Table:
             return "text"
         if name in self.design.names or name not in self._figures:
             return "number"
+        if not self.keep:
+            types = self._types[name] - {type(None)}
+            if all(issubclass(t, (int, float)) for t in types):
+                return "number"
+            return "text" if types <= {str} else "mixed"   # as value_kind decides
         return value_kind(self.data[name])
 
     @property
     def complete(self) -> bool:
-        return all(self._filled)
+        return self._done == len(self.design) if not self.keep else all(self._filled)
+
+    def tally(self) -> tuple[Counter, int]:
+        """(variants by status: ``ok``, ``partial``, ``refused``; failing audits)."""
+        if not self.keep:
+            return self._statuses, self._audit_failed
+        return (Counter(s.split(":")[0] for s in self.statuses()),
+                sum(a == "fail" for a in self.data["audit"]))
+
+    def failed_count(self) -> int:
+        """Variants that make the exit code 1: not ok, or a failing audit (counted
+        once)."""
+        if not self.keep:
+            return self._failed
+        return sum(self.failed())
 
     def statuses(self) -> list[str]:
         return [s or "" for s in self.data["status"]]

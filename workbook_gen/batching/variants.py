@@ -17,8 +17,8 @@ one-line message naming the spec and what to fix (the command line exits 2).
 
 from __future__ import annotations
 
-import itertools
 import math
+from collections.abc import Sequence as SequenceABC
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Mapping, NamedTuple, Sequence
@@ -43,12 +43,61 @@ class Variant(NamedTuple):
     #                                         (a parameter's float, an option's value)
 
 
+class ColumnVariants(SequenceABC):
+    """Variants every one of which sets the same parameters, held as one float column
+    per parameter (float; an option's values as objects) and made when asked (a
+    million ``Variant`` tuples held ~360 MB, the columns 8 bytes a value): ``[k]`` is a
+    ``Variant``, a slice another ``ColumnVariants`` (what a worker is sent: its columns
+    only)."""
+
+    def __init__(self, names: tuple[str, ...], columns: Sequence[np.ndarray], first: int = 1):
+        self.names, self.columns, self.first = names, tuple(columns), first
+
+    def __len__(self) -> int:
+        return len(self.columns[0]) if self.columns else 0
+
+    def __getitem__(self, key):
+        if isinstance(key, slice):
+            lo, hi, step = key.indices(len(self))
+            if step != 1:
+                return tuple(self[k] for k in range(lo, hi, step))
+            return ColumnVariants(self.names, [c[lo:max(lo, hi)] for c in self.columns],
+                                  self.first + lo)
+        size = len(self)
+        k = key + size if key < 0 else key
+        if not 0 <= k < size:
+            raise IndexError(f"variant {key} of {size}")
+        return Variant(self.first + k, str(self.first + k),
+                       tuple(zip(self.names, [c.item(k) for c in self.columns])))
+
+    def __iter__(self):
+        rows = zip(*(c.tolist() for c in self.columns)) if self.columns else ()
+        names = self.names
+        for k, row in enumerate(rows, self.first):
+            yield Variant(k, str(k), tuple(zip(names, row)))
+
+
+def _factorial(names: tuple[str, ...], levels: tuple[tuple[float, ...], ...]
+               ) -> ColumnVariants:
+    """The full factorial of ``levels``, the last varying fastest."""
+    sizes = [len(level) for level in levels]
+    columns = []
+    for j, level in enumerate(levels):
+        before, after = math.prod(sizes[:j]), math.prod(sizes[j + 1:])
+        numbers = all(type(v) is float for v in level)  # an option's texts, ints, booleans
+        values = np.array(level, dtype=float) if numbers else np.empty(len(level), object)
+        if not numbers:
+            values[:] = level
+        columns.append(np.repeat(np.tile(values, before), after))
+    return ColumnVariants(names, columns)
+
+
 @dataclass(frozen=True)
 class Design:
     """The variants of a batch and the parameters they vary, in order."""
 
     names: tuple[str, ...]
-    variants: tuple[Variant, ...]
+    variants: Sequence[Variant]    # a tuple, or ColumnVariants (grids, random samples)
     kind: str                       # "grid" (grids and lists), "random" or "design"
     levels: tuple[tuple[object, ...], ...] = ()  # grid: the values of each name, in order
     options: tuple[str, ...] = ()   # which of ``names`` are template options
@@ -117,10 +166,8 @@ def from_specs(texts: Sequence[str] | Mapping[str, object], parameters: Sequence
         for s in specs:
             a, b = s.numbers
             draw = rng.normal(a, b, samples) if s.kind == "normal" else rng.uniform(a, b, samples)
-            columns.append([float(v) for v in draw])
-        variants = tuple(Variant(i + 1, str(i + 1), tuple(zip(names, row)))
-                         for i, row in enumerate(zip(*columns)))
-        return Design(names, variants, "random")
+            columns.append(draw)
+        return Design(names, ColumnVariants(names, columns), "random")
     if samples is not None or seed is not None:
         raise SceneError(f"{flag('samples', cli)} and {flag('seed', cli)} go with a random spec "
                          + ("(--vary NAME=normal:MEAN:SD or NAME=uniform:LO:HI)" if cli else
@@ -133,9 +180,7 @@ def from_specs(texts: Sequence[str] | Mapping[str, object], parameters: Sequence
     if count > MAX_VARIANTS:
         raise SceneError(f"{flag('vary', cli)}: {count:,} variants in the full factorial, more "
                          f"than {MAX_VARIANTS:,}")
-    variants = tuple(Variant(i + 1, str(i + 1), tuple(zip(names, row)))
-                     for i, row in enumerate(itertools.product(*levels)))
-    return Design(names, variants, "grid", levels, varied_options)
+    return Design(names, _factorial(names, levels), "grid", levels, varied_options)
 
 
 def _blank(value: object) -> bool:
