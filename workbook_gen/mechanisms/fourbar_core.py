@@ -34,7 +34,7 @@ mu = ATAN2(|b.c|, |b x c|).
 
 from __future__ import annotations
 
-from ..expr import (Node, abs_, and_, atan2, cos, degrees, eq, if_, iserror, le, lt, max_,
+from ..expr import (Node, abs_, and_, atan2, cos, degrees, eq, gt, if_, iserror, le, lt, max_,
                     min_, pi, radians, root, sin, sqrt, wrap)
 from .angles import cos_deg, cos_half_squared, reduced_input, sin_deg, sin_half_squared
 from .base import (Chart, Check, Figure, Link, ParamSpec, Quantity, only_if, quantity_vars,
@@ -44,12 +44,23 @@ BRANCHES = ("open", "crossed")
 
 l_O1O2, l_O1A, l_AB, l_O2B, l_AC, delta_C, omega_2 = symbols(
     "l_O1O2 l_O1A l_AB l_O2B l_AC delta_C omega_2")
-(theta_2, x_A, y_A, d_AO2, phi_AO2, f_B, h_B, theta_3, theta_4, x_B, y_B, omega_3, omega_4,
+(theta_2, x_A, y_A, d_AO2, phi_AO2, f_B, p2_d2, d2_q2, h_B, hr_B, theta_3, theta_4, x_B, y_B, omega_3, omega_4,
  alpha_3, alpha_4, x_C, y_C, vx_C, vy_C, ax_C, ay_C, mu) = quantity_vars(
-    "theta_2 x_A y_A d_AO2 phi_AO2 f_B h_B theta_3 theta_4 x_B y_B omega_3 omega_4 "
+    "theta_2 x_A y_A d_AO2 phi_AO2 f_B p2_d2 d2_q2 h_B hr_B theta_3 theta_4 x_B y_B omega_3 omega_4 "
     "alpha_3 alpha_4 x_C y_C vx_C vy_C ax_C ay_C mu")
 
 THETA_2R, theta_2r = reduced_input("theta_2r", theta_2, "crank angle")
+
+# Limits (SPEC 9.1, docs/stability.md).  p^2 - d^2 = G (p + g + a) + 4 g a cos^2(theta_2/2)
+# and d^2 - q^2 = G1 G2 + 4 g a sin^2(theta_2/2) round to a few ulps of the sum of their
+# terms' magnitudes, which at the limit (the factor near 0) is twice the crank term,
+# 4 g a cos^2 = (g + a)^2 - d^2 resp. 4 g a sin^2 = d^2 - (g - a)^2.  Within REACH_ROUNDING
+# of that a factor is 0: coupler and rocker exactly in line (an assembly limit hit at a
+# grid angle), h_B = 0, a toggle whose rates are #DIV/0!, never the square root of
+# rounding.  Within LIMIT_BAND of it the rates would keep fewer than 9 digits: the row is a
+# toggle and its rates #DIV/0! as well (hr_B = 0).
+REACH_ROUNDING = 32 * 2.0 ** -52
+LIMIT_BAND = 2e-6
 
 OUTPUTS = ("theta_3", "theta_4", "omega_3", "omega_4", "alpha_3", "alpha_4",
            "x_C", "y_C", "vx_C", "vy_C", "ax_C", "ay_C", "mu")
@@ -120,13 +131,22 @@ def quantities(branch: str) -> tuple[Quantity, ...]:
            + ga4 * cos_half_squared(theta_2r))
     near = (_gap(l_O1O2, l_O2B, l_AB, l_O1A) * _gap(l_O1O2, l_AB, l_O2B, l_O1A)
             + ga4 * sin_half_squared(theta_2r))
+    crank_far = abs_((l_O1O2 + l_O1A) ** 2 - d_AO2 ** 2)    # 4 g a cos^2(theta_2/2)
+    crank_near = abs_(d_AO2 ** 2 - (l_O1O2 - l_O1A) ** 2)   # 4 g a sin^2(theta_2/2)
+
+    def unless_in_line(fraction: float, value: Node) -> Node:
+        """0 where a factor is within ``fraction`` of its terms, else ``value`` (nested
+        IFs rather than OR, which the audit's rounding-noise estimate follows)."""
+        return if_(le(abs_(p2_d2), fraction * crank_far), 0,
+                   if_(le(abs_(d2_q2), fraction * crank_near), 0, value))
+
     # a x e and a.e times d (e the unit vector A->O2): -g y_A and g x_A - a^2; the rates
     # as ratios y_A / h_B, both proportional to theta_2 near a change point
-    lever = l_O1O2 * y_A / h_B
+    lever = l_O1O2 * y_A / hr_B
     a_e = l_O1O2 * x_A - l_O1A ** 2
 
     def over_bxc(num: Node) -> Node:          # num / (b x c), b x c = s h d
-        return (num if s > 0 else -num) / (h_B * d_AO2)
+        return (num if s > 0 else -num) / (hr_B * d_AO2)
 
     cd, sd = cos(radians(delta_C)), sin(radians(delta_C))
     k = l_AC / l_AB
@@ -139,14 +159,24 @@ def quantities(branch: str) -> tuple[Quantity, ...]:
         Q("x_A", "mm", l_O1A * cos_deg(theta_2r), "crank pin A, x", output=False),
         Q("y_A", "mm", l_O1A * sin_deg(theta_2r), "crank pin A, y", output=False),
         Q("d_AO2", "mm", sqrt(gx ** 2 + y_A ** 2), "distance A to O2", output=False),
+        # A on O2 (crank = ground at 0 deg): no direction, #DIV/0! (never ATAN2(0, 0),
+        # which LibreOffice makes 0)
         Q("phi_AO2", "rad",
           if_(lt(l_O1A, l_O1O2), atan2(gx, 0 - y_A),
-              t + pi() + atan2(l_O1A ** 2 - l_O1O2 * x_A, l_O1O2 * y_A)),
+              if_(gt(d_AO2, 0), t + pi() + atan2(l_O1A ** 2 - l_O1O2 * x_A, l_O1O2 * y_A),
+                  1 / d_AO2)),
           "direction of A->O2, continuous", output=False),
         Q("f_B", "mm", (q * p + d_AO2 ** 2) / (2 * d_AO2), "foot of B on the line A->O2",
           output=False),
-        Q("h_B", "mm", root(far * near) / (2 * d_AO2),
+        Q("p2_d2", "mm^2", far, "(l_AB + l_O2B)^2 - d_AO2^2: 0 with coupler and rocker "
+          "extended in line", output=False),
+        Q("d2_q2", "mm^2", near, "d_AO2^2 - (l_AB - l_O2B)^2: 0 with them folded in line",
+          output=False),
+        Q("h_B", "mm", root(unless_in_line(REACH_ROUNDING, p2_d2 * d2_q2)) / (2 * d_AO2),
           "distance of B from the line A->O2 (half chord)", output=False),
+        Q("hr_B", "mm", if_(le(h_B, TOGGLE_FRACTION * (l_AB + l_O2B)), 0,
+                            unless_in_line(LIMIT_BAND, h_B)),
+          "h_B where the rates keep their digits, else 0 (the rates #DIV/0!)", output=False),
         Q("theta_3", "deg", degrees(_pm(phi_AO2, atan2(f_B, h_B), s)),
           "coupler angle (direction A->B)"),
         Q("theta_4", "deg", degrees(_pm(phi_AO2, atan2(f_B - d_AO2, h_B), s)),
@@ -181,10 +211,14 @@ def quantities(branch: str) -> tuple[Quantity, ...]:
 
 #: Rows with B within this fraction of l_AB + l_O2B of the line A->O2 are flagged
 #: "toggle": the rates there are singular (b x c = 0) or, a hair away from a change
-#: point, their accelerations carry rounding amplified by (l_AB + l_O2B) / h_B.
+#: point, their accelerations carry rounding amplified by (l_AB + l_O2B) / h_B; the
+#: rates are #DIV/0! there (hr_B = 0), as within LIMIT_BAND of an assembly limit.
 TOGGLE_FRACTION = 1e-6
-STATUS = if_(iserror(h_B), "cannot assemble",
-             if_(le(h_B, TOGGLE_FRACTION * (l_AB + l_O2B)), "toggle", "ok"))
+# A on O2 with coupler = rocker (a kite folding at 0 deg): B anywhere on one circle, a
+# change point whose positions are undefined (#DIV/0!); with coupler != rocker nothing closes.
+STATUS = if_(iserror(h_B),
+             if_(and_(eq(d_AO2, 0), eq(l_AB, l_O2B)), "toggle", "cannot assemble"),
+             if_(eq(hr_B, 0), "toggle", "ok"))
 
 
 def _norm(x: Node, y: Node) -> Node:
@@ -232,7 +266,8 @@ def _triangle_angle(r: Node) -> Node:
     """Angle (rad) at O1 between O1O2 and O1B in the triangle O1 O2 B with |O1B| = r:
     ATAN2(2 g r cos, 2 g r sin), the sine from Heron's factored form."""
     g, l4 = l_O1O2, l_O2B
-    four_area = root((g + r + l4) * (r + l4 - g) * (g - r + l4) * (g + r - l4))
+    # a degenerate triangle (a change point, within the Grashof tolerance) is one
+    four_area = root(max_(0, (g + r + l4) * (r + l4 - g) * (g - r + l4) * (g + r - l4)))
     return atan2((g - l4) * (g + l4) + r * r, four_area)
 
 
