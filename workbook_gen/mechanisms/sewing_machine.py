@@ -47,10 +47,18 @@ w2 = omega_1 ** 2
 # centre, h_BC = 0, its rates #DIV/0!, never the square root of rounding); within
 # LIMIT_BAND of it (only where d < 0: the rod shorter than the crank, a reach limit between
 # grid angles) the rates would keep fewer than 9 digits and are #DIV/0! too, the row flagged.
-# Likewise E within rounding of the lever pivot F (|E - F| <= REACH_ROUNDING of the
-# lengths): the lever's angle is undefined (#DIV/0!); within LIMIT_BAND its rates are.
+# The rod within ROD_BAND of the lengths of perpendicular to the needle bar (rod = crank,
+# near its dead centres) is a dead centre too: the rates' terms cancel there (y_B^2 - x_B^2
+# + dh_BC^2), and beyond it they keep 9 digits (docs/stability.md).
+# E within rounding of the lever pivot F (|E - F| <= REACH_ROUNDING of the lengths): the
+# lever's angle is undefined (#DIV/0!).  Near F the lever's angle is the direction of
+# E - F, whose rounding (eps of the lengths) moves omega_5 by eps (L/s)^2 and alpha_5 by
+# eps (L/s)^3 (L the lengths, s = s_FE): within LEVER_BAND of the lengths, where that
+# exceeds 1e-9, the lever's rates are #DIV/0! and the row a dead centre.
 REACH_ROUNDING = 16 * 2.0 ** -52
 LIMIT_BAND = 1e-6
+ROD_BAND = 1e-6
+LEVER_BAND = 6e-3   # (eps / 1e-9)^(1/3)
 _d = l_BC - l_AB
 lever_size = l_AB + l_BE + abs_(x_F) + abs_(y_F)   # |E| + |F| at most
 
@@ -91,7 +99,8 @@ QUANTITIES = (
     Q("h_BC", "mm", root(_zero_within(REACH_ROUNDING, lm_BC * lp_BC)),
       "rod's vertical projection y_B - y_C (0 where a reach factor is 0 to rounding)",
       output=False),
-    Q("hr_BC", "mm", _zero_within(LIMIT_BAND, h_BC, 0 * h_BC),   # 0, or #NUM! as h_BC
+    Q("hr_BC", "mm", if_(le(h_BC, ROD_BAND * (l_AB + l_BC)), 0,
+                         _zero_within(LIMIT_BAND, h_BC, 0 * h_BC)),   # 0, or #NUM! as h_BC
       "h_BC where its rates keep their digits, else 0 (the rates #DIV/0!)", output=False),
     Q("dh_BC", "mm/s", omega_1 * x_B * y_B / hr_BC, "rate of h_BC", output=False),
     Q("ddh_BC", "mm/s^2", -(w2 * (y_B ** 2 - x_B ** 2) + dh_BC ** 2) / hr_BC,
@@ -119,7 +128,7 @@ QUANTITIES = (
     Q("s_FE", "mm", sqrt(if_(le(dx ** 2 + dy ** 2, (REACH_ROUNDING * lever_size) ** 2), 0,
                               dx ** 2 + dy ** 2)),
       "block E along the lever, distance from F (0 where E is on F to rounding)"),
-    Q("sr_FE", "mm", if_(le(s_FE, LIMIT_BAND * lever_size), 0, s_FE),
+    Q("sr_FE", "mm", if_(le(s_FE, LEVER_BAND * lever_size), 0, s_FE),
       "s_FE where the lever's rates keep their digits, else 0 (the rates #DIV/0!)",
       output=False),
     Q("theta_5", "deg",
