@@ -96,6 +96,8 @@ SCENES = [
      (713.0, 1073.0, 10.0), {713.0: "flag", 1073.0: "flag", 723.0: "ok"}),
     ("fb-parallelogram", "four_bar", _fb(100.0, 40.0, 100.0, 40.0), None,
      {0.0: "flag", 180.0: "flag", 360.0: "flag", 90.0: "ok"}),
+    ("fb-parallelogram-plus12", "four_bar", _fb(100.0, 40.0, 100.0000000001, 40.0), None,
+     {0.0: "cannot assemble", 180.0: "flag", 90.0: "ok"}),
     ("fb-changepoint-537", "four_bar", _fb(100.0, 50.0, 110.0, 60.0), (-537.0, -177.0, 3.0),
      {-360.0: "flag", -363.0: "ok"}),
     ("fb-changepoint-plus12", "four_bar", _fb(100.0, 50.0, 110.0, 60.00000000006), None,
