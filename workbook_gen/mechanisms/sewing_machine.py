@@ -152,10 +152,17 @@ QUANTITIES = (
       "thread eye G, y acceleration"),
 )
 
-# "dead centre": the rod perpendicular to the needle bar (h_BC = 0) or within LIMIT_BAND of
-# a reach limit, or the block E on the lever pivot F (no torque on the lever) or near it
-STATUS = if_(iserror(h_BC), "cannot assemble",
-             if_(or_(eq(hr_BC, 0), eq(sr_FE, 0)), "dead centre", "ok"))
+def _status_for(keep: frozenset[str]) -> Node:
+    """"dead centre": the rod perpendicular to the needle bar (h_BC = 0) or, where rates
+    are kept, within the bands of it; the block E on the lever pivot F (no torque on the
+    lever) or near it, where the lever is kept."""
+    dead = eq(hr_BC, 0) if "dh_BC" in keep else eq(h_BC, 0)
+    if "s_FE" in keep:
+        dead = or_(dead, eq(sr_FE, 0))
+    return if_(iserror(h_BC), "cannot assemble", if_(dead, "dead centre", "ok"))
+
+
+STATUS = _status_for(frozenset({"dh_BC", "s_FE"}))
 
 
 def _rod_point_checks() -> tuple[Check, ...]:
@@ -251,6 +258,7 @@ TEMPLATE = Template(
     parameters=PARAMETERS,
     quantities=QUANTITIES,
     status=STATUS,
+    status_for=_status_for,
     checks=_rod_point_checks(),
     charts=(
         Chart("Needle bar displacement", "theta_1", ("y_C",), "y_C [mm]"),
