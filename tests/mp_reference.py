@@ -157,13 +157,19 @@ def four_bar(p, theta_deg, branch="open"):
     t = mpmath.radians(mpf(theta_deg))
     ax, ay = a * mpmath.cos(t), a * mpmath.sin(t)
     d = mpmath.hypot(g - ax, ay)
+    if d == 0:   # A on O2 (crank = ground at 0 deg): B anywhere on a circle, or nowhere
+        return (None, False) if b != c else ({}, True)
     cos_b = (b ** 2 + d ** 2 - c ** 2) / (2 * b * d)     # angle at A between A->O2 and A->B
     if abs(cos_b) > 1:
         return None, False
     side = 1 if branch == "open" else -1
     th3 = mpmath.atan2(-ay, g - ax) + side * mpmath.acos(cos_b)
     bx, by = ax + b * mpmath.cos(th3), ay + b * mpmath.sin(th3)
-    q = polish(phi, [th3, mpmath.atan2(by, bx - g)], t, a + b + c + g)
+    q0 = [th3, mpmath.atan2(by, bx - g)]
+    try:
+        q = polish(phi, q0, t, a + b + c + g)
+    except ZeroDivisionError:   # exactly at a toggle: the construction stands
+        q = q0
     qd, qdd = rates(phi, q, t, w)
     th3, th4 = q
     tc = th3 + dl

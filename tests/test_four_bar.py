@@ -17,7 +17,7 @@ from workbook_cells import as_float, column_error, table_columns
 
 TOLERANCE = 1e-9  # of the column's magnitude
 SCENE = "templates/four_bar.toml"
-ALWAYS_DEFINED = {"theta_2r", "x_A", "y_A", "d_AO2", "phi_AO2", "f_B"}  # numbers even where B is not
+ALWAYS_DEFINED = {"theta_2r", "x_A", "y_A", "d_AO2", "phi_AO2", "f_B", "p2_d2", "d2_q2"}  # numbers even where B is not
 
 
 @pytest.fixture(scope="module")

@@ -207,7 +207,7 @@ def test_measure_bench_writes_json_that_renders(figures, tmp_path):
     read = figures.figures_bench.read_block(bench["read_xlsx"])
     assert "200 x 30 workbook" in read
     generate = figures.figures_bench.generate_block(bench["generate"])
-    assert "| 1° | 361 | 10,108 |" in generate and "not measured in this run" in generate
+    assert "| 1° | 361 | 11,552 |" in generate and "not measured in this run" in generate
     json.dumps(bench)  # plain JSON
 
 

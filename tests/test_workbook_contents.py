@@ -105,8 +105,8 @@ def test_scene_asking_for_y_C_alone_gets_only_what_y_C_needs(tmp_path):
     path = write_workbook(scene, tmp_path)
     book = openpyxl.load_workbook(path)
     headers = [c.value for c in book["Table"][1]]
-    assert headers == ["theta_1 [deg]", "theta_1r [deg]", "y_B [mm]", "h_BC [mm]", "y_C [mm]",
-                       "status"]
+    assert headers == ["theta_1 [deg]", "theta_1r [deg]", "y_B [mm]", "lm_BC [mm]", "lp_BC [mm]",
+                       "h_BC [mm]", "y_C [mm]", "status"]
     assert len(book["Charts"]._charts) == 1
     checks = [c.value for c in book["Checks"][7]]
     assert checks == ["theta_1 [deg]", "rod_length", "cannot assemble", "flagged"]

@@ -11,7 +11,7 @@ from workbook_gen.scene import load_scene
 from workbook_cells import as_float, table_columns
 
 TOLERANCE = 1e-9  # relative to the column's magnitude
-CRANK_PIN = {"theta_1r", "psi", "x_B", "y_B", "u_B", "n_B"}
+CRANK_PIN = {"theta_1r", "psi", "x_B", "y_B", "u_B", "n_B", "lm_BC", "lp_BC"}  # reach too
 
 CASES = [
     ("templates/sewing_machine.toml", {}, None),

@@ -34,7 +34,7 @@ mu = ATAN2(|b.c|, |b x c|).
 
 from __future__ import annotations
 
-from ..expr import (Node, abs_, and_, atan2, cos, degrees, eq, if_, iserror, le, lt, max_,
+from ..expr import (Node, abs_, and_, atan2, cos, degrees, eq, gt, if_, iserror, le, lt, max_,
                     min_, or_, pi, radians, root, sin, sqrt, wrap)
 from .angles import (cos_deg, cos_half_squared_90, reduced, reduced_input, sin_deg,
                      sin_half_squared_90)
@@ -45,12 +45,23 @@ BRANCHES = ("open", "crossed")
 
 l_O1O2, l_O1A, l_AB, l_O2B, l_AC, delta_C, omega_2 = symbols(
     "l_O1O2 l_O1A l_AB l_O2B l_AC delta_C omega_2")
-(theta_2, x_A, y_A, d_AO2, phi_AO2, f_B, h_B, theta_3, theta_4, x_B, y_B, omega_3, omega_4,
+(theta_2, x_A, y_A, d_AO2, phi_AO2, f_B, p2_d2, d2_q2, h_B, hr_B, theta_3, theta_4, x_B, y_B, omega_3, omega_4,
  alpha_3, alpha_4, x_C, y_C, vx_C, vy_C, ax_C, ay_C, mu) = quantity_vars(
-    "theta_2 x_A y_A d_AO2 phi_AO2 f_B h_B theta_3 theta_4 x_B y_B omega_3 omega_4 "
+    "theta_2 x_A y_A d_AO2 phi_AO2 f_B p2_d2 d2_q2 h_B hr_B theta_3 theta_4 x_B y_B omega_3 omega_4 "
     "alpha_3 alpha_4 x_C y_C vx_C vy_C ax_C ay_C mu")
 
 THETA_2R, theta_2r = reduced_input("theta_2r", theta_2, "crank angle")
+
+# Limits (SPEC 9.1, docs/stability.md).  p^2 - d^2 = G (p + g + a) + 4 g a cos^2(theta_2/2)
+# and d^2 - q^2 = G1 G2 + 4 g a sin^2(theta_2/2) round to a few ulps of the sum of their
+# terms' magnitudes, which at the limit (the factor near 0) is twice the crank term,
+# 4 g a cos^2 = (g + a)^2 - d^2 resp. 4 g a sin^2 = d^2 - (g - a)^2.  Within REACH_ROUNDING
+# of that a factor is 0: coupler and rocker exactly in line (an assembly limit hit at a
+# grid angle), h_B = 0, a toggle whose rates are #DIV/0!, never the square root of
+# rounding.  Within LIMIT_BAND of it the rates would keep fewer than 9 digits: the row is a
+# toggle and its rates #DIV/0! as well (hr_B = 0).
+REACH_ROUNDING = 32 * 2.0 ** -52
+LIMIT_BAND = 2e-6
 
 OUTPUTS = ("theta_3", "theta_4", "omega_3", "omega_4", "alpha_3", "alpha_4",
            "x_C", "y_C", "vx_C", "vy_C", "ax_C", "ay_C", "mu")
@@ -113,11 +124,10 @@ def _rounded_toggle() -> Node:
     4 g a sin^2(theta_2/2), whose rounding (eps times at most 2 g (a + x_A), resp.
     2 g (a - x_A), beyond the factor itself) makes h_B, and with it every rate, off by
     eps g ((a - x_A) far + (a + x_A) near) / (2 d^2 h_B^2) relative; far and near are only
-    weighed here, so their plain forms serve.  At a change point both terms vanish like
+    weighed here (the columns p2_d2 and d2_q2).  At a change point both terms vanish like
     h_B^2 (the ratio y_A / h_B stays finite): not flagged by this, but by TOGGLE_FRACTION."""
-    p2, q2, d2 = (l_AB + l_O2B) ** 2, (l_AB - l_O2B) ** 2, d_AO2 ** 2
-    weight = l_O1O2 * ((l_O1A - x_A) * abs_(p2 - d2) + (l_O1A + x_A) * abs_(d2 - q2))
-    return lt(2 * TOGGLE_LOSS / _EPS * d2 * h_B ** 2, weight)
+    weight = l_O1O2 * ((l_O1A - x_A) * abs_(p2_d2) + (l_O1A + x_A) * abs_(d2_q2))
+    return lt(2 * TOGGLE_LOSS / _EPS * d_AO2 ** 2 * h_B ** 2, weight)
 
 
 _ROUNDED_TOGGLE = _rounded_toggle()
@@ -157,15 +167,23 @@ def quantities(branch: str) -> tuple[Quantity, ...]:
            + ga4 * cos_half_squared_90(theta_2r))
     near = (_gap(l_O1O2, l_O2B, l_AB, l_O1A) * _gap(l_O1O2, l_AB, l_O2B, l_O1A)
             + ga4 * sin_half_squared_90(theta_2r))
+    crank_far = abs_((l_O1O2 + l_O1A) ** 2 - d_AO2 ** 2)    # 4 g a cos^2(theta_2/2)
+    crank_near = abs_(d_AO2 ** 2 - (l_O1O2 - l_O1A) ** 2)   # 4 g a sin^2(theta_2/2)
+
+    def unless_in_line(fraction: float, value: Node) -> Node:
+        """0 where a factor is within ``fraction`` of its terms, else ``value`` (nested
+        IFs rather than OR, which the audit's rounding-noise estimate follows)."""
+        return if_(le(abs_(p2_d2), fraction * crank_far), 0,
+                   if_(le(abs_(d2_q2), fraction * crank_near), 0, value))
+
     # a x e and a.e times d (e the unit vector A->O2): -g y_A and g x_A - a^2; the rates
-    # as ratios y_A / h_B, both proportional to theta_2 near a change point
-    # (#DIV/0! where the rates are singular to rounding: a toggle away from a change point)
-    lever = l_O1O2 * y_A / if_(_ROUNDED_TOGGLE, 0, h_B)
+    # as ratios y_A / h_B, both proportional to theta_2 near a change point; #DIV/0! in a
+    # toggle row (hr_B = 0), where they are singular or rounding noise
+    lever = l_O1O2 * y_A / hr_B
     a_e = l_O1O2 * x_A - l_O1A ** 2
 
-    def over_bxc(num: Node) -> Node:          # num / (b x c), b x c = s h d; #DIV/0! in a
-        # toggle row, where it is singular or (a hair from a change point) rounding noise
-        return (num if s > 0 else -num) / (if_(_TOGGLE, 0, h_B) * d_AO2)
+    def over_bxc(num: Node) -> Node:          # num / (b x c), b x c = s h d
+        return (num if s > 0 else -num) / (hr_B * d_AO2)
 
     cd, sd = _coupler_direction()
     k = l_AC / l_AB
@@ -178,14 +196,23 @@ def quantities(branch: str) -> tuple[Quantity, ...]:
         Q("x_A", "mm", l_O1A * cos_deg(theta_2r), "crank pin A, x", output=False),
         Q("y_A", "mm", l_O1A * sin_deg(theta_2r), "crank pin A, y", output=False),
         Q("d_AO2", "mm", sqrt(gx ** 2 + y_A ** 2), "distance A to O2", output=False),
+        # A on O2 (crank = ground at 0 deg): no direction, #DIV/0! (never ATAN2(0, 0),
+        # which LibreOffice makes 0)
         Q("phi_AO2", "rad",
           if_(lt(l_O1A, l_O1O2), atan2(gx, 0 - y_A),
-              t + pi() + atan2(l_O1A ** 2 - l_O1O2 * x_A, l_O1O2 * y_A)),
+              if_(gt(d_AO2, 0), t + pi() + atan2(l_O1A ** 2 - l_O1O2 * x_A, l_O1O2 * y_A),
+                  1 / d_AO2)),
           "direction of A->O2, continuous", output=False),
         Q("f_B", "mm", (q * p + d_AO2 ** 2) / (2 * d_AO2), "foot of B on the line A->O2",
           output=False),
-        Q("h_B", "mm", root(far * near) / (2 * d_AO2),
+        Q("p2_d2", "mm^2", far, "(l_AB + l_O2B)^2 - d_AO2^2: 0 with coupler and rocker "
+          "extended in line", output=False),
+        Q("d2_q2", "mm^2", near, "d_AO2^2 - (l_AB - l_O2B)^2: 0 with them folded in line",
+          output=False),
+        Q("h_B", "mm", root(unless_in_line(REACH_ROUNDING, p2_d2 * d2_q2)) / (2 * d_AO2),
           "distance of B from the line A->O2 (half chord)", output=False),
+        Q("hr_B", "mm", if_(_TOGGLE, 0, unless_in_line(LIMIT_BAND, h_B)),
+          "h_B where the rates keep their digits, else 0 (the rates #DIV/0!)", output=False),
         Q("theta_3", "deg", degrees(_pm(phi_AO2, atan2(f_B, h_B), s)),
           "coupler angle (direction A->B)"),
         Q("theta_4", "deg", degrees(_pm(phi_AO2, atan2(f_B - d_AO2, h_B), s)),
@@ -218,7 +245,12 @@ def quantities(branch: str) -> tuple[Quantity, ...]:
     )
 
 
-STATUS = if_(iserror(h_B), "cannot assemble", if_(_TOGGLE, "toggle", "ok"))
+# A on O2 with coupler = rocker (a kite folding at 0 deg): B anywhere on one circle, a
+# change point whose positions are undefined (#DIV/0!); with coupler != rocker nothing closes.
+# A toggle: hr_B = 0 (TOGGLE_FRACTION, the rates' rounding, LIMIT_BAND of a reach limit).
+STATUS = if_(iserror(h_B),
+             if_(and_(eq(d_AO2, 0), eq(l_AB, l_O2B)), "toggle", "cannot assemble"),
+             if_(eq(hr_B, 0), "toggle", "ok"))
 
 
 def _norm(x: Node, y: Node) -> Node:
@@ -267,7 +299,8 @@ def _triangle_angle(r: Node) -> Node:
     """Angle (rad) at O1 between O1O2 and O1B in the triangle O1 O2 B with |O1B| = r:
     ATAN2(2 g r cos, 2 g r sin), the sine from Heron's factored form."""
     g, l4 = l_O1O2, l_O2B
-    four_area = root((g + r + l4) * (r + l4 - g) * (g - r + l4) * (g + r - l4))
+    # a degenerate triangle (a change point, within the Grashof tolerance) is one
+    four_area = root(max_(0, (g + r + l4) * (r + l4 - g) * (g - r + l4) * (g + r - l4)))
     return atan2((g - l4) * (g + l4) + r * r, four_area)
 
 

@@ -22,8 +22,8 @@ from __future__ import annotations
 
 import math
 
-from ..expr import (Node, atan2, cos, degrees, eq, ge, if_, iserror, pi, radians, root,
-                    sin, sqrt)
+from ..expr import (Node, abs_, atan2, cos, degrees, eq, ge, gt, if_, iserror, le, or_, pi,
+                    radians, root, sin, sqrt)
 from .angles import cos_deg, cos_half_squared, reduced_input, sin_deg, sin_half_squared
 from .base import (Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span,
                    Template, only_if, quantity_vars, speed_scale, symbols)
@@ -31,15 +31,47 @@ from .base import (Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, S
 l_AB, l_BC, l_BE, beta_E, x_F, y_F, l_FG, omega_1 = symbols(
     "l_AB l_BC l_BE beta_E x_F y_F l_FG omega_1")
 theta_2, omega_2, alpha_2 = quantity_vars("theta_2 omega_2 alpha_2")
-(theta_1, x_B, y_B, h_BC, dh_BC, ddh_BC, y_C, v_C, a_C, x_E, y_E, vx_E, vy_E, ax_E, ay_E,
- s_FE, v_FE, a_FE, theta_5, omega_5, alpha_5, x_G, y_G, vx_G, vy_G, ax_G, ay_G) = quantity_vars(
-    "theta_1 x_B y_B h_BC dh_BC ddh_BC y_C v_C a_C x_E y_E vx_E vy_E ax_E ay_E "
-    "s_FE v_FE a_FE theta_5 omega_5 alpha_5 x_G y_G vx_G vy_G ax_G ay_G")
+(theta_1, x_B, y_B, lm_BC, lp_BC, h_BC, hr_BC, dh_BC, ddh_BC, y_C, v_C, a_C, x_E, y_E, vx_E, vy_E,
+ ax_E, ay_E, s_FE, sr_FE, v_FE, a_FE, theta_5, omega_5, alpha_5, x_G, y_G, vx_G, vy_G, ax_G, ay_G) = quantity_vars(
+    "theta_1 x_B y_B lm_BC lp_BC h_BC hr_BC dh_BC ddh_BC y_C v_C a_C x_E y_E vx_E vy_E ax_E ay_E "
+    "s_FE sr_FE v_FE a_FE theta_5 omega_5 alpha_5 x_G y_G vx_G vy_G ax_G ay_G")
 
 k = l_BE / l_BC
 cb, sb = cos(radians(beta_E)), sin(radians(beta_E))
 dx, dy = x_E - x_F, y_E - y_F
 w2 = omega_1 ** 2
+
+# Limits (SPEC 9.1, docs/stability.md).  A reach factor l_BC -+ x_B = d + t, d = l_BC - l_AB,
+# t = 2 l_AB sin^2 or cos^2 >= 0, rounds to a few ulps of |d| + t = |f - d| + |d|: within
+# REACH_ROUNDING of that it is 0 (the rod exactly perpendicular to the needle bar: a dead
+# centre, h_BC = 0, its rates #DIV/0!, never the square root of rounding); within
+# LIMIT_BAND of it (only where d < 0: the rod shorter than the crank, a reach limit between
+# grid angles) the rates would keep fewer than 9 digits and are #DIV/0! too, the row flagged.
+# The rod within ROD_BAND of the lengths of perpendicular to the needle bar (rod = crank,
+# near its dead centres) is a dead centre too: the rates' terms cancel there (y_B^2 - x_B^2
+# + dh_BC^2), and beyond it they keep 9 digits (docs/stability.md).
+# E within rounding of the lever pivot F (|E - F| <= REACH_ROUNDING of the lengths): the
+# lever's angle is undefined (#DIV/0!).  Near F the lever's angle is the direction of
+# E - F, whose rounding (eps of the lengths) moves omega_5 by eps (L/s)^2 and alpha_5 by
+# eps (L/s)^3 (L the lengths, s = s_FE): within LEVER_BAND of the lengths, where that
+# exceeds 1e-9, the lever's rates are #DIV/0! and the row a dead centre.
+REACH_ROUNDING = 16 * 2.0 ** -52
+LIMIT_BAND = 1e-6
+ROD_BAND = 1e-6
+LEVER_BAND = 6e-3   # (eps / 1e-9)^(1/3)
+_d = l_BC - l_AB
+lever_size = l_AB + l_BE + abs_(x_F) + abs_(y_F)   # |E| + |F| at most
+
+
+def _within(factor: Node, fraction: float) -> Node:
+    return le(abs_(factor), fraction * (abs_(factor - _d) + abs_(_d)))
+
+
+def _zero_within(fraction: float, value: Node, zero: Node | int = 0) -> Node:
+    """``zero`` where either reach factor is within ``fraction`` of its terms, else
+    ``value`` (nested IFs rather than OR, which the audit's rounding-noise estimate
+    follows)."""
+    return if_(_within(lm_BC, fraction), zero, if_(_within(lp_BC, fraction), zero, value))
 
 PARAMETERS = (
     ParamSpec("l_AB", 32.0, "mm", "crank AB", positive=True),
@@ -62,11 +94,16 @@ QUANTITIES = (
     Q("y_B", "mm", l_AB * sin_deg(theta_1r), "crank pin B, y", output=False),
     # h^2 = (l_BC - x_B)(l_BC + x_B), l_BC -+ x_B = (l_BC - l_AB) + l_AB (1 -+ cos theta_1):
     # no cancellation when the rod is barely longer than the crank
-    Q("h_BC", "mm", root(((l_BC - l_AB) + 2 * l_AB * sin_half_squared(theta_1r))
-                         * ((l_BC - l_AB) + 2 * l_AB * cos_half_squared(theta_1r))),
-      "rod's vertical projection y_B - y_C", output=False),
-    Q("dh_BC", "mm/s", omega_1 * x_B * y_B / h_BC, "rate of h_BC", output=False),
-    Q("ddh_BC", "mm/s^2", -(w2 * (y_B ** 2 - x_B ** 2) + dh_BC ** 2) / h_BC,
+    Q("lm_BC", "mm", _d + 2 * l_AB * sin_half_squared(theta_1r), "l_BC - x_B", output=False),
+    Q("lp_BC", "mm", _d + 2 * l_AB * cos_half_squared(theta_1r), "l_BC + x_B", output=False),
+    Q("h_BC", "mm", root(_zero_within(REACH_ROUNDING, lm_BC * lp_BC)),
+      "rod's vertical projection y_B - y_C (0 where a reach factor is 0 to rounding)",
+      output=False),
+    Q("hr_BC", "mm", if_(le(h_BC, ROD_BAND * (l_AB + l_BC)), 0,
+                         _zero_within(LIMIT_BAND, h_BC, 0 * h_BC)),   # 0, or #NUM! as h_BC
+      "h_BC where its rates keep their digits, else 0 (the rates #DIV/0!)", output=False),
+    Q("dh_BC", "mm/s", omega_1 * x_B * y_B / hr_BC, "rate of h_BC", output=False),
+    Q("ddh_BC", "mm/s^2", -(w2 * (y_B ** 2 - x_B ** 2) + dh_BC ** 2) / hr_BC,
       "second rate of h_BC", output=False),
     Q("y_C", "mm", y_B - h_BC, "needle bar C, position"),
     Q("v_C", "mm/s", omega_1 * x_B - dh_BC, "needle bar C, velocity"),
@@ -75,8 +112,8 @@ QUANTITIES = (
     # (-180, 0) deg, continuous.  Rates from d/dt of that direction (|B->C| = l_BC).
     Q("theta_2", "deg", degrees(atan2(0 - x_B, 0 - h_BC)), "rod angle (direction B->C)",
       output=False),
-    Q("omega_2", "rad/s", omega_1 * y_B / h_BC, "rod angular velocity", output=False),
-    Q("alpha_2", "rad/s^2", omega_1 * (omega_1 * x_B * h_BC - y_B * dh_BC) / h_BC ** 2,
+    Q("omega_2", "rad/s", omega_1 * y_B / hr_BC, "rod angular velocity", output=False),
+    Q("alpha_2", "rad/s^2", omega_1 * (omega_1 * x_B * hr_BC - y_B * dh_BC) / hr_BC ** 2,
       "rod angular acceleration", output=False),
     Q("x_E", "mm", x_B + k * (h_BC * sb - x_B * cb), "lever pin E on the rod, x", output=False),
     Q("y_E", "mm", y_B - k * (x_B * sb + h_BC * cb), "lever pin E on the rod, y", output=False),
@@ -88,12 +125,19 @@ QUANTITIES = (
       output=False),
     Q("ay_E", "mm/s^2", -w2 * y_B + k * (w2 * x_B * sb - ddh_BC * cb), "E, y acceleration",
       output=False),
-    Q("s_FE", "mm", sqrt(dx ** 2 + dy ** 2), "block E along the lever, distance from F"),
+    Q("s_FE", "mm", sqrt(if_(le(dx ** 2 + dy ** 2, (REACH_ROUNDING * lever_size) ** 2), 0,
+                              dx ** 2 + dy ** 2)),
+      "block E along the lever, distance from F (0 where E is on F to rounding)"),
+    Q("sr_FE", "mm", if_(le(s_FE, LEVER_BAND * lever_size), 0, s_FE),
+      "s_FE where the lever's rates keep their digits, else 0 (the rates #DIV/0!)",
+      output=False),
     Q("theta_5", "deg",
-      degrees(atan2(0 - x_F, 0 - y_F) + atan2(-x_F * dx - y_F * dy, -x_F * dy + y_F * dx)),
-      "take-up lever angle (direction F->E), continuous"),
-    Q("v_FE", "mm/s", (dx * vx_E + dy * vy_E) / s_FE, "block sliding velocity along the lever"),
-    Q("omega_5", "rad/s", (dx * vy_E - dy * vx_E) / s_FE ** 2, "take-up lever angular velocity"),
+      if_(gt(s_FE, 0),
+          degrees(atan2(0 - x_F, 0 - y_F) + atan2(-x_F * dx - y_F * dy, -x_F * dy + y_F * dx)),
+          1 / s_FE),
+      "take-up lever angle (direction F->E), continuous; #DIV/0! with E on F"),
+    Q("v_FE", "mm/s", (dx * vx_E + dy * vy_E) / sr_FE, "block sliding velocity along the lever"),
+    Q("omega_5", "rad/s", (dx * vy_E - dy * vx_E) / sr_FE ** 2, "take-up lever angular velocity"),
     Q("a_FE", "mm/s^2", (dx * ax_E + dy * ay_E) / s_FE + s_FE * omega_5 ** 2,
       "block sliding acceleration along the lever"),
     Q("alpha_5", "rad/s^2", ((dx * ay_E - dy * ax_E) / s_FE - 2 * v_FE * omega_5) / s_FE,
@@ -108,7 +152,17 @@ QUANTITIES = (
       "thread eye G, y acceleration"),
 )
 
-STATUS = if_(iserror(h_BC), "cannot assemble", if_(eq(h_BC, 0), "dead centre", "ok"))
+def _status_for(keep: frozenset[str]) -> Node:
+    """"dead centre": the rod perpendicular to the needle bar (h_BC = 0) or, where rates
+    are kept, within the bands of it; the block E on the lever pivot F (no torque on the
+    lever) or near it, where the lever is kept."""
+    dead = eq(hr_BC, 0) if "dh_BC" in keep else eq(h_BC, 0)
+    if "s_FE" in keep:
+        dead = or_(dead, eq(sr_FE, 0))
+    return if_(iserror(h_BC), "cannot assemble", if_(dead, "dead centre", "ok"))
+
+
+STATUS = _status_for(frozenset({"dh_BC", "s_FE"}))
 
 
 def _rod_point_checks() -> tuple[Check, ...]:
@@ -204,6 +258,7 @@ TEMPLATE = Template(
     parameters=PARAMETERS,
     quantities=QUANTITIES,
     status=STATUS,
+    status_for=_status_for,
     checks=_rod_point_checks(),
     charts=(
         Chart("Needle bar displacement", "theta_1", ("y_C",), "y_C [mm]"),

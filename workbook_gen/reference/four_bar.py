@@ -23,7 +23,7 @@ import numpy as np
 
 import mpmath
 
-from .newton import Jet, Motion, jcos, jsin, newton, rates, solve_stage
+from .newton import NOISE, Jet, Motion, jcos, jsin, newton, rates, solve_stage
 
 DEFAULTS = {"l_O1O2": 100.0, "l_O1A": 40.0, "l_AB": 120.0, "l_O2B": 80.0, "l_AC": 60.0,
             "delta_C": 30.0, "omega_2": 10.0}
@@ -64,19 +64,29 @@ def _wrap_pi(x: np.ndarray) -> np.ndarray:
     return x - 2.0 * np.pi * np.round(x / (2.0 * np.pi))
 
 
-def direction_a_o2(p: Mapping[str, float], t2: np.ndarray) -> np.ndarray:
-    """The reporting convention's continuous direction of A->O2 (rad)."""
+def direction_a_o2(p: Mapping[str, float], t2: np.ndarray,
+                   turns: np.ndarray | None = None) -> np.ndarray:
+    """The reporting convention's continuous direction of A->O2 (rad); ``turns``: the
+    crank angle ``t2`` is (rad) with its whole turns, where t2 was reduced."""
     x_a, y_a = p["l_O1A"] * np.cos(t2), p["l_O1A"] * np.sin(t2)
     principal = np.arctan2(0.0 - y_a, p["l_O1O2"] - x_a)
+    principal = np.where((x_a == p["l_O1O2"]) & (y_a == 0.0), np.nan, principal)  # A on O2
     if p["l_O1A"] < p["l_O1O2"]:
         return principal
-    anchor = t2 + np.pi
+    anchor = (t2 if turns is None else turns) + np.pi
     return anchor + _wrap_pi(principal - anchor)
 
 
-def solve_loop(p: Mapping[str, float], t2: Jet, branch: str) -> Loop:
-    """Solve the four-bar for crank jets ``t2`` (rad) on ``branch``."""
+def solve_loop(p: Mapping[str, float], t2: Jet, branch: str,
+               theta_deg: np.ndarray | None = None) -> Loop:
+    """Solve the four-bar for crank jets ``t2`` (rad) on ``branch``; ``theta_deg``: the
+    crank angles in degrees, for the rows near a toggle solved at 50 digits."""
     sign = 1.0 if branch == "open" else -1.0
+    turns = t2.v
+    if theta_deg is not None:   # A from the angle reduced to (-180, 180] deg, as the
+        deg = np.asarray(theta_deg, dtype=float)   # templates: exactly on O2 at 0 mod 360
+        deg = np.where(np.abs(deg) <= 180.0, deg, deg - 360.0 * np.ceil((deg - 180.0) / 360.0))
+        t2 = Jet(np.radians(deg), t2.d, t2.dd)
     rows = t2.v.shape[0]
     l1, l3, l4, g = p["l_O1A"], p["l_AB"], p["l_O2B"], p["l_O1O2"]
     x_a, y_a = l1 * jcos(t2), l1 * jsin(t2)
@@ -111,23 +121,36 @@ def solve_loop(p: Mapping[str, float], t2: Jet, branch: str) -> Loop:
     # unassembled rows start from a guess again (they stay unassembled)
     start = np.where(np.isfinite(q), q, guess(GUESSES_DEG[0]))
     motion = solve_stage(closure, start, [t2], scale, fix_branch)
-    _polish_toggles(p, t2, motion, closure)
+    _polish_toggles(p, t2, motion, closure,
+                    np.degrees(t2.v) if theta_deg is None else np.asarray(theta_deg, float))
     th3, th4 = motion.jets()
-    return Loop(motion, t2, x_a, y_a, th3, th4, direction_a_o2(p, t2.v), sign)
+    return Loop(motion, t2, x_a, y_a, th3, th4, direction_a_o2(p, t2.v, turns), sign)
 
 
-def _polish_toggles(p: Mapping[str, float], t2: Jet, motion: Motion, closure) -> None:
+def _polish_toggles(p: Mapping[str, float], t2: Jet, motion: Motion, closure,
+                    theta_deg: np.ndarray) -> None:
     """Near a toggle (coupler and rocker in line) Newton in floats stops about sqrt(eps)
-    from the double root: polish those rows with mpmath Newton at 50 digits, and call
-    a row singular (no rates) where coupler and rocker are in line to rounding."""
+    from the double root: polish those rows with mpmath Newton at 50 digits from the crank
+    angle in degrees, and call a row singular (no rates) where coupler and rocker are in
+    line to rounding, not assembled where |O2 - A| is beyond l_AB + l_O2B or short of
+    |l_AB - l_O2B| at 50 digits (Newton in floats closes such a loop to its tolerance)."""
     q = motion.q
-    near = np.flatnonzero(motion.assembled & (np.abs(np.sin(q[:, 0] - q[:, 1])) < TOGGLE_NEAR))
+    g, l1, l3, l4 = p["l_O1O2"], p["l_O1A"], p["l_AB"], p["l_O2B"]
+    d = np.hypot(g - l1 * np.cos(t2.v), l1 * np.sin(t2.v))
+    reach = np.minimum(np.abs(d - (l3 + l4)), np.abs(d - abs(l3 - l4))) <= TOGGLE_NEAR * (l3 + l4)
+    near = np.flatnonzero(motion.assembled & (reach | (np.abs(np.sin(q[:, 0] - q[:, 1]))
+                                                       < TOGGLE_NEAR)))
     if near.size == 0:
         return
     g, l1, l3, l4 = (mpmath.mpf(p[k]) for k in ("l_O1O2", "l_O1A", "l_AB", "l_O2B"))
     with mpmath.workdps(50):
         for i in near:
-            t = mpmath.mpf(float(t2.v[i]))
+            t = mpmath.radians(mpmath.mpf(float(theta_deg[i])))
+            d2 = g ** 2 + l1 ** 2 - 2 * g * l1 * mpmath.cos(t)
+            if d2 > (l3 + l4) ** 2 or d2 < (l3 - l4) ** 2:
+                q[i] = np.nan
+                motion.assembled[i] = False
+                continue
             th = mpmath.matrix([mpmath.mpf(float(q[i, 0])), mpmath.mpf(float(q[i, 1]))])
             for _ in range(200):
                 r = mpmath.matrix([l1 * mpmath.cos(t) + l3 * mpmath.cos(th[0]) - g
@@ -151,6 +174,7 @@ def _polish_toggles(p: Mapping[str, float], t2: Jet, motion: Motion, closure) ->
     dq, ddq, sing = rates(closure, q, [t2])
     bad = ~motion.assembled | sing | motion.singular
     motion.singular |= sing & motion.assembled
+    motion.singular &= motion.assembled
     dq[bad], ddq[bad] = np.nan, np.nan
     motion.dq, motion.ddq = dq, ddq
 
@@ -200,6 +224,12 @@ def columns(p: Mapping[str, float], loop: Loop) -> dict[str, np.ndarray]:
         "ax_C": x_c.dd, "ay_C": y_c.dd,
         "mu": np.degrees(np.minimum(rel, np.pi - rel)),
     }
+    # the factors of the half chord's square, defined whether or not B closes the loop
+    # (0 with coupler and rocker in line); they cancel the squares of their terms
+    out["p2_d2"] = (l3 + p["l_O2B"]) ** 2 - d * d
+    out["d2_q2"] = d * d - (l3 - p["l_O2B"]) ** 2
+    out["p2_d2" + NOISE] = out["d2_q2" + NOISE] = (l3 + p["l_O2B"]) ** 2 + d * d
+    out["hr_B"] = np.where(sing, 0.0, out["h_B"])     # h_B where the rates exist
     for name in ("omega_3", "omega_4", "alpha_3", "alpha_4", "vx_C", "vy_C", "ax_C", "ay_C"):
         out[name] = np.where(rates, out[name], np.nan)
     for name in ("theta_3", "theta_4", "x_B", "y_B", "x_C", "y_C", "mu"):
@@ -216,4 +246,4 @@ def solve(p: Mapping[str, float], theta_2_deg: np.ndarray,
           options: Mapping[str, object]) -> dict[str, np.ndarray]:
     """All columns of the four-bar for crank angles theta_2 (deg)."""
     branch = str(options.get("branch", "open"))
-    return columns(p, solve_loop(p, crank(p, theta_2_deg), branch))
+    return columns(p, solve_loop(p, crank(p, theta_2_deg), branch, theta_2_deg))

@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 from typing import Mapping
 
+import mpmath
 import numpy as np
 
 from .newton import NOISE, Jet, jcos, jsin, solve_stage, wrap_deg
@@ -22,11 +23,17 @@ DEFAULTS = {
     "x_F": -60.0, "y_F": -20.0, "l_FG": 90.0, "omega_1": 2.0 * math.pi,
 }
 LENGTHS = ("l_AB", "l_BC")
+# The rod within this fraction of l_BC of horizontal (|l_BC - |x_B|| small): a dead centre
+# or reach limit near, where Newton in floats stops about sqrt(eps) from the double root
+# and the float angle's rounding is a square-rooted error; those rows are solved at 50
+# digits from the crank angle in degrees (``_near_dead_centre``).
+NEAR_DEAD_CENTRE = 1e-4
+DEAD = mpmath.mpf(10) ** -25   # h below this fraction of l_BC at 50 digits: singular
 OUTPUTS = (
     "y_C", "v_C", "a_C", "theta_5", "omega_5", "alpha_5", "s_FE", "v_FE", "a_FE",
     "x_G", "y_G", "vx_G", "vy_G", "ax_G", "ay_G",
     "x_B", "y_B", "h_BC", "dh_BC", "ddh_BC", "x_E", "y_E", "vx_E", "vy_E", "ax_E", "ay_E",
-    "theta_2", "omega_2", "alpha_2",
+    "theta_2", "omega_2", "alpha_2", "lm_BC", "lp_BC", "hr_BC", "sr_FE",
 )
 
 
@@ -55,6 +62,42 @@ def _mask(jet: Jet, assembled: np.ndarray, singular: np.ndarray) -> tuple[np.nda
     return v, d, dd
 
 
+def _near_dead_centre(p: Mapping[str, float], theta_deg: np.ndarray, reach: np.ndarray,
+                      rod) -> None:
+    """Rows with the rod near horizontal: y_C = y_B - sqrt(l_BC^2 - x_B^2) and the rod's
+    angle at 50 digits (rates by mpmath.diff in the crank angle); not assembled where
+    x_B^2 > l_BC^2 there, singular where the rod is horizontal to 25 digits."""
+    l_bc = p["l_BC"]
+    near = np.flatnonzero(np.abs(l_bc - reach) <= NEAR_DEAD_CENTRE * l_bc)
+    if near.size == 0:
+        return
+    la, lb, w = mpmath.mpf(p["l_AB"]), mpmath.mpf(l_bc), mpmath.mpf(p["omega_1"])
+    with mpmath.workdps(50):
+        def y_c(t):
+            return la * mpmath.sin(t) - mpmath.sqrt(lb ** 2 - (la * mpmath.cos(t)) ** 2)
+
+        def theta_2(t):
+            return mpmath.atan2(y_c(t) - la * mpmath.sin(t), -la * mpmath.cos(t))
+
+        for i in near:
+            t = mpmath.radians(mpmath.mpf(float(theta_deg[i])))
+            h2 = lb ** 2 - (la * mpmath.cos(t)) ** 2
+            rod.dq[i], rod.ddq[i] = np.nan, np.nan
+            if h2 < 0:
+                rod.q[i], rod.assembled[i], rod.singular[i] = np.nan, False, False
+                continue
+            rod.assembled[i] = True
+            if h2 <= (DEAD * lb) ** 2:
+                rod.q[i] = [float(la * mpmath.sin(t)), float(mpmath.atan2(0, -la * mpmath.cos(t)))]
+                rod.singular[i] = True
+                continue
+            rod.singular[i] = False
+            rod.q[i] = [float(y_c(t)), float(theta_2(t))]
+            rod.dq[i] = [float(w * mpmath.diff(y_c, t)), float(w * mpmath.diff(theta_2, t))]
+            rod.ddq[i] = [float(w ** 2 * mpmath.diff(y_c, t, 2)),
+                          float(w ** 2 * mpmath.diff(theta_2, t, 2))]
+
+
 def solve(p: Mapping[str, float], theta_1_deg: np.ndarray) -> dict[str, np.ndarray]:
     """All outputs (and auxiliaries) of the sewing machine for crank angles theta_1 (deg)."""
     t1v = np.radians(np.asarray(theta_1_deg, dtype=float))
@@ -72,6 +115,7 @@ def solve(p: Mapping[str, float], theta_1_deg: np.ndarray) -> dict[str, np.ndarr
         return wrong, np.stack([y_b.v - l_bc, -q[:, 1]], axis=1)
 
     rod = solve_stage(_needle_closure(l_ab, l_bc), q0, [t1], l_ab + l_bc, needle_branch)
+    _near_dead_centre(p, np.asarray(theta_1_deg, dtype=float), np.abs(x_b.v), rod)
     y_c, th2 = rod.jets()
     beta = math.radians(p["beta_E"])
     x_e = x_b + l_be * jcos(th2 + beta)
@@ -112,7 +156,13 @@ def solve(p: Mapping[str, float], theta_1_deg: np.ndarray) -> dict[str, np.ndarr
     out["theta_5"] = wrap_deg(th5_v, math.degrees(theta_fa) - 180.0)
     th2_v, out["omega_2"], out["alpha_2"] = _mask(th2, ok, rod.singular)
     out["theta_2"] = wrap_deg(th2_v, -180.0)
+    # the reach factors l_BC -+ x_B (defined whether or not the rod reaches), and h_BC and
+    # s_FE where their rates exist (0 at a dead centre)
+    out["lm_BC"], out["lp_BC"] = l_bc - x_b.v, l_bc + x_b.v
+    out["hr_BC"] = np.where(rod.singular, 0.0, out["h_BC"])
+    out["sr_FE"] = np.where(sing, 0.0, out["s_FE"])
     result = {name: out[name] for name in OUTPUTS}
+    result["lm_BC" + NOISE] = result["lp_BC" + NOISE] = l_bc + np.abs(x_b.v)
     # h_BC = y_B - y_C cancels two values near l_BC when the crank is short: its rounding
     # is that of the terms, and its rates' that of the rate solve, whose terms are of
     # the order of omega^k times the positions (NOISE: the audit allows them).
