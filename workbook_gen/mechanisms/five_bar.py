@@ -23,7 +23,7 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import Mapping
 
-from ..expr import Node, abs_, atan2, degrees, iserror, if_, or_, root, sqrt
+from ..expr import Node, Var, abs_, atan2, degrees, eq, iserror, if_, le, or_, root, sqrt, wrap
 from ..expr import cos, radians, sin, min_, max_
 from .base import (Chart, Check, InputSpec, OptionSpec, ParamSpec, Quantity, Span, Template,
                    quantity_vars, symbols)
@@ -89,7 +89,23 @@ CLOSED = (
 )
 
 CANNOT = or_(iserror(h_B), iserror(h_D))
-CLOSED_STATUS = if_(CANNOT, "cannot assemble", "ok")
+#: A dyad whose elbow is within this fraction of its reach (h_B <= LIMIT_FRACTION (l_1 + l_2),
+#: stretched or folded) is at the limit of its workspace: the half chord carries an absolute
+#: rounding of about eps (l_1 + l_2)^2 / h_B, so theta_1 keeps ~eps (l_1 + l_2) / h_B rad
+#: (<= 2.2e-10 rad outside the band); the row is flagged "limit".
+LIMIT_FRACTION = 1e-6
+AT_LIMIT = or_(le(h_B, LIMIT_FRACTION * (l_1 + l_2)), le(h_D, LIMIT_FRACTION * (l_3 + l_4)))
+IN_LINE = eq(Var("det_BCD"), 0)   # B, C, D in line (five_bar_errors.SINGULAR_FRACTION)
+
+
+def flagged(otherwise: Node) -> Node:
+    """'cannot assemble', 'limit' (a dyad stretched or folded), 'singular' (B, C, D in
+    line: the sensitivities are #DIV/0!), else ``otherwise``."""
+    return if_(CANNOT, "cannot assemble", if_(AT_LIMIT, "limit", if_(IN_LINE, "singular",
+                                                                      otherwise)))
+
+
+CLOSED_STATUS = flagged(wrap("ok"))
 
 
 def _checks() -> tuple[Check, ...]:
@@ -131,7 +147,7 @@ def configure(template: Template, options: Mapping[str, object]) -> Template:
         return template
     steps = int(options["iterations"])  # type: ignore[arg-type]
     quantities = PATH_AND_REACH + newton_quantities(steps) + SENSITIVITY + CLEARANCE
-    return replace(template, quantities=quantities, status=newton_status(steps, CANNOT))
+    return replace(template, quantities=quantities, status=newton_status(steps, flagged))
 
 
 def _validate(p: Mapping[str, float]) -> tuple[str, str] | None:

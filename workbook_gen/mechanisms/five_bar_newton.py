@@ -17,6 +17,8 @@ Columns: th1_0, th4_0, th1_1, th4_1, ..., th1_{k-1}, th4_{k-1}, theta_1, theta_4
 
 from __future__ import annotations
 
+from typing import Callable
+
 from ..expr import Node, Var, abs_, cos, degrees, gt, if_, iserror, or_, radians, sin
 from .base import Quantity, symbols
 
@@ -65,9 +67,10 @@ def newton_quantities(steps: int) -> tuple[Quantity, ...]:
     return tuple(out)
 
 
-def newton_status(steps: int, cannot: Node) -> Node:
-    """'cannot assemble', 'not converged' (last step above CONVERGED_DEG) or 'ok'."""
+def newton_status(steps: int, flagged: Callable[[Node], Node]) -> Node:
+    """The closed form's flags (``flagged``: cannot assemble, limit, singular), then
+    'not converged' (last step above CONVERGED_DEG) or 'ok'."""
     one, four = _names(steps, "1"), _names(steps, "4")
     moved = or_(gt(abs_(Var(one[-1]) - Var(one[-2])), CONVERGED_DEG),
                 gt(abs_(Var(four[-1]) - Var(four[-2])), CONVERGED_DEG))
-    return if_(cannot, "cannot assemble", if_(moved, "not converged", "ok"))
+    return flagged(if_(moved, "not converged", "ok"))
