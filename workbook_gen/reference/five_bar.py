@@ -194,6 +194,7 @@ def solve(p: Mapping[str, float], phi_deg: np.ndarray,
             "h_B": (c_x * y_b - c_y * x_b) / out["d_AC"],
             "h_D": -((c_x - l_5) * (y_d) - c_y * (x_d - l_5)) / out["d_EC"],
             "det_BCD": (c_x - x_b) * (c_y - y_d) - (c_y - y_b) * (c_x - x_d)}
+    out["cross_BCD"] = out["det_BCD"]   # the workbook's det_BCD is 0 where it flags "singular"
     if options.get("method", "closed") == "newton":
         steps = int(options.get("iterations", 5))
         ones = _newton_iterates(c_x, c_y, 0.0, p["l_1"], p["l_2"],
