@@ -23,7 +23,7 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import Mapping
 
-from ..expr import Node, Var, abs_, atan2, degrees, eq, iserror, if_, le, or_, root, sqrt, wrap
+from ..expr import Node, Var, abs_, atan2, degrees, eq, iserror, if_, le, or_, root, sqrt
 from ..expr import cos, radians, sin, min_, max_
 from .base import (Chart, Check, InputSpec, OptionSpec, ParamSpec, Quantity, Span, Template,
                    quantity_vars, symbols)
@@ -98,14 +98,17 @@ AT_LIMIT = or_(le(h_B, LIMIT_FRACTION * (l_1 + l_2)), le(h_D, LIMIT_FRACTION * (
 IN_LINE = eq(Var("det_BCD"), 0)   # B, C, D in line (five_bar_errors.SINGULAR_FRACTION)
 
 
-def flagged(otherwise: Node) -> Node:
-    """'cannot assemble', 'limit' (a dyad stretched or folded), 'singular' (B, C, D in
-    line: the sensitivities are #DIV/0!), else ``otherwise``."""
-    return if_(CANNOT, "cannot assemble", if_(AT_LIMIT, "limit", if_(IN_LINE, "singular",
-                                                                      otherwise)))
+def flagged(unconverged: Node | None = None) -> Node:
+    """'cannot assemble', 'limit' (a dyad stretched or folded), 'not converged' (Newton,
+    where ``unconverged``), 'singular' (B, C, D in line: the sensitivities are #DIV/0!),
+    else 'ok'."""
+    rest = if_(IN_LINE, "singular", "ok")
+    if unconverged is not None:
+        rest = if_(unconverged, "not converged", rest)
+    return if_(CANNOT, "cannot assemble", if_(AT_LIMIT, "limit", rest))
 
 
-CLOSED_STATUS = flagged(wrap("ok"))
+CLOSED_STATUS = flagged()
 
 
 def _checks() -> tuple[Check, ...]:

@@ -34,7 +34,7 @@ the intermediate columns en_B_<alpha> / en_D_<alpha> hold en for coupler end B /
 
 from __future__ import annotations
 
-from ..expr import Node, Var, abs_, cos, if_, le, radians, root, sign, sin, sqrt
+from ..expr import Node, Var, abs_, cos, eq, if_, le, radians, root, sign, sin, sqrt
 from .base import Chart, Quantity, symbols
 
 l_1, l_2, l_3, l_4, l_5, r_clear = symbols("l_1 l_2 l_3 l_4 l_5 r_clear")
@@ -120,7 +120,10 @@ def _clearance_pair(end: str, alpha: int) -> tuple[Node, Node, tuple[Node, Node,
     gamma = ea ** 2 + 2 * ea * (gx * wx + gy * wy) / g
     if k_1 is not None:
         gamma = gamma + k_1
-    return ea, -gamma / (beta + sign(beta) * root(beta ** 2 - gamma)), (gx, gy, g)
+    # B, C, D in line (det_BCD made 0, "singular"): beta is rounding, and which of the two
+    # C' is meant is not decided by its sign: #DIV/0! in every engine
+    return ea, -gamma / if_(eq(det_BCD, 0), 0, beta + sign(beta) * root(beta ** 2 - gamma)), \
+        (gx, gy, g)
 
 
 def _clearance_columns() -> tuple[Quantity, ...]:
