@@ -89,8 +89,11 @@ def test_five_bar_ok_rows_are_the_50_digit_values(name, rel):
 @pytest.mark.parametrize("name", ["stretch_AB", "in_line"])
 def test_five_bar_newton_ok_rows_are_the_50_digit_values(name):
     params, limit, _ = FIVE_BAR[name]
-    _, status = assert_sound("five_bar", params, _far(limit), {"method": "newton"})
-    assert FLAG[name] in set(status)
+    inputs = _far(limit) + [limit + 45.0, limit - 90.0, limit + 180.0]
+    _, status = assert_sound("five_bar", params, inputs, {"method": "newton"})
+    assert FLAG[name] in set(status) and "ok" in set(status)
+    # 10 deg from the limit the elbow is 2.7 deg from straight: 8 steps do not converge
+    assert "not converged" in set(status) or name == "in_line"
 
 
 @pytest.mark.parametrize("rel", [0.0, NEAR, -NEAR, 1e-9, 1e-6])
@@ -128,10 +131,12 @@ def _book_scenes():
     out = []
     for name, (params, limit, key) in FIVE_BAR.items():
         out.append((f"fb_{name}", "five_bar", params, {}, (0.0, 360.0, 10.0)))
-        out.append((f"fb_{name}_newton", "five_bar", params, {"method": "newton"},
-                    (0.0, 360.0, 10.0)))
-        out.append((f"fb_{name}_near", "five_bar", _nudged(params, key, -NEAR), {},
-                    (0.0, 360.0, 10.0)))
+        if name != "stretch_ED":    # the mirror of stretch_AB
+            out.append((f"fb_{name}_newton", "five_bar", params, {"method": "newton"},
+                        (0.0, 360.0, 10.0)))
+        if name in ("stretch_AB", "in_line"):
+            out.append((f"fb_{name}_near", "five_bar", _nudged(params, key, -NEAR), {},
+                        (0.0, 360.0, 10.0)))
     out += [
         ("fb_stretch_far_537", "five_bar", FIVE_BAR["stretch_AB"][0], {}, (-537.0, 183.0, 3.0)),
         ("fb_in_line_far_713", "five_bar", FIVE_BAR["in_line"][0], {"method": "newton"},
