@@ -16,6 +16,11 @@ is continuous whenever the path does not surround A.  D likewise, on the right.
 ``method = "newton"``: theta_1 and theta_4 by ``iterations`` Newton-Raphson steps,
 see ``five_bar_newton.py``.  Sensitivity and clearance: ``five_bar_errors.py``.
 Position-only template: it has no rates, so no links for the shaking force.
+
+Limits (issue 21, docs/stability.md): a dyad stretched or folded (h_B or h_D within
+LIMIT_FRACTION of its reach) is flagged "limit"; B, C, D in line (the forward singularity,
+det_BCD within five_bar_errors.SINGULAR_FRACTION) "singular", with the sensitivities and
+the clearance errors #DIV/0!.
 """
 
 from __future__ import annotations
