@@ -69,7 +69,7 @@ def _sensitivity(axis: str, i: int) -> Node:
 #: singularity: det_BCD is made 0 there, so the sensitivities are #DIV/0! and the row is
 #: flagged "singular".  det_BCD carries an absolute rounding of a few eps (l_1 + |C|)
 #: (l_2 + l_3) (B, D rebuilt from the angles); outside the band S keeps >= 9 digits.
-SINGULAR_FRACTION = 1e-6
+SINGULAR_FRACTION = 1e-4
 cross_BCD = Var("cross_BCD")
 
 SENSITIVITY = POSITIONS + (
