@@ -96,8 +96,10 @@ CLOSED = (
 CANNOT = or_(iserror(h_B), iserror(h_D))
 #: A dyad whose elbow is within this fraction of its reach (h_B <= LIMIT_FRACTION (l_1 + l_2),
 #: stretched or folded) is at the limit of its workspace: the half chord carries an absolute
-#: rounding of about eps (l_1 + l_2)^2 / h_B, so theta_1 keeps ~eps (l_1 + l_2) / h_B rad
-#: (<= 2.2e-10 rad outside the band); the row is flagged "limit".
+#: rounding of about eps (l_1 + l_2)^2 / h_B, so theta_1 keeps ~eps (l_1 + l_2) / h_B rad, and
+#: the clearance columns (C' - C of size r_clear, from B and D) amplify it further: 6.6e-9 of
+#: their magnitude at h_B = 2.4e-6 (l_1 + l_2) against 50-digit mpmath, 4.2e-12 at 2.4e-3.
+#: The row is flagged "limit".
 LIMIT_FRACTION = 1e-3
 AT_LIMIT = or_(le(h_B, LIMIT_FRACTION * (l_1 + l_2)), le(h_D, LIMIT_FRACTION * (l_3 + l_4)))
 IN_LINE = eq(Var("det_BCD"), 0)   # B, C, D in line (five_bar_errors.SINGULAR_FRACTION)
