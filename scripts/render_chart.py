@@ -73,6 +73,9 @@ def main() -> None:
     parser.add_argument("png")
     parser.add_argument("dpi", nargs="?", default="90")
     parser.add_argument("--sheet", default="Charts")
+    parser.add_argument("--crop", metavar="X,Y,W,H",
+                        help="only this part of the page, in fractions of its width and "
+                             "height (0.05,0.08,0.5,0.3: the top left charts)")
     args = parser.parse_args()
     soffice = find_soffice()
     if soffice is None or shutil.which("pdftoppm") is None:
@@ -83,8 +86,15 @@ def main() -> None:
         subprocess.run([soffice, f"-env:UserInstallation=file://{tmp}/profile", "--headless",
                         "--convert-to", "pdf", "--outdir", tmp, str(copy)],
                        check=True, capture_output=True, timeout=300)
+        crop = []
+        if args.crop:  # pdftoppm crops in pixels: an A4 landscape page at this dpi
+            x, y, w, h = (float(v) for v in args.crop.split(","))
+            width, height = 11.69 * float(args.dpi), 8.27 * float(args.dpi)
+            crop = ["-x", str(round(x * width)), "-y", str(round(y * height)),
+                    "-W", str(round(w * width)), "-H", str(round(h * height))]
         subprocess.run(["pdftoppm", "-r", args.dpi, "-png", "-f", "1", "-l", "1", "-singlefile",
-                        str(Path(tmp) / "sheet.pdf"), str(Path(tmp) / "page")], check=True)
+                        *crop, str(Path(tmp) / "sheet.pdf"), str(Path(tmp) / "page")],
+                       check=True)
         shutil.copyfile(Path(tmp) / "page.png", args.png)
     print(args.png)
 

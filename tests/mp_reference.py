@@ -58,12 +58,15 @@ def rates(phi, q: Sequence[mpf], x: mpf, rate: mpf):
 
 def polish(phi, q0: Sequence[mpf], x: mpf, scale: mpf) -> list[mpf]:
     """Newton on the closure from the construction (which is already close)."""
-    if len(q0) == 1:
-        q = [mpmath.findroot(lambda a: phi([a], x)[0], q0[0], tol=mpf(10) ** -90,
-                             verify=False)]
-    else:
-        q = list(mpmath.findroot(lambda *a: phi(list(a), x), list(q0), tol=mpf(10) ** -90,
-                                 verify=False))
+    try:
+        if len(q0) == 1:
+            q = [mpmath.findroot(lambda a: phi([a], x)[0], q0[0], tol=mpf(10) ** -90,
+                                 verify=False)]
+        else:
+            q = list(mpmath.findroot(lambda *a: phi(list(a), x), list(q0),
+                                     tol=mpf(10) ** -90, verify=False))
+    except ZeroDivisionError:   # J singular at the start: exactly at a limit
+        return list(q0)
     if max(abs(r) for r in phi(q, x)) > mpf(10) ** -35 * scale:
         q = list(q0)   # a double root (exact singularity): the construction stands
     return q
@@ -334,6 +337,9 @@ def solve(mechanism: str, params: Mapping[str, float], inputs, options=None):
                 row, sing = four_bar(params, x, options.get("branch", "open"))
             elif mechanism == "parallel_4dof":
                 row, sing = mp_parallel_4dof.solve(params, x, options)
+            elif mechanism == "walking_beam":
+                from mp_walking_beam import walking_beam
+                row, sing = walking_beam(params, x, options.get("branch", "open"))
             else:
                 row, sing = _SOLVERS[mechanism](params, x)
             if row is not None and mechanism == "actuator_linkage" and \

@@ -96,3 +96,32 @@ def test_aggregate_over_the_ok_rows_without_array_entry(rows):
     got = evaluate(parse(f'=_xlfn.AGGREGATE(14,6,A1:A{rows}/(B1:B{rows}="ok"),1)'),
                    DictResolver(cells, {}), dialect="excel")
     assert got == expected
+
+
+@settings(max_examples=200, deadline=None)
+@given(flags=st.lists(st.one_of(st.booleans(), ANY), min_size=60, max_size=60),
+       then=st.one_of(ANY, st.lists(ANY, min_size=60, max_size=60)),
+       other=st.one_of(ANY, st.lists(ANY, min_size=60, max_size=60)),
+       wide=st.booleans())
+def test_if_over_an_array_of_flags_as_element_by_element(flags, then, other, wide):
+    """``IF(C2:C61="ok", F2:F61)`` (the batch summary's Statistics sheet) row by row: what
+    the element loop gives, whatever the flags (booleans, or anything: then the loop
+    itself), branches arrays of the flags' shape or single values."""
+    cols = 6 if wide else 1
+
+    def shaped(items):
+        return Range.array_of([items[i:i + cols] for i in range(0, 60, cols)]) \
+            if isinstance(items, list) else items
+    cond, yes, no = shaped(flags), shaped(then), shaped(other)
+
+    def pick(c, a, b):
+        from workbook_gen.formula import values as xv
+        flag = xv.to_bool(c)
+        return flag if isinstance(flag, ExcelError) else (a if flag else b)
+    fast = arrays._picked(cond, yes, no)
+    slow = arrays._broadcast(pick, [cond, yes, no])
+    if fast is None:
+        assert not all(type(f) is bool for f in flags)
+        return
+    assert fast.shape == slow.shape
+    assert all(_same(a, b) for ra, rb in zip(fast.rows, slow.rows) for a, b in zip(ra, rb))

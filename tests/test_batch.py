@@ -5,6 +5,7 @@ workbooks themselves, failure isolation, determinism, resuming, --summary-only."
 from __future__ import annotations
 
 import csv
+import re
 import zipfile
 from pathlib import Path
 
@@ -26,8 +27,9 @@ VARY = ["l_BC=20,95,105", "l_AB=-1,30,32"]
 
 
 def _read_csv(path: Path) -> list[dict[str, str]]:
+    """The rows keyed by column name, the header's unit left off (``y_C_max [mm]``)."""
     with path.open(newline="") as handle:
-        return list(csv.DictReader(handle))
+        return [{k.split(" [")[0]: v for k, v in row.items()} for row in csv.DictReader(handle)]
 
 
 def _files(folder: Path) -> dict[str, bytes]:
@@ -166,11 +168,17 @@ def test_summary_extremes_are_those_of_the_workbooks_tables(sewing_batch):
 def test_summary_columns_follow_the_spec(sewing_batch):
     frame, folder = sewing_batch
     head = next(csv.reader((folder / "summary.csv").open()))
-    assert head[:5] == ["variant", "file", "status", "l_BC", "l_AB"]
-    assert head[5:9] == ["y_C_min", "y_C_min_at", "y_C_max", "y_C_max_at"]
+    # the units from the template: the parameters' and outputs', the input's for _at
+    assert head[:5] == ["variant", "file", "status", "l_BC [mm]", "l_AB [mm]"]
+    assert head[5:9] == ["y_C_min [mm]", "y_C_min_at [deg]", "y_C_max [mm]",
+                         "y_C_max_at [deg]"]
+    assert "theta_5_max [deg]" in head and "omega_5_max [rad/s]" in head
     assert head[-2:] == ["rows_not_assembled", "audit"]
-    assert {"needle_stroke", "lever_swing", "needle_stroke_exact"} <= set(head)
-    assert list(frame.columns) == head and len(frame) == 9
+    assert {"needle_stroke [mm]", "lever_swing [deg]", "needle_stroke_exact [mm]"} <= set(head)
+    assert [h.split(" [")[0] for h in head] == list(frame.columns) and len(frame) == 9
+    assert frame.attrs["units"]["y_C_max"] == "mm"
+    sheet = openpyxl.load_workbook(folder / "summary.xlsx", read_only=True)["Variants"]
+    assert next(sheet.iter_rows(max_row=1, values_only=True)) == tuple(head)
 
 
 def test_summary_xlsx_sheets_links_filter_and_native_charts(sewing_batch):
@@ -187,13 +195,27 @@ def test_summary_xlsx_sheets_links_filter_and_native_charts(sewing_batch):
     assert any("refused" in f for f in rules) and any("partial" in f for f in rules)
     with zipfile.ZipFile(folder / "summary.xlsx") as z:
         charts = [n for n in z.namelist() if n.startswith("xl/charts/chart")]
-        # 15 outputs and 3 spans; two varied grid parameters: one series per l_AB value.
-        assert len(charts) == 18
+        # 15 outputs and 3 spans, against each of the two varied grid parameters: one
+        # series per l_AB value against l_BC, one per l_BC value against l_AB.
+        assert len(charts) == 18 * 2
         stroke = z.read("xl/charts/chart1.xml").decode()  # the needle stroke, a span
         assert "<c:scatterChart>" in stroke and stroke.count("<c:ser>") == 3
         assert "l_AB = 30" in stroke and "ChartData" in stroke
-        needle = z.read("xl/charts/chart4.xml").decode()  # y_C: max and min per l_AB
+        stroke_ab = z.read("xl/charts/chart2.xml").decode()  # against l_AB, per l_BC
+        assert stroke_ab.count("<c:ser>") == 3 and "l_BC = 95" in stroke_ab
+        assert "Variants!$E$2:$E$4" in stroke_ab and "l_AB [mm]" in stroke_ab
+        needle = z.read("xl/charts/chart7.xml").decode()  # y_C: max and min per l_AB
         assert needle.count("<c:ser>") == 2 * 3 and "y_C [mm]: max and min" in needle
+        assert "<c:legend>" in needle
+        # max in reds, min in blues, a colour each per l_AB value, distinct
+        series = needle.split("<c:ser>")[1:]
+        colours = [re.search(r'srgbClr val="([0-9A-F]{6})"', x).group(1) for x in series]
+        names = [re.search(r"<c:v>([^<]*)</c:v>", x).group(1) for x in series]
+        reds = [c for c, n in zip(colours, names) if n.startswith("max")]
+        blues = [c for c, n in zip(colours, names) if n.startswith("min")]
+        assert len(reds) == len(blues) == 3 and len(set(colours)) == 6
+        assert all(int(c[:2], 16) > int(c[4:], 16) for c in reds)
+        assert all(int(c[4:], 16) > int(c[:2], 16) for c in blues)
     about = [r for r in book["About"].iter_rows(values_only=True)]
     assert about[0][0] == "command" and "--vary l_BC=20,95,105" in about[0][1]
 

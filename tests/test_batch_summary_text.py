@@ -4,12 +4,19 @@ bytes the command gives when it formats the whole table itself."""
 
 from __future__ import annotations
 
+import csv
+import io
+import re
+import zipfile
 from pathlib import Path
+from xml.etree import ElementTree
 
 import numpy as np
+import openpyxl
 import pytest
+import xlsxwriter
 
-from workbook_gen import batch
+from workbook_gen import batch, cli
 from workbook_gen.batching import api, blocktext, summary_only
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -152,3 +159,77 @@ def test_the_folder_key_of_the_variants_is_their_json(tmp_path):
     for variants in plans:
         assert variants_json(variants) == json.dumps(
             [[v.label, [[k, repr(x)] for k, x in v.values]] for v in variants])
+
+
+# -- text from a design file: legal XML whatever it holds (issue 22 item 4) -----------------
+
+HOSTILE = ["bell\x07", "_x0041_", "_x005F_", "nul\x00byte", "cr\rlf\nline", "tab\tin",
+           "form\x0cfeed\x1fsep", "non-char\ufffe\uffff", 'a<b>&"c"', "_X00e9_ _x12_", "ünï ☃ 𝄞"]
+
+
+def _xstring_decoded(text: str) -> str:
+    """ECMA-376 Part 1, 22.9.2.19 ST_Xstring: each ``_xHHHH_`` is the character U+HHHH
+    (``_x005F_`` the underscore that starts a literal ``_xHHHH_``)."""
+    return re.sub(r"_x([0-9A-Fa-f]{4})_", lambda m: chr(int(m.group(1), 16)), text)
+
+
+def test_design_names_with_control_characters_are_legal_xml_and_read_back(tmp_path):
+    design = tmp_path / "hostile.csv"
+    with design.open("w", newline="", encoding="utf-8") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(["variant", "l_AB"])
+        writer.writerows([name, 30 + i / 10] for i, name in enumerate(HOSTILE))
+    batch(SEWING, design=design, out=tmp_path, summary_only=True, step=30.0, progress=False)
+    path = tmp_path / "sewing_machine-batch" / "summary.xlsx"
+    with zipfile.ZipFile(path) as z:  # every part parses as XML 1.0 (expat)
+        for name in z.namelist():
+            if name.endswith((".xml", ".rels")):
+                ElementTree.fromstring(z.read(name))
+        sheet_xml = z.read("xl/worksheets/sheet1.xml").decode()
+    for read_only in (True, False):  # openpyxl opens it; its raw text decodes to the name
+        book = openpyxl.load_workbook(path, read_only=read_only)
+        names = [r[0] for r in book["Variants"].iter_rows(min_row=2, values_only=True)]
+        assert [_xstring_decoded(n) for n in names] == HOSTILE
+    # the escapes are XlsxWriter's own for the same texts
+    reference = io.BytesIO()
+    with xlsxwriter.Workbook(reference, {"constant_memory": True}) as book:
+        sheet = book.add_worksheet()
+        for row, name in enumerate(HOSTILE, start=1):
+            sheet.write_string(row, 0, name)
+    with zipfile.ZipFile(reference) as z:
+        expected = re.findall(r"<is>(.*?)</is>", z.read("xl/worksheets/sheet1.xml").decode())
+    assert re.findall(r'<c r="A\d+" t="inlineStr"><is>(.*?)</is>', sheet_xml) == expected
+    # summary.csv holds the names as they are
+    with (tmp_path / "sewing_machine-batch" / "summary.csv").open(newline="",
+                                                                  encoding="utf-8") as handle:
+        assert [r[0] for r in csv.reader(handle)][1:] == HOSTILE
+
+
+def test_a_design_name_longer_than_a_cell_is_refused_in_one_line(tmp_path, capsys):
+    design = tmp_path / "long.csv"
+    design.write_text("variant,l_AB\nfine,30\n" + "x" * 32_768 + ",31\n")
+    code = cli.main(["batch", SEWING, "--design", str(design), "--out", str(tmp_path / "out"),
+                     "--summary-only", "--quiet"])
+    err = capsys.readouterr().err
+    assert code == 2 and not (tmp_path / "out").exists()
+    assert err.count("\n") == 1 and "row 3, variant: a name of 32,768 characters, more " \
+        "than the 32,767 an Excel cell holds" in err
+    design.write_text("variant,l_AB\n" + "x" * 32_767 + ",31\n")  # the limit itself is fine
+    assert cli.main(["batch", SEWING, "--design", str(design), "--out", str(tmp_path / "out"),
+                     "--summary-only", "--quiet", "--step", "30"]) == 0
+    sheet = openpyxl.load_workbook(tmp_path / "out" / "sewing_machine-batch" / "summary.xlsx",
+                                   read_only=True)["Variants"]
+    assert next(sheet.iter_rows(min_row=2, values_only=True))[0] == "x" * 32_767
+
+
+def test_a_command_longer_than_a_cell_is_kept_whole_on_the_about_sheet(tmp_path):
+    values = ",".join(f"{30 + i / 1000:.3f}" for i in range(6000))
+    batch(SEWING, vary=[f"l_AB={values}"], out=tmp_path, summary_only=True, step=90.0,
+          progress=False)
+    rows = list(openpyxl.load_workbook(
+        tmp_path / "sewing_machine-batch" / "summary.xlsx", read_only=True)["About"]
+        .iter_rows(values_only=True))
+    command = [rows[0][1]] + [r[1] for r in rows[1:] if r[0] is None and rows.index(r) < 3]
+    assert all(len(piece) <= 32_767 for piece in command) and len(command) == 2
+    assert "".join(command) == (f"workbook-gen batch {SEWING} --vary l_AB={values} "
+                                f"--step 90 --summary-only")

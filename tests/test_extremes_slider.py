@@ -85,3 +85,16 @@ def test_slider_rod_exactly_tangent_to_the_slide_line_is_flagged(l_AB, e, phi):
                                                        phi_slide=phi), inputs)
     at_tangent = {s for s, x in zip(status, inputs) if (x - phi) % 180 == 0}
     assert at_tangent == {"dead centre"}, at_tangent
+
+
+@pytest.mark.parametrize("stretch", [0.0, 1e-12, -1e-12, 1e-9])
+@pytest.mark.parametrize("phi", [1e-6, -1e-6, 1e-4, 0.0])
+def test_slider_rows_next_to_a_tangent_point_are_sound_or_flagged(stretch, phi):
+    """A row 1e-6 deg from a tangent point, or a rod 1e-12 longer than the tangent length:
+    the reach factor's terms cancel and round to a few ulps of the lengths, which left the
+    rates with 8 digits (alpha_2 1.6e-3 off 1e-11 from the tangent) in a row marked ok.
+    Every ok row is within TOL of 50 digits, and the rows next to the tangent are flagged."""
+    inputs = [phi + 10.0 * k for k in range(37)]
+    worst, status = assert_sound("slider_crank", dict(l_AB=40.0, l_BC=10.0 * (1 + stretch),
+                                                       e=10.0, phi_slide=0.0), inputs)
+    assert status[0] in ("dead centre", "cannot assemble"), status[:3]

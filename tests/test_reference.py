@@ -276,7 +276,7 @@ def test_slider_crank_that_never_assembles_is_all_nan():
 # ---------------------------------------------------------------- API
 def test_all_documented_outputs_returned_with_row_shape():
     assert set(MECHANISMS) >= {"slider_crank", "sewing_machine"}
-    want = {"slider_crank": {"s_C", "v_C", "a_C", "theta_2", "omega_2", "alpha_2", "u_B", "n_B", "h_BC", "dh_BC", "ddh_BC", "psi"},
+    want = {"slider_crank": {"s_C", "v_C", "a_C", "theta_2", "omega_2", "alpha_2", "u_B", "n_B", "f_BC", "g_BC", "h_BC", "dh_BC", "ddh_BC", "psi"},
             "sewing_machine": {"y_C", "v_C", "a_C", "theta_5", "omega_5", "alpha_5", "s_FE", "v_FE", "a_FE",
                                "x_G", "y_G", "vx_G", "vy_G", "ax_G", "ay_G", "x_B", "y_B", "h_BC", "dh_BC",
                                "ddh_BC", "x_E", "y_E", "vx_E", "vy_E", "ax_E", "ay_E", "theta_2", "omega_2",

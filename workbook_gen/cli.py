@@ -137,12 +137,12 @@ def _tradeoff(args: argparse.Namespace) -> int:
 
 
 def _batch(args: argparse.Namespace) -> int:
-    from .batching import batch
-    frame = batch(args.scene, args.vary, args.design, args.out, args.jobs,
-                  summary_only=args.summary_only, sets=_overrides(args.scene, args.set),
-                  step=args.step, samples=args.samples, seed=args.seed, audit=args.audit,
-                  force=args.force, scheduler=args.scheduler,
-                  progress=False if args.quiet else None)
+    from .batching.api import run_batch
+    frame = run_batch(args.scene, args.vary, args.design, args.out, args.jobs,
+                      summary_only=args.summary_only, sets=_overrides(args.scene, args.set),
+                      step=args.step, samples=args.samples, seed=args.seed, audit=args.audit,
+                      force=args.force, scheduler=args.scheduler,
+                      progress=False if args.quiet else None)
     failed = frame.attrs["failed"]
     if not args.quiet:
         print(f"{frame.attrs['folder']}: {len(frame)} variants, {len(frame) - failed} ok"
@@ -205,14 +205,16 @@ def parser() -> argparse.ArgumentParser:
     p = sub.add_parser("batch", help="design variants: one workbook per variant and a summary")
     p.add_argument("scene", metavar="SCENE", help="a scene file (TOML)")
     p.add_argument("--vary", action="append", default=[], metavar="NAME=SPEC",
-                   help="START:STOP:STEP (grid), V1,V2,... (list), normal:MEAN:SD or "
-                        "uniform:LO:HI (with --samples); repeatable: full factorial, last fastest")
-    p.add_argument("--design", metavar="FILE", help="CSV or xlsx: a header of parameter "
-                                                    "names (and 'variant'), one row per variant")
+                   help="START:STOP:STEP (grid), V1,V2,... (list: numbers, or an option's "
+                        "values, branch=open,crossed), normal:MEAN:SD or uniform:LO:HI (with "
+                        "--samples); repeatable: full factorial, last fastest")
+    p.add_argument("--design", metavar="FILE", help="CSV (',' or ';') or xlsx: a header of "
+                                                    "parameter and option names (and "
+                                                    "'variant'), one row per variant")
     p.add_argument("--samples", type=int, metavar="N", help="random variants to draw")
     p.add_argument("--seed", type=int, metavar="S", help="seed of the draw (numpy default_rng)")
     p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
-                   help="override a parameter for every variant (repeatable)")
+                   help="override a parameter or an option for every variant (repeatable)")
     p.add_argument("--step", type=float, metavar="X", help="override the sweep step")
     p.add_argument("--out", default="outputs", metavar="DIR",
                    help="writes DIR/<name>-batch/ (default: outputs)")

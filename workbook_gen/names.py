@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import re
 
+from .cellref import column_number
 from .errors import IllegalNameError
 
 _SHAPE = re.compile(r"^[A-Za-z_][A-Za-z0-9_.]*$")
@@ -11,13 +12,6 @@ _A1 = re.compile(r"^\$?([A-Za-z]{1,3})\$?([0-9]+)$")
 _R1C1 = re.compile(r"^[Rr]([0-9]*)[Cc]?([0-9]*)$|^[Cc][0-9]*$")
 _MAX_COL = 16384  # XFD
 _MAX_ROW = 1048576
-
-
-def _column_number(letters: str) -> int:
-    number = 0
-    for ch in letters.upper():
-        number = number * 26 + ord(ch) - 64
-    return number
 
 
 def name_problem(name: str) -> str | None:
@@ -30,7 +24,7 @@ def name_problem(name: str) -> str | None:
         return ("a name starts with a letter or underscore and holds only letters, digits, "
                 "'_' and '.'")
     a1 = _A1.match(name)
-    if a1 and _column_number(a1.group(1)) <= _MAX_COL and 1 <= int(a1.group(2)) <= _MAX_ROW:
+    if a1 and column_number(a1.group(1)) <= _MAX_COL and 1 <= int(a1.group(2)) <= _MAX_ROW:
         return "it is a cell reference"
     if _R1C1.match(name):
         return "it reads as an R1C1 reference"

@@ -111,7 +111,10 @@ def _parameters(source: str, template: Template, given: dict) -> dict[str, float
             low = f"{MAGNITUDE[0]:g}.." if specs[key].positive else "at most "
             raise _fail(source, f"parameters.{key}", f"must be of magnitude {low}"
                         f"{MAGNITUDE[1]:g}", value)
-        values[key] = number
+        # as the Parameters sheet holds it (16 significant digits, XlsxWriter's %.16G):
+        # the cached values are then what Excel recomputes from the file, also where a
+        # limit amplifies the 17th digit (a rod 1e-12 longer than a toggle needs)
+        values[key] = float(f"{number:.16G}")
     for name in values:
         check_name(name, f"{source}: parameters.{name}")
     return values
@@ -141,6 +144,8 @@ def _sweep(source: str, template: Template, given: dict,
         raise _fail(source, where["step"], "must be > 0", step)
     if stop < start:
         raise _fail(source, where["stop"], f"must be >= {where['start']} = {start:g}", stop)
+    if spec.positive and start <= 0:   # a length: C on B, or a negative cylinder
+        raise _fail(source, where["start"], f"must be > 0 ({spec.name} is a length)", start)
     if (stop - start) / step + 1 > MAX_ROWS:
         raise _fail(source, where["step"], f"gives more rows than Excel allows ({MAX_ROWS:,} "
                     f"below the header) for {start:g}..{stop:g}", step)

@@ -29,8 +29,8 @@ from operator import contains, itemgetter
 from dataclasses import dataclass
 from pathlib import Path
 
-from xlsxwriter.utility import xl_col_to_name, xl_rowcol_to_cell
 
+from ..cellref import cell_name as _cell_name, column_letters
 from ..errors import FormulaSyntaxError, WorkbookGenError, WorkbookReadError
 from ..evaluator import evaluate_cells
 from ..evaluator.keys import column_groups, pick
@@ -56,11 +56,6 @@ from .tally import NO_CACHED_VALUE, absent as absent_values, no_cached_findings,
 from .structure import check_structure
 
 __all__ = ["audit", "AuditReport"]
-
-
-def _cell_name(key: tuple[str, int, int]) -> str:
-    sheet = key[0] if key[0].replace("_", "").isalnum() else "'" + key[0].replace("'", "''") + "'"
-    return f"{sheet}!{xl_rowcol_to_cell(key[1] - 1, key[2] - 1)}"
 
 
 class _Resolver:
@@ -346,7 +341,7 @@ def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, t
     done = np.zeros(len(keys), bool)
     store = evaluation.store
     for sheet, col, idx in groups:
-        stats = columns[(sheet, col)] = ColumnStats(sheet, xl_col_to_name(col - 1))
+        stats = columns[(sheet, col)] = ColumnStats(sheet, column_letters(col))
         fast = idx[fast_all[idx]]
         if len(fast):
             column = store.cols[(sheet, col)]

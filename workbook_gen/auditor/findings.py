@@ -35,7 +35,7 @@ from operator import itemgetter
 
 from ..evaluator.store import type_mask
 from ..formula import ast
-from ..formula.printer import column_letters
+from ..cellref import column_letters
 from ..xlerror import ExcelError
 from .grid import ERROR, FORMULA, NUMBER, TEXT, Grid, Key, value_kind
 from .structure import Finding

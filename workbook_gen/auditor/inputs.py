@@ -7,8 +7,8 @@ import time
 from itertools import compress, islice, repeat
 from pathlib import Path
 
-from xlsxwriter.utility import xl_rowcol_to_cell
 
+from ..cellref import a1, cell_name
 from ..errors import FormulaSyntaxError, WorkbookReadError
 from ..evaluator import expand_shared
 from ..evaluator.grouping import Grouped
@@ -124,13 +124,12 @@ class AuditInputs:
     @staticmethod
     def ref(key: Key) -> str:
         """The A1 reference of a cell key: (sheet, 2, 3) -> 'C2'."""
-        return xl_rowcol_to_cell(key[1] - 1, key[2] - 1)
+        return a1(key[1], key[2])
 
     def cell_keys(self) -> dict[str, Key]:
         """'Sheet!B2' -> key, for the formula cells (built on first use)."""
         if self._names is None:
-            from . import _cell_name
-            self._names = {_cell_name(k): k for k in self.cached}
+            self._names = {cell_name(k): k for k in self.cached}
         return self._names
 
 

@@ -13,9 +13,9 @@ import re
 from dataclasses import dataclass, field
 
 import numpy as np
-from xlsxwriter.utility import xl_cell_to_rowcol, xl_rowcol_to_cell
 
 from .. import reference
+from ..cellref import a1, row_col
 from ..reference.newton import NOISE
 from .noise import INPUT, ColumnNoise, column_trees, numbers_or_nan
 
@@ -193,8 +193,8 @@ def _name_value(book, value_of, name: str) -> float | None:
         return None
     sheet, _, ref = text.lstrip("=").rpartition("!")
     try:
-        row, col = xl_cell_to_rowcol(ref.replace("$", ""))
-        value = value_of(sheet.strip("'"), row + 1, col + 1)
+        row, col = row_col(ref)
+        value = value_of(sheet.strip("'"), row, col)
     except (ValueError, KeyError, AttributeError):
         return None
     return float(value) if isinstance(value, (int, float)) and not isinstance(value, bool) \
@@ -214,7 +214,7 @@ def _check_column(name, values, ref, inputs, col, singular, noise, unit) -> Quan
             continue
         what = "a value where the model has none" if np.isfinite(ours[i]) else (
             f"{values[i]} where the model has {ref[i]:.12g}")
-        wrong.append(f"{xl_rowcol_to_cell(i + 1, col - 1)}: {what}")
+        wrong.append(f"{a1(i + 2, col)}: {what}")
     finite = np.isfinite(ours) & np.isfinite(ref)
     both = finite & ~singular
     skipped = int((finite & singular).sum())

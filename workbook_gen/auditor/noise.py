@@ -30,11 +30,12 @@ import re
 
 import numpy as np
 
+from ..cellref import row_col
 from ..errors import WorkbookGenError
 from ..evaluator.store import floats_where, type_mask
 from ..formula import ast, parse
 from ..formula.ast import to_relative
-from ..xlsx.model import column_letters
+from ..cellref import column_letters
 
 _NUMBER_TYPES = frozenset({int, float, np.float64})
 
@@ -231,9 +232,8 @@ def _exact(node) -> bool:
 
 def _offset(origin: str, row: int, col: int) -> tuple[int, int]:
     """Rows and columns from a shared formula's master ``origin`` to (row, col)."""
-    from xlsxwriter.utility import xl_cell_to_rowcol
-    r, c = xl_cell_to_rowcol(origin.replace("$", ""))
-    return row - (r + 1), col - (c + 1)
+    r, c = row_col(origin)
+    return row - r, col - c
 
 
 _UNARY = {

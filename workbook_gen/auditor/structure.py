@@ -11,6 +11,7 @@ import re
 from collections import defaultdict
 from dataclasses import dataclass
 
+from ..cellref import column_number
 from ..formula import ast
 from ..xlsx.reader import MISSING_PART
 
@@ -40,7 +41,7 @@ def excel_name_problem(name: str) -> str | None:
         return ("a name starts with a letter, '_' or '\\' and holds only letters, digits, "
                 "'_', '.', '\\' and '?'")
     a1 = _A1.fullmatch(name)
-    if a1 and len(a1.group(1)) <= 3 and _col(a1.group(1)) <= 16384 \
+    if a1 and len(a1.group(1)) <= 3 and column_number(a1.group(1)) <= 16384 \
             and 1 <= int(a1.group(2)) <= 1048576:
         return "it is a cell reference"
     if _R1C1.fullmatch(name):
@@ -48,13 +49,6 @@ def excel_name_problem(name: str) -> str | None:
     if name.upper() in ("TRUE", "FALSE"):
         return "it is a boolean literal"
     return None
-
-
-def _col(letters: str) -> int:
-    n = 0
-    for ch in letters.upper():
-        n = n * 26 + ord(ch) - 64
-    return n
 
 
 def check_structure(inputs, evaluation, cell_name) -> list[Finding]:

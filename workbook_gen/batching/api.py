@@ -15,9 +15,10 @@ import logging
 import math
 import sys
 from pathlib import Path
-from typing import Mapping, Sequence
+from typing import Mapping, Sequence, Union
 
 from ..errors import SceneError
+from ..mechanisms import get_template
 from ..scene import Scene, parse_scene, read_scene_text
 from ..files import write_bytes_atomically
 from ..model import select
@@ -28,7 +29,8 @@ from .job import JobSpec, run_chunk
 from .summary import SummaryWriter
 from .summary_only import SummaryJob, block_size, summary_rows
 from .table import Table
-from .variants import Design, Variant, from_design, from_specs
+from .specs import shown
+from .variants import Design, Variant, flag, from_design, from_specs
 
 log = logging.getLogger(__name__)
 _FIRST_BLOCK = 32   # variants in the first --summary-only block
@@ -44,16 +46,38 @@ def _read(scene: str | Path | Scene) -> tuple[str, str, dict, float | None]:
     return read_scene_text(scene), str(scene), {}, None
 
 
-def _design(base: Scene, vary, design, sets, samples, seed) -> Design:
+def _design(base: Scene, vary, design, sets, samples, seed, cli: bool) -> Design:
     names = [p.name for p in base.template.parameters]
+    options = get_template(base.mechanism).options
     if design is not None:
         if vary:
-            raise SceneError("--design and --vary: give one of them (put every varied "
-                             "parameter in the design file)")
+            raise SceneError(f"{flag('design', cli)} and {flag('vary', cli)}: give one of them "
+                             f"(put every varied parameter in the design file)")
         if samples is not None or seed is not None:
-            raise SceneError("--samples and --seed go with a random --vary, not --design")
-        return from_design(design, names, list(sets))
-    return from_specs(list(vary or ()), names, list(sets), samples, seed)
+            raise SceneError(f"{flag('samples', cli)} and {flag('seed', cli)} go with a random "
+                             f"{flag('vary', cli)}, not {flag('design', cli)}")
+        return from_design(design, names, list(sets), options, cli)
+    return from_specs(vary if vary is not None else (), names, list(sets), samples, seed,
+                      options, cli)
+
+
+def _option_models(base: Scene, plan: Design, text: str, source: str, sets, step) -> list:
+    """The models of the option combinations the variants ask for, other than the
+    scene's own (a combination the scene refuses has none: its variants are refused)."""
+    if not plan.options:
+        return []
+    seen, models = set(), []
+    for variant in plan.variants:
+        key = tuple((n, v) for n, v in variant.values if n in plan.options)
+        if key in seen:
+            continue
+        seen.add(key)
+        try:
+            scene = parse_scene(text, source, {**sets, **dict(key)} or None, step)
+        except SceneError:
+            continue
+        models.append(select(scene.template, scene.outputs))
+    return models
 
 
 def variants_json(variants: Sequence[Variant]) -> str:
@@ -78,9 +102,23 @@ def variants_json(variants: Sequence[Variant]) -> str:
     return f"[{', '.join(parts)}]"
 
 
+def _vary_words(vary) -> list[str]:
+    """``vary`` as the command line would spell it (the About sheet's command)."""
+    if not isinstance(vary, Mapping):
+        return list(vary or ())
+    words = []
+    for name, value in vary.items():
+        if not isinstance(value, str):
+            items = value.tolist() if hasattr(value, "tolist") else value
+            items = list(items) if isinstance(items, (list, tuple, range)) else [items]
+            value = ",".join(str(shown(v)) for v in items)
+        words.append(f"{name}={value}")
+    return words
+
+
 def _command(source, vary, design, sets, step, samples, seed, summary_only, audit) -> str:
     parts = ["workbook-gen batch", source]
-    parts += [f"--vary {v}" for v in vary or ()]
+    parts += [f"--vary {v}" for v in _vary_words(vary)]
     parts += [f"--design {design}"] if design is not None else []
     parts += [f"--samples {samples}"] if samples is not None else []
     parts += [f"--seed {seed}"] if seed is not None else []
@@ -101,7 +139,12 @@ def _progress(total: int, initial: int, enabled: bool | None):
                 dynamic_ncols=True, smoothing=0.1)
 
 
-def batch(scene: str | Path | Scene, vary: Sequence[str] | None = None,
+# What ``vary`` takes: {name: values} or the command line's "NAME=SPEC" texts.
+Vary = Union[Mapping[str, Union[str, float, bool, Sequence[Union[float, str, bool]], range]],
+             Sequence[str], None]
+
+
+def batch(scene: str | Path | Scene, vary: Vary = None,
           design: str | Path | None = None, out: str | Path = "outputs",
           jobs: int | None = None, client=None, summary_only: bool = False, *,
           sets: Mapping[str, object] | None = None, step: float | None = None,
@@ -109,17 +152,38 @@ def batch(scene: str | Path | Scene, vary: Sequence[str] | None = None,
           force: bool = False, scheduler: str | None = None,
           progress: bool | None = None):
     """Make ``out/<name>-batch/<name>-0001.xlsx`` ... and ``summary.csv``/``summary.xlsx``;
-    return the summary as a pandas DataFrame (``frame.attrs["folder"]``: the folder).
+    return the summary as a pandas DataFrame: its columns the summary's names without
+    the units the files' headers carry (``y_C_max``; ``frame.attrs["units"]``:
+    ``{"y_C_max": "mm", ...}``), ``frame.attrs["folder"]``: the folder.
 
-    ``vary``: ``["l_BC=95:105:0.5", "l_AB=30,32,34"]`` (full factorial, last fastest) or
-    random specs (``"l_AB=normal:32:0.05"``) with ``samples`` and ``seed``; ``design``: a
-    CSV or xlsx table.  ``jobs``: local worker processes (default: all cores);
-    ``client`` (a Dask ``Client``) or ``scheduler`` (its address) runs the variants on
-    a Dask cluster.  ``summary_only``: the summary without the workbooks, evaluated over
-    all variants at once.  Raises SceneError (bad input) before writing anything."""
+    ``vary``: a mapping from a parameter or option name to its values, varied as a full
+    factorial in the mapping's order (the last fastest).  Values are a list, tuple,
+    range or numpy array of numbers (``{"l_AB": [30, 32]}``, ``{"l_BC": range(95, 106)}``)
+    or of an option's values (``{"branch": ["open", "crossed"], "balance": [True,
+    False]}``), or a text as after ``--vary NAME=`` on the command line: a grid
+    ``"95:105:0.5"`` (start to stop inclusive), a list ``"30,32,34"``/``"open,crossed"``,
+    or a distribution ``"normal:32:0.05"`` / ``"uniform:31.9:32.1"`` (every varied name
+    random, with ``samples`` and ``seed``).  A list of the command line's ``"NAME=SPEC"``
+    texts is taken too.  ``design``: a CSV (``,`` or ``;`` separated; with ``;`` a
+    decimal comma is read) or xlsx table, one variant per row, columns named for
+    parameters and options.  ``sets``: parameters or options for every variant.
+    ``jobs``: local worker processes (default: all cores); ``client`` (a Dask
+    ``Client``) or ``scheduler`` (its address) runs the variants on a Dask cluster.
+    ``summary_only``: the summary without the workbooks, evaluated over all variants at
+    once.  Raises SceneError (bad input, the message naming the argument) before
+    writing anything."""
+    return run_batch(scene, vary, design, out, jobs, client, summary_only, sets=sets,
+                     step=step, samples=samples, seed=seed, audit=audit, force=force,
+                     scheduler=scheduler, progress=progress, cli=False)
+
+
+def run_batch(scene, vary=None, design=None, out="outputs", jobs=None, client=None,
+              summary_only=False, *, sets=None, step=None, samples=None, seed=None,
+              audit=False, force=False, scheduler=None, progress=None, cli=True):
+    """``batch()``, its messages naming the command line's flags when ``cli``."""
     with _no_cycle_collection():
         return _batch(scene, vary, design, out, jobs, client, summary_only, sets, step,
-                      samples, seed, audit, force, scheduler, progress)
+                      samples, seed, audit, force, scheduler, progress, cli)
 
 
 @contextlib.contextmanager
@@ -137,18 +201,21 @@ def _no_cycle_collection():
 
 
 def _batch(scene, vary, design, out, jobs, client, summary_only, sets, step, samples, seed,
-           audit, force, scheduler, progress):
+           audit, force, scheduler, progress, cli):
     text, source, given_sets, given_step = _read(scene)
     sets = {**given_sets, **dict(sets or {})}
     step = step if step is not None else given_step
     if summary_only and audit:
-        raise SceneError("--audit checks workbooks; --summary-only makes none")
+        raise SceneError("--audit checks workbooks; --summary-only makes none" if cli else
+                         "audit checks workbooks; summary_only makes none")
     if jobs is not None and jobs < 1:
-        raise SceneError(f"--jobs must be >= 1, got {jobs}")
+        raise SceneError(f"{flag('jobs', cli)} must be >= 1, got {jobs}")
     if jobs is not None and (client is not None or scheduler is not None):
-        raise SceneError("--jobs and --scheduler: give one (the cluster's workers do the work)")
+        raise SceneError(f"{flag('jobs', cli)} and {flag('scheduler', cli)}"
+                         f"{'' if cli else ' (or client)'}: give one (the cluster's workers "
+                         f"do the work)")
     base = parse_scene(text, source, sets or None, step)
-    plan = _design(base, vary, design, sets, samples, seed)
+    plan = _design(base, vary, design, sets, samples, seed, cli)
     folder_path = Path(out) / f"{base.name}-batch"
     width = max(4, len(str(len(plan))))
     spec = JobSpec(text, source, tuple(sets.items()), step, str(folder_path), base.name,
@@ -165,7 +232,11 @@ def _batch(scene, vary, design, out, jobs, client, summary_only, sets, step, sam
     try:
         folder_path.mkdir(parents=True, exist_ok=True)
         folder.start(resume, command)
-        table = Table(plan, select(base.template, base.outputs), base.parameters)
+        models = _option_models(base, plan, text, source, sets, step) or [
+            select(base.template, base.outputs)]
+        defaults = {**base.parameters, **{o.name: base.options.get(o.name, o.default)
+                                          for o in get_template(base.mechanism).options}}
+        table = Table(plan, models[0], defaults, others=models[1:])
         writer = SummaryWriter(table, folder_path / "summary.csv", folder_path / "summary.xlsx")
         runner = runners.pick(jobs, client or own)
         if summary_only:
@@ -210,7 +281,9 @@ def _summaries_only(spec: JobSpec, plan: Design, table: Table, runner, progress,
         first = min(size, _FIRST_BLOCK, len(plan.variants))
         parts = ([plan.variants[:first]] if first else []) + runners.chunks(
             plan.variants[first:], size)
-        job = SummaryJob(spec, plan.names)
+        job = SummaryJob(spec, plan.names, tuple(table.values), frozenset(table.figures),
+                         plan.options, table.text_options,
+                         tuple((n, table.defaults_shown[n]) for n in plan.names))
         for part, (block, text) in runner.run(summary_rows, job, parts):
             table.put_block(part, block)
             if text is not None:  # formatted by the worker: written as soon as in order

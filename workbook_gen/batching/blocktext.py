@@ -11,8 +11,10 @@ not have).  The bytes are those the cell-by-cell writers gave:
   figure that is a number for some variants and a text for others) as ``%.16G`` in
   the sheet;
 - a text as itself in the CSV (quoted as ``csv.writer`` quotes) and as an inline
-  string in the sheet (``xml:space="preserve"`` when it has outer spaces); the file
-  column a ``HYPERLINK`` formula with the name as cached text.
+  string in the sheet (``xml:space="preserve"`` when it has outer spaces; control
+  characters escaped as ECMA-376's ``ST_Xstring`` says: ``xstring``); the file
+  column a ``HYPERLINK`` formula with the name as cached text; the ``variant`` column a
+  number in the sheet where the label is a variant number (not a design's name).
 
 Columns are formatted whole, not cell by cell: a column's distinct numbers are
 formatted once (``repr`` of a list, in C) and spread by numpy, and a block's rows are
@@ -35,6 +37,11 @@ TEXT_COLUMNS = ("variant", "file", "status", "audit")
 _CSV_SPECIAL = re.compile(r'[,"\r\n]')
 _EXACT_FLOATS = {float, type(None)}
 _PROBE = 64   # rows that tell a column of few distinct numbers from one of many
+_VARIANT_NUMBER = re.compile("[1-9][0-9]{0,14}")  # exactly a double, no leading zero
+# ST_Xstring (ECMA-376 Part 1, 22.9.2.19): what ``xstring`` escapes
+_ESCAPE_LIKE = re.compile("(_x[0-9a-fA-F]{4}_)")
+_CONTROL = re.compile("[\x00-\x08\x0b-\x1f\ufffe\uffff]")
+_XSTRING_SPECIAL = re.compile("_x[0-9a-fA-F]{4}_|[\x00-\x08\x0b-\x1f\ufffe\uffff]")
 
 
 def value_kind(values: Sequence[object]) -> str:
@@ -110,7 +117,20 @@ def _escape(text: str) -> str:
     return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
 
 
+def xstring(text: str) -> str:
+    """A cell's text as ECMA-376 ``ST_Xstring`` holds it (Part 1, 22.9.2.19), as
+    XlsxWriter escapes it: a control character XML 1.0 forbids (and carriage return,
+    which XML readers turn into a line feed) as ``_xHHHH_``, a literal ``_xHHHH_``
+    with its underscore escaped (``_x005F_xHHHH_``), U+FFFE and U+FFFF as
+    ``_xFFFE_``/``_xFFFF_``.  Any other text is returned as it is."""
+    if not _XSTRING_SPECIAL.search(text):
+        return text
+    text = _ESCAPE_LIKE.sub(r"_x005F\1", text)
+    return _CONTROL.sub(lambda m: f"_x{ord(m.group(0)):04X}_", text)
+
+
 def text_cell(ref: str, text: str) -> str:
+    text = xstring(text)
     space = ' xml:space="preserve"' if text != text.strip() else ""
     return f'<c r="{ref}" t="inlineStr"><is><t{space}>{_escape(text)}</t></is></c>'
 
@@ -122,7 +142,7 @@ def _cell(name: str, ref: str, value: object) -> str:
     if name == "file":
         target = _escape(str(value).replace('"', '""'))
         return (f'<c r="{ref}" t="str"><f>HYPERLINK("{target}","{target}")</f>'
-                f"<v>{_escape(str(value))}</v></c>")
+                f"<v>{_escape(xstring(str(value)))}</v></c>")
     if isinstance(value, str):
         return text_cell(ref, value)
     if isinstance(value, bool) or not math.isfinite(value):
@@ -134,6 +154,8 @@ def _xml_items(name: str, col: int, kind: str, values: Sequence[object],
                texts: list[str] | None, rows: list[str]) -> list:
     """A column's share of each row's XML: constants (str) and per-row lists."""
     letter = xl_col_to_name(col)
+    if name == "variant":
+        return _variant_items(letter, values, rows)
     if kind == "number":
         if all(texts):
             return [f'<c r="{letter}', rows, '"><v>', texts, "</v></c>"]
@@ -153,6 +175,17 @@ def _xml_items(name: str, col: int, kind: str, values: Sequence[object],
         return [[f'<c r="{letter}{r}{bodies[v]}' if v else "" for r, v in zip(rows, values)]]
     cells = [_cell(name, f"{letter}{r}", v) for r, v in zip(rows, values)]
     return [cells] if any(cells) else []
+
+
+def _variant_items(letter: str, labels: Sequence[str], rows: list[str]) -> list:
+    """The ``variant`` column: a number where the label is one (the variants' numbers
+    of a grid, random samples or an unnamed design row: the autofilter then sorts 1, 2,
+    ..., 10), a text where the design names the row (``007`` stays a text)."""
+    numeric = [bool(_VARIANT_NUMBER.fullmatch(v)) for v in labels]
+    if all(numeric):
+        return [f'<c r="{letter}', rows, '"><v>', list(labels), "</v></c>"]
+    return [[f'<c r="{letter}{r}"><v>{v}</v></c>' if n else text_cell(f"{letter}{r}", v)
+             if v else "" for r, v, n in zip(rows, labels, numeric)]]
 
 
 def _join(items: list, count: int) -> str:

@@ -10,7 +10,7 @@ the ``_at`` value is the input of the first ok row where the extreme occurs.
 from __future__ import annotations
 
 import re
-from typing import Mapping
+from typing import Mapping, Sequence
 
 import numpy as np
 
@@ -71,6 +71,35 @@ def value_columns(model: Model) -> list[str]:
     for q in model.outputs():
         names += [f"{q.name}_min", f"{q.name}_min_at", f"{q.name}_max", f"{q.name}_max_at"]
     return names + figure_columns(model) + ["rows_not_assembled"]
+
+
+def column_units(model: Model, varied: Sequence[str]) -> dict[str, str]:
+    """The unit of each summary column that has one, from the template's own specs: a
+    varied parameter's, an output's for its extremes, the sweep input's for the
+    ``_at`` columns (where an extreme occurs), a span's quantity's, a figure's."""
+    template = model.template
+    params = {p.name: p.unit for p in template.parameters}
+    units = {name: params[name] for name in varied if params.get(name)}
+    at = template.input.unit
+    for q in model.outputs():
+        if q.unit:
+            units[f"{q.name}_min"] = units[f"{q.name}_max"] = q.unit
+        if at:
+            units[f"{q.name}_min_at"] = units[f"{q.name}_max_at"] = at
+    for span in model.spans:
+        unit = template.quantity(span.quantity).unit
+        if unit:
+            units[snake(span.label)] = unit
+    for figure in model.figures:
+        if figure.unit:
+            units[snake(figure.label)] = figure.unit
+    return units
+
+
+def header(name: str, units: Mapping[str, str]) -> str:
+    """A summary column's header: its name and unit, ``y_C_max [mm]``."""
+    unit = units.get(name)
+    return f"{name} [{unit}]" if unit else name
 
 
 def figure_values(model: Model, params: Mapping[str, np.ndarray], variants: int

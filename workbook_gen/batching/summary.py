@@ -1,10 +1,10 @@
 """summary.csv and summary.xlsx of a batch (written last, atomically, same bytes for
 the same command).
 
-summary.xlsx: a Variants sheet (frozen header, autofilter, the file column a
-HYPERLINK to each workbook (a formula: no limit of 65,530 links per sheet), rows not ``ok`` marked by conditional formats), a Charts sheet (each
-output's extremes and the template's spans against the varied parameter: one series
-per value of the second parameter when a grid varies two), and an About sheet.
+summary.xlsx: a Variants sheet (headers with units, frozen, autofilter, the file
+column a HYPERLINK to each workbook (a formula: no limit of 65,530 links per sheet),
+rows not ``ok`` marked by conditional formats), for a random study a Statistics sheet
+(``statistics.py``), a Charts sheet (``charts.py``) and an About sheet.
 """
 
 from __future__ import annotations
@@ -28,15 +28,15 @@ from ..files import write_atomically
 from ..version import VERSION
 from .blocktext import block_texts
 from .sheetzip import DeflatedMember, member_data, splice
-from .rows import figure_columns, snake
+from .charts import charts_sheet
+from .statistics import write_statistics
 from .table import Table
+from .variants import MAX_CELL_TEXT
 
 DOCUMENT_DATE = dt.datetime(2024, 1, 1)
 _ROWS_PER_WRITE = 2000
 VARIANTS = "xl/worksheets/sheet1.xml"   # the Variants sheet in the zip
 _ROWS = "<!--workbook-gen: the data rows-->"
-MAX_SERIES_VALUES = 8       # a second grid parameter with more values: one scatter
-_CHART_COLUMNS = 2
 
 
 _PATCH = threading.Lock()
@@ -100,7 +100,7 @@ class SummaryWriter:
         self._csv = os.fdopen(fd, "w", encoding="utf-8", newline="")
         self._book = self._sheet = self._rows = None
         try:
-            csv.writer(self._csv, lineterminator="\n").writerow(table.columns)
+            csv.writer(self._csv, lineterminator="\n").writerow(table.headers)
             self._csv_mark = self._csv.tell()
             self._book, self._sheet = _book(table)
             if len(table.design):  # else XlsxWriter writes the sheet (a header row)
@@ -153,9 +153,10 @@ class SummaryWriter:
             self._format()
             self._csv.close()
             os.chmod(self._csv_temp, 0o644)
+            write_statistics(self._book, table)
             charts = self._book.add_worksheet("Charts")
             _about_sheet(self._book, about)
-            _charts_sheet(self._book, charts, table)  # after About: its data sheet comes last
+            charts_sheet(self._book, charts, table)  # after About: its data sheet comes last
             stream = self._book.filename
             with _fast_deflate():
                 self._book.close()
@@ -227,7 +228,7 @@ def _variants_head(book, table: Table):
             "type": "formula", "criteria": rule,
             "format": book.add_format({"bg_color": colour})})
     sheet.autofilter(0, 0, max(1, size), last_col)
-    sheet.write_row(0, 0, table.columns, header)
+    sheet.write_row(0, 0, table.headers, header)
     if size:  # the header row now, then the data rows' place
         sheet._check_dimensions(size, last_col)
         sheet._write_single_row(1)
@@ -259,99 +260,6 @@ def _variants_xml(table: Table) -> tuple[bytes, bytes]:
 
 
 
-def _plotted(table: Table) -> list[tuple[str, list[str]]]:
-    """(title, summary columns) of each chart: the spans (stroke, swing), then each
-    output's max and min."""
-    charts = []
-    for span in table.model.spans:
-        q = table.model.template.quantity(span.quantity)
-        unit = f" [{q.unit}]" if q.unit else ""
-        charts.append((f"{span.label}{unit}", [snake(span.label)]))
-    for q in table.model.outputs():
-        unit = f" [{q.unit}]" if q.unit else ""
-        charts.append((f"{q.name}{unit}: max and min over the sweep",
-                       [f"{q.name}_max", f"{q.name}_min"]))
-    return charts
-
-
-def _charts_sheet(book, sheet, table: Table) -> None:
-    sheet.set_landscape()
-    sheet.fit_to_pages(1, 0)
-    design = table.design
-    if not design.names:
-        return
-    x_name = design.names[0]
-    grouped = (design.kind == "grid" and len(design.names) == 2
-               and len(design.levels[1]) <= MAX_SERIES_VALUES)
-    numeric = set(table.columns) - set(figure_columns(table.model)) | {
-        snake(s.label) for s in table.model.spans}
-    size = len(design)
-    if grouped:
-        data = book.add_worksheet("ChartData")
-        data.hide()
-        groups = _write_groups(data, table, [c for _, cols in _plotted(table) for c in cols])
-    for n, (title, cols) in enumerate(_plotted(table)):
-        if not all(c in numeric for c in cols):
-            continue
-        markers = design.kind != "grid"
-        chart = book.add_chart({"type": "scatter",
-                                "subtype": "marker_only" if markers else "straight_with_markers"})
-        if grouped:
-            for value, (sheet_name, first, last, col_of) in groups.items():
-                for c in cols:
-                    extreme = c.rsplit("_", 1)[-1] if c.endswith(("_max", "_min")) else ""
-                    chart.add_series({
-                        "name": f"{extreme + ', ' if extreme else ''}{design.names[1]} = {value:g}",
-                        "categories": [sheet_name, first, 0, last, 0],
-                        "values": [sheet_name, first, col_of[c], last, col_of[c]],
-                        "marker": {"type": "circle", "size": 4},
-                        "line": {"width": 1.5, "dash_type": "dash" if extreme == "min" else "solid"},
-                    })
-        else:
-            x = table.columns.index(x_name)
-            for c in cols:
-                y = table.columns.index(c)
-                chart.add_series({
-                    "name": c,
-                    "categories": ["Variants", 1, x, size, x],
-                    "values": ["Variants", 1, y, size, y],
-                    "marker": {"type": "circle", "size": 4},
-                    "line": {"none": True} if markers else {"width": 1.5},
-                })
-        grid = {"visible": True, "line": {"color": "#D9D9D9"}}
-        chart.set_x_axis({"name": x_name, "label_position": "low", "major_gridlines": grid})
-        chart.set_y_axis({"crossing": "min", "major_gridlines": grid})
-        chart.set_title({"name": title, "name_font": {"size": 11}})
-        chart.set_legend({"position": "bottom"})
-        chart.set_size({"width": 560, "height": 360})
-        row, col = divmod(n, _CHART_COLUMNS)
-        sheet.insert_chart(row * 19, col * 9, chart)
-
-
-def _write_groups(sheet, table: Table, wanted: list[str]):
-    """The data of a two-parameter grid sorted by the second parameter, so each of its
-    values is a contiguous range (a chart series)."""
-    design = table.design
-    x_name, g_name = design.names
-    sheet.write_row(0, 0, [x_name] + wanted)
-    col_of = {c: i + 1 for i, c in enumerate(wanted)}
-    groups = {}
-    row = 1
-    k = len(design.levels[1])
-    for j, value in enumerate(design.levels[1]):
-        first = row
-        for i in range(len(design.levels[0])):
-            index = i * k + j
-            sheet.write_number(row, 0, table.data[x_name][index])
-            for c in wanted:
-                v = table.data[c][index]
-                if isinstance(v, (int, float)) and v == v and v is not None:
-                    sheet.write_number(row, col_of[c], v)
-            row += 1
-        groups[value] = ("ChartData", first, row - 1, col_of)
-    return groups
-
-
 def _about_sheet(book, about: Sequence[tuple[str, str]]) -> None:
     sheet = book.add_worksheet("About")
     label = book.add_format({"bold": True, "valign": "top"})
@@ -361,5 +269,21 @@ def _about_sheet(book, about: Sequence[tuple[str, str]]) -> None:
     for key, value in about:
         sheet.write_string(row, 0, key, label)
         for line in value.splitlines() or [""]:
-            sheet.write_string(row, 1, line)
-            row += 1
+            for piece in cell_pieces(line):
+                sheet.write_string(row, 1, piece)
+                row += 1
+
+
+def cell_pieces(text: str, limit: int = MAX_CELL_TEXT) -> list[str]:
+    """``text`` cut into pieces of at most ``limit`` UTF-16 code units (what an Excel
+    cell holds), to go in consecutive cells: a command line of thousands of
+    ``--vary`` values is kept whole on the About sheet, over several rows."""
+    pieces = []
+    while True:
+        n = limit
+        while len(text[:n].encode("utf-16-le")) // 2 > limit:  # characters beyond the BMP
+            n -= len(text[:n].encode("utf-16-le")) // 2 - limit
+        pieces.append(text[:n])
+        text = text[n:]
+        if not text:
+            return pieces

@@ -11,6 +11,7 @@ numbers.  Blocks keep memory bounded whatever the number of variants.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 from dataclasses import dataclass
@@ -25,6 +26,7 @@ from .job import JobSpec, refused_reason, unassembled_reason, variant_scene
 from .blocktext import TEXT_COLUMNS, block_texts, has_value, value_kind
 from .rows import figure_values, status_texts, summarise, text_figures, value_columns
 from .summary import BlockText
+from .specs import shown
 from .variants import Variant
 
 # Elements (variants x rows) per block: 512 KB per float column (blocks of 2^18 took
@@ -99,16 +101,62 @@ def _block(base: Scene, plan: Plan, spec: JobSpec, variants: Sequence[Variant]
     return out
 
 
-@functools.lru_cache(maxsize=4)
-def _prepared(spec: JobSpec) -> tuple[Scene, Plan]:
-    """The scene with the command's --set and --step, and its trees compiled: once per
-    process, whatever the number of blocks it runs."""
-    base = parse_scene(spec.text, spec.source, dict(spec.sets) or None, spec.step)
+@functools.lru_cache(maxsize=64)
+def _prepared(spec: JobSpec, options: tuple[tuple[str, object], ...] = ()
+              ) -> tuple[Scene, Plan]:
+    """The scene with the command's --set and --step (and a combination of varied
+    options), and its trees compiled: once per process, whatever the number of blocks
+    it runs.  SceneError when the scene refuses the options."""
+    base = parse_scene(spec.text, spec.source, {**dict(spec.sets), **dict(options)} or None,
+                       spec.step)
     return base, Plan(base)
 
 
+def _options_block(spec: JobSpec, variants: Sequence[Variant], options: frozenset[str],
+                   columns: Sequence[str]) -> dict[str, list[object]]:
+    """``_block`` of variants that vary template options: each combination of options
+    evaluated with its own scene and trees, in the table's ``columns`` (None where a
+    combination has no such column); a combination the scene refuses is refused for
+    each of its variants with ``generate``'s reason."""
+    size = len(variants)
+    groups: dict[tuple, list[int]] = {}
+    for i, variant in enumerate(variants):
+        key = tuple((n, v) for n, v in variant.values if n in options)
+        groups.setdefault(key, []).append(i)
+    out: dict[str, list[object]] = {name: [None] * size for name in columns}
+    out.update(status=[""] * size, file=[""] * size, audit=[""] * size)
+    for key, where in groups.items():
+        members = [variants[i] for i in where]
+        try:
+            base, plan = _prepared(spec, key)
+        except SceneError:
+            base = None
+        varied = {n for v in members for n, _ in v.values if n not in options}
+        if base is None or not varied <= set(base.parameters):
+            for i, variant in zip(where, members):
+                try:
+                    variant_scene(spec, variant)
+                    reason = "the options and parameters do not fit together"
+                except SceneError as exc:
+                    reason = refused_reason(spec, exc)
+                out["status"][i] = f"refused: {reason}"
+            continue
+        # the options as --set for the group: a refusal's reason is generate's
+        stripped = [v._replace(values=tuple((n, x) for n, x in v.values if n not in options))
+                    for v in members]
+        block = _block(base, plan, dataclasses.replace(spec, sets=tuple(spec.sets) + key),
+                       stripped)
+        for name in value_columns(plan.model) + ["status"]:
+            column, made = out[name], block[name]
+            if isinstance(made, np.ndarray):
+                made = made.tolist()
+            for i, value in zip(where, made):
+                column[i] = value
+    return out
+
+
 def summary_block(spec: JobSpec, variants: Sequence[Variant]) -> dict[str, list[object]]:
-    """The summary columns of ``variants``: what a runner runs for ``--summary-only``."""
+    """The summary columns of ``variants`` (no option varied)."""
     base, plan = _prepared(spec)
     return _block(base, plan, spec, variants)
 
@@ -121,11 +169,17 @@ def block_size(spec: JobSpec) -> int:
 
 @dataclass(frozen=True)
 class SummaryJob:
-    """A ``--summary-only`` batch as its workers see it: the job and the varied
-    parameters (the summary's columns), so each block comes back formatted."""
+    """A ``--summary-only`` batch as its workers see it: the job, the varied
+    parameters and options and the summary's columns, so each block comes back
+    formatted."""
 
     spec: JobSpec
     names: tuple[str, ...]
+    values: tuple[str, ...] = ()                # the table's value columns
+    figures: frozenset[str] = frozenset()       # the figure columns that may hold texts
+    options: tuple[str, ...] = ()               # which names are options
+    text_options: frozenset[str] = frozenset()  # options shown as texts
+    defaults: tuple[tuple[str, object], ...] = ()  # each name's value as shown, if not varied
 
 
 def summary_rows(job: SummaryJob, variants: Sequence[Variant]
@@ -135,21 +189,30 @@ def summary_rows(job: SummaryJob, variants: Sequence[Variant]
     columns taken from this block: the command checks them against the whole
     table's)."""
     base, plan = _prepared(job.spec)
-    block = _block(base, plan, job.spec, variants)
+    if job.options:
+        block = _options_block(job.spec, variants, frozenset(job.options), job.values)
+    else:
+        block = _block(base, plan, job.spec, variants)
     first = variants[0].index
     if variants[-1].index - first != len(variants) - 1:
         return block, None
-    columns = (["variant", "file", "status"] + list(job.names) + value_columns(plan.model)
-               + ["audit"])
+    values = list(job.values) or value_columns(plan.model)
+    columns = ["variant", "file", "status"] + list(job.names) + values + ["audit"]
     data = dict(block)
     data["variant"] = [v.label for v in variants]
     chosen = [dict(v.values) for v in variants]
+    defaults = dict(job.defaults)
     for name in job.names:
-        default = base.parameters[name]
-        data[name] = [values.get(name, default) for values in chosen]
-    figures = text_figures(plan.model)
-    kinds = {name: "text" if name in TEXT_COLUMNS else value_kind(data[name])
-             if name in figures and name not in job.names else "number" for name in columns}
+        default = defaults[name] if name in defaults else base.parameters[name]
+        if name in job.options:
+            data[name] = [shown(values[name]) if name in values else default
+                          for values in chosen]
+        else:
+            data[name] = [values.get(name, default) for values in chosen]
+    figures = job.figures or text_figures(plan.model)
+    kinds = {name: "text" if name in TEXT_COLUMNS or name in job.text_options
+             else value_kind(data[name]) if name in figures and name not in job.names
+             else "number" for name in columns}
     csv_text, xml_text = block_texts(columns, kinds, data, first + 1, len(variants))
     own = tuple((name, kinds[name]) for name in columns if name in figures
                 and name not in job.names and name not in TEXT_COLUMNS)

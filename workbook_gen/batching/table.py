@@ -1,10 +1,14 @@
 """The summary table: one row per variant, the columns SPEC section 11 lists.
 
-``variant``, ``file``, ``status``, the varied parameters, then for each output
+``variant``, ``file``, ``status``, the varied parameters and options (an option
+that takes texts or true/false is a text column), then for each output
 ``<q>_min``, ``<q>_min_at``, ``<q>_max``, ``<q>_max_at``, the template's
 classification (spans over the sweep, figures from the parameters),
 ``rows_not_assembled`` and ``audit``.  Numbers are floats, NaN or None where there
-is none (a refused variant, a figure whose formula is an error).
+is none (a refused variant, a figure whose formula is an error).  Varied options may
+change which quantities a variant has (``balance`` adds the counterweights' columns):
+the columns are those of every option combination, in order, and a variant has no
+value in the columns its combination lacks.
 """
 
 from __future__ import annotations
@@ -12,37 +16,63 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from typing import Mapping, Sequence
+from typing import Iterable, Mapping, Sequence
 
 from ..model import Model
 from .blocktext import TEXT_COLUMNS, value_kind
-from .rows import text_figures, value_columns
+from .rows import column_units, header, text_figures, value_columns
+from .specs import shown
 from .variants import Design, Variant
+
+
+def merged_columns(models: Iterable[Model]) -> list[str]:
+    """The value columns of every model, each once: the first model's in order, then
+    each column another model adds, after the column it follows there."""
+    merged: list[str] = []
+    for model in models:
+        before = None
+        for name in value_columns(model):
+            if name not in merged:
+                merged.insert(0 if before is None else merged.index(before) + 1, name)
+            before = name
+    return merged
 
 
 @dataclass
 class Table:
     design: Design
     model: Model
-    defaults: Mapping[str, float]     # the scene's parameters (with --set)
+    defaults: Mapping[str, object]    # the scene's parameters and options (with --set)
     data: dict[str, list[object]] = field(default_factory=dict)
+    others: Sequence[Model] = ()      # the models of the other option combinations
 
     def __post_init__(self) -> None:
         size = len(self.design)
+        models = [self.model, *self.others]
+        self.values = merged_columns(models) if self.others else value_columns(self.model)
         self.columns = (["variant", "file", "status"] + list(self.design.names)
-                        + value_columns(self.model) + ["audit"])
+                        + self.values + ["audit"])
+        self.units: dict[str, str] = {}
+        for model in reversed(models):  # a column's unit from the first model having it
+            self.units.update(column_units(model, self.design.names))
+        self.headers = [header(name, self.units) for name in self.columns]
         self.data = {name: [None] * size for name in self.columns}
         self.data["variant"] = [v.label for v in self.design.variants]
         varied = {name: self.data[name] for name in self.design.names}
         for name, column in varied.items():
-            column[:] = [self.defaults[name]] * size
+            column[:] = [shown(self.defaults[name])] * size
+        options = set(self.design.options)
         for i, variant in enumerate(self.design.variants):
             for name, value in variant.values:  # the last of a name given twice wins
                 if name in varied:
-                    varied[name][i] = value
+                    varied[name][i] = shown(value) if name in options else value
         self._filled = [False] * size
         self._kinds: dict[str, str] = {}
-        self._figures = text_figures(self.model)
+        self.figures = self._figures = set().union(*map(text_figures, models))
+        self.defaults_shown = {name: shown(self.defaults[name]) for name in self.design.names}
+        self.text_options = frozenset(  # int options are numbers
+            name for name in options if not isinstance(self.defaults[name], int)
+            or isinstance(self.defaults[name], bool))
 
     def put(self, variant: Variant, row: Mapping[str, object]) -> None:
         i = variant.index - 1
@@ -75,7 +105,7 @@ class Table:
         return kind
 
     def _kind(self, name: str) -> str:
-        if name in TEXT_COLUMNS:
+        if name in TEXT_COLUMNS or name in self.text_options:
             return "text"
         if name in self.design.names or name not in self._figures:
             return "number"
@@ -105,6 +135,7 @@ class Table:
             else:
                 out[name] = values
         frame = pd.DataFrame(out, columns=self.columns)
+        frame.attrs["units"] = dict(self.units)
         if "rows_not_assembled" in frame:
             frame["rows_not_assembled"] = frame["rows_not_assembled"].astype("Int64")
         return frame

@@ -5,30 +5,32 @@ one-line message naming the spec and what to fix (the command line exits 2).
 
 - ``NAME=START:STOP:STEP``: a grid, start to stop inclusive (stop kept when it lies on
   the grid to 1e-9 relative);
-- ``NAME=V1,V2,...``: a list;
+- ``NAME=V1,V2,...``: a list (numbers, or a template option's values:
+  ``branch=open,crossed``);
 - several of those: the full factorial in the order given, the last varying fastest;
 - ``NAME=normal:MEAN:SD`` / ``NAME=uniform:LO:HI`` with ``samples`` and ``seed``: random
   variants from numpy's ``default_rng(seed)``, drawn spec by spec in the order given;
-- a design file (CSV or xlsx, first sheet): one variant per row, the header names the
-  parameters, an optional ``variant`` column names the rows, an empty cell keeps the
-  scene's value.
+- a design file (CSV with ``,`` or ``;``, or xlsx, first sheet): one variant per row,
+  the header names the parameters and options, an optional ``variant`` column names
+  the rows, an empty cell keeps the scene's value.
 """
 
 from __future__ import annotations
 
-import csv
 import itertools
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import NamedTuple, Sequence
+from typing import Mapping, NamedTuple, Sequence
 
 import numpy as np
 
 from ..errors import SceneError
+from ..mechanisms.base import OptionSpec
+from .designfile import decimal_comma, design_rows
+from .specs import MAX_VARIANTS, option_value, specs_of
 
-# One row per variant on the summary's Variants sheet: Excel's rows less the header.
-MAX_VARIANTS = 1_048_575
+MAX_CELL_TEXT = 32_767  # characters (UTF-16 code units) an Excel cell holds
 
 
 class Variant(NamedTuple):
@@ -37,7 +39,8 @@ class Variant(NamedTuple):
 
     index: int                      # 1-based, the file number
     label: str                      # the summary's ``variant`` column
-    values: tuple[tuple[str, float], ...]  # the overrides, in --vary / design column order
+    values: tuple[tuple[str, object], ...]  # the overrides, in --vary / design column order
+    #                                         (a parameter's float, an option's value)
 
 
 @dataclass(frozen=True)
@@ -47,114 +50,68 @@ class Design:
     names: tuple[str, ...]
     variants: tuple[Variant, ...]
     kind: str                       # "grid" (grids and lists), "random" or "design"
-    levels: tuple[tuple[float, ...], ...] = ()   # grid: the values of each name, in order
+    levels: tuple[tuple[object, ...], ...] = ()  # grid: the values of each name, in order
+    options: tuple[str, ...] = ()   # which of ``names`` are template options
 
     def __len__(self) -> int:
         return len(self.variants)
 
 
-@dataclass(frozen=True)
-class _Spec:
-    name: str
-    kind: str                       # "grid" | "list" | "normal" | "uniform"
-    numbers: tuple[float, ...]
-    text: str
+def flag(name: str, cli: bool) -> str:
+    """How a message names an input: ``--samples`` on the command line, ``samples`` in
+    Python."""
+    return f"--{name}" if cli else name
 
 
-def _number(spec: str, text: str, what: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise SceneError(f"--vary {spec!r}: {what} {text.strip()!r} is not a number") from None
-    if not math.isfinite(value):
-        raise SceneError(f"--vary {spec!r}: {what} must be finite, got {text.strip()!r}")
-    return value
-
-
-def parse_vary(text: str) -> _Spec:
-    name, sep, body = text.partition("=")
-    name, body = name.strip(), body.strip()
-    if not sep or not name or not body:
-        raise SceneError(f"--vary {text!r}: expected NAME=START:STOP:STEP, NAME=V1,V2,... "
-                         f"or NAME=normal:MEAN:SD | uniform:LO:HI")
-    head, _, rest = body.partition(":")
-    if head.strip().lower() in ("normal", "uniform"):
-        kind = head.strip().lower()
-        parts = rest.split(":")
-        labels = ("MEAN", "SD") if kind == "normal" else ("LO", "HI")
-        if len(parts) != 2:
-            raise SceneError(f"--vary {text!r}: expected {name}={kind}:{labels[0]}:{labels[1]}")
-        a, b = (_number(text, p, label) for p, label in zip(parts, labels))
-        if kind == "normal" and b <= 0:
-            raise SceneError(f"--vary {text!r}: SD must be > 0, got {parts[1].strip()}")
-        if kind == "uniform" and not a < b:
-            raise SceneError(f"--vary {text!r}: LO must be < HI, got {parts[0].strip()} and "
-                             f"{parts[1].strip()}")
-        return _Spec(name, kind, (a, b), text)
-    if ":" in body:
-        parts = body.split(":")
-        if len(parts) != 3:
-            raise SceneError(f"--vary {text!r}: a grid is {name}=START:STOP:STEP")
-        start, stop, step = (_number(text, p, w) for p, w in zip(parts, ("START", "STOP", "STEP")))
-        if step == 0:
-            raise SceneError(f"--vary {text!r}: STEP must not be 0")
-        if (stop - start) * step < 0:
-            raise SceneError(f"--vary {text!r}: STEP {parts[2].strip()} never reaches STOP "
-                             f"{parts[1].strip()} from START {parts[0].strip()}")
-        return _Spec(name, "grid", _grid(text, start, stop, step), text)
-    values = tuple(_number(text, p, "value") for p in body.split(","))
-    if len(set(values)) != len(values):
-        raise SceneError(f"--vary {text!r}: a value is listed twice")
-    return _Spec(name, "list", values, text)
-
-
-def _grid(text: str, start: float, stop: float, step: float) -> tuple[float, ...]:
-    span = (stop - start) / step
-    count = int(math.floor(span + 1e-9)) + 1
-    if count > MAX_VARIANTS:
-        raise SceneError(f"--vary {text!r}: {count:,} values, more than {MAX_VARIANTS:,}")
-    # Free of accumulated rounding (95.5, not 95.50000000000001): as many decimals as
-    # the step needs, and ten more.
-    decimals = 10 - int(math.floor(math.log10(abs(step))))
-    values = [round(start + i * step, decimals) for i in range(count)]
-    if abs(values[-1] - stop) <= 1e-9 * max(abs(stop), abs(step)):
-        values[-1] = stop
-    return tuple(values)
-
-
-def _check_names(names: Sequence[str], parameters: Sequence[str], sets: Sequence[str],
-                 where: str) -> None:
+def _check_names(names: Sequence[str], parameters: Sequence[str], options: Sequence[str],
+                 sets: Sequence[str], where, cli: bool) -> None:
+    """``where(name)``: how a message names the column or spec."""
     seen = set()
     for name in names:
-        if name not in parameters:
-            raise SceneError(f"{where} {name!r}: not a parameter of this scene's template "
-                             f"(known: {', '.join(parameters)})")
+        if name not in parameters and name not in options:
+            known = ", ".join(parameters) + (f"; options: {', '.join(options)}" if options
+                                             else "")
+            raise SceneError(f"{where(name)}: not a parameter{' or option' if options else ''}"
+                             f" of this scene's template (known: {known})")
         if name in seen:
-            raise SceneError(f"{where} {name!r}: varied twice")
+            raise SceneError(f"{where(name)}: varied twice")
         if name in sets:
-            raise SceneError(f"{where} {name!r}: also given with --set; vary it or set it, "
-                             f"not both")
+            raise SceneError(f"{where(name)}: also given with {flag('set', cli)}; vary it or "
+                             f"set it, not both")
         seen.add(name)
 
 
-def from_specs(texts: Sequence[str], parameters: Sequence[str], sets: Sequence[str] = (),
-               samples: int | None = None, seed: int | None = None) -> Design:
-    """The variants of ``--vary`` specs (grid/list factorial, or random samples)."""
-    specs = [parse_vary(t) for t in texts]
-    _check_names([s.name for s in specs], parameters, sets, "--vary")
+def from_specs(texts: Sequence[str] | Mapping[str, object], parameters: Sequence[str],
+               sets: Sequence[str] = (), samples: int | None = None, seed: int | None = None,
+               options: Sequence[OptionSpec] = (), cli: bool = True) -> Design:
+    """The variants of ``--vary`` specs (grid/list factorial, or random samples);
+    ``texts`` as ``batch()``'s ``vary`` takes it (``specs.specs_of``); ``options`` the
+    template's, which may be varied too; ``cli``: messages name the command line's
+    flags, else ``batch()``'s arguments."""
+    by_name = {o.name: o for o in options}
+    specs = specs_of(texts, by_name, cli)
+    listed = (lambda name: f"--vary {name!r}") if cli else (lambda name: f"vary[{name!r}]")
+    _check_names([s.name for s in specs], parameters, list(by_name), sets, listed, cli)
     random = [s for s in specs if s.kind in ("normal", "uniform")]
     names = tuple(s.name for s in specs)
+    varied_options = tuple(n for n in names if n in by_name)
+    samples_flag = flag("samples", cli) + (" N" if cli else "")
     if random:
         if len(random) != len(specs):
             fixed = next(s for s in specs if s not in random)
-            raise SceneError(f"--vary {fixed.text!r}: random specs (normal:, uniform:) cannot "
+            if fixed.name in by_name:
+                raise SceneError(f"{fixed.text}: an option cannot be varied in a random study "
+                                 f"(normal:, uniform:); run one batch per value with "
+                                 f"{flag('set', cli)} {fixed.name}=VALUE")
+            raise SceneError(f"{fixed.text}: random specs (normal:, uniform:) cannot "
                              f"be mixed with grids or lists; give every varied parameter a "
                              f"distribution")
         if samples is None:
-            raise SceneError(f"--vary {random[0].text!r}: a random spec needs --samples N "
-                             f"(and --seed S to choose the draw)")
-        if not 1 <= samples <= MAX_VARIANTS:
-            raise SceneError(f"--samples must be 1..{MAX_VARIANTS:,}, got {samples}")
+            raise SceneError(f"{random[0].text}: a random spec needs {samples_flag} "
+                             f"(and {flag('seed', cli)}{' S' if cli else ''} to choose the draw)")
+        if isinstance(samples, bool) or not isinstance(samples, int) or not (
+                1 <= samples <= MAX_VARIANTS):
+            raise SceneError(f"{flag('samples', cli)} must be 1..{MAX_VARIANTS:,}, got {samples}")
         rng = np.random.default_rng(0 if seed is None else seed)
         columns = []
         for s in specs:
@@ -165,89 +122,84 @@ def from_specs(texts: Sequence[str], parameters: Sequence[str], sets: Sequence[s
                          for i, row in enumerate(zip(*columns)))
         return Design(names, variants, "random")
     if samples is not None or seed is not None:
-        raise SceneError("--samples and --seed go with a random spec "
-                         "(--vary NAME=normal:MEAN:SD or NAME=uniform:LO:HI)")
+        raise SceneError(f"{flag('samples', cli)} and {flag('seed', cli)} go with a random spec "
+                         + ("(--vary NAME=normal:MEAN:SD or NAME=uniform:LO:HI)" if cli else
+                            "(vary={NAME: 'normal:MEAN:SD'} or 'uniform:LO:HI')"))
     if not specs:
-        raise SceneError("nothing to vary: give --vary NAME=SPEC (repeatable) or --design FILE")
+        raise SceneError("nothing to vary: give --vary NAME=SPEC (repeatable) or --design FILE"
+                         if cli else "nothing to vary: give vary={NAME: values} or design=FILE")
     levels = tuple(s.numbers for s in specs)
     count = math.prod(len(v) for v in levels)
     if count > MAX_VARIANTS:
-        raise SceneError(f"--vary: {count:,} variants in the full factorial, more than "
-                         f"{MAX_VARIANTS:,}")
+        raise SceneError(f"{flag('vary', cli)}: {count:,} variants in the full factorial, more "
+                         f"than {MAX_VARIANTS:,}")
     variants = tuple(Variant(i + 1, str(i + 1), tuple(zip(names, row)))
                      for i, row in enumerate(itertools.product(*levels)))
-    return Design(names, variants, "grid", levels)
-
-
-def _design_rows(path: Path) -> list[list[object]]:
-    suffix = path.suffix.lower()
-    try:
-        if suffix == ".csv":
-            with path.open(newline="", encoding="utf-8-sig") as handle:
-                return [row for row in csv.reader(handle)]
-        if suffix in (".xlsx", ".xlsm"):
-            import openpyxl
-            book = openpyxl.load_workbook(path, read_only=True, data_only=True)
-            try:
-                sheet = book.worksheets[0]
-                return [list(row) for row in sheet.iter_rows(values_only=True)]
-            finally:
-                book.close()
-    except OSError as exc:
-        raise SceneError(f"--design {path}: cannot read: {exc.strerror or exc}") from None
-    except UnicodeDecodeError:
-        raise SceneError(f"--design {path}: not UTF-8 text") from None
-    except Exception as exc:  # openpyxl's many ways of refusing a file
-        raise SceneError(f"--design {path}: not a readable xlsx file ({exc})") from None
-    raise SceneError(f"--design {path}: expected a .csv or .xlsx file")
+    return Design(names, variants, "grid", levels, varied_options)
 
 
 def _blank(value: object) -> bool:
     return value is None or (isinstance(value, str) and not value.strip())
 
 
-def from_design(path: str | Path, parameters: Sequence[str], sets: Sequence[str] = ()) -> Design:
-    """One variant per row of a CSV or xlsx design table."""
+def _cell_value(where: str, cell: object, option: OptionSpec | None, comma: bool) -> object:
+    """A design cell as a parameter's float or an option's value."""
+    if option is not None:
+        return option_value(where, option, cell)
+    if isinstance(cell, bool) or not isinstance(cell, (int, float, str)):
+        raise SceneError(f"{where}: not a number: {cell!r}")
+    text = decimal_comma(cell) if comma else cell
+    try:
+        value = float(text)
+    except ValueError:
+        raise SceneError(f"{where}: not a number: {cell!r}") from None
+    if not math.isfinite(value):
+        raise SceneError(f"{where}: must be finite, got {cell!r}")
+    return value
+
+
+def from_design(path: str | Path, parameters: Sequence[str], sets: Sequence[str] = (),
+                options: Sequence[OptionSpec] = (), cli: bool = True) -> Design:
+    """One variant per row of a CSV (``,`` or ``;``) or xlsx design table."""
     path = Path(path)
-    rows = [row for row in _design_rows(path) if not all(_blank(v) for v in row)]
+    by_name = {o.name: o for o in options}
+    where = f"{flag('design', cli)} {path}"
+    rows, comma = design_rows(path, where)
+    rows = [row for row in rows if not all(_blank(v) for v in row)]
     if not rows:
-        raise SceneError(f"--design {path}: empty; the first row names the parameters")
+        raise SceneError(f"{where}: empty; the first row names the parameters")
     header = [str(h).strip() if not _blank(h) else "" for h in rows[0]]
     while header and not header[-1]:
         header.pop()
     if "" in header:
-        raise SceneError(f"--design {path}: column {header.index('') + 1} of the header is empty")
+        raise SceneError(f"{where}: column {header.index('') + 1} of the header is empty")
     label_col = header.index("variant") if "variant" in header else None
     names = [h for h in header if h != "variant"]
     if header.count("variant") > 1:
-        raise SceneError(f"--design {path}: two 'variant' columns")
+        raise SceneError(f"{where}: two 'variant' columns")
     if not names:
-        raise SceneError(f"--design {path}: the header names no parameter")
-    _check_names(names, parameters, sets, f"--design {path}: column")
+        raise SceneError(f"{where}: the header names no parameter")
+    _check_names(names, parameters, list(by_name), sets,
+                 lambda name: f"{where}: column {name!r}", cli)
     if len(rows) - 1 > MAX_VARIANTS:
-        raise SceneError(f"--design {path}: {len(rows) - 1:,} rows, more than {MAX_VARIANTS:,}")
+        raise SceneError(f"{where}: {len(rows) - 1:,} rows, more than {MAX_VARIANTS:,}")
     variants = []
     for r, row in enumerate(rows[1:], start=2):
         row = list(row) + [None] * (len(header) - len(row))
         if any(not _blank(v) for v in row[len(header):]):
-            raise SceneError(f"--design {path}: row {r} has more cells than the header")
+            raise SceneError(f"{where}: row {r} has more cells than the header")
         values = []
         for c, name in enumerate(header):
             cell = row[c]
             if c == label_col or _blank(cell):
                 continue
-            if isinstance(cell, bool) or not isinstance(cell, (int, float, str)):
-                raise SceneError(f"--design {path}: row {r}, {name}: not a number: {cell!r}")
-            try:
-                value = float(cell)
-            except ValueError:
-                raise SceneError(f"--design {path}: row {r}, {name}: not a number: "
-                                 f"{cell!r}") from None
-            if not math.isfinite(value):
-                raise SceneError(f"--design {path}: row {r}, {name}: must be finite, "
-                                 f"got {cell!r}")
-            values.append((name, value))
+            values.append((name, _cell_value(f"{where}: row {r}, {name}", cell,
+                                             by_name.get(name), comma)))
         label = str(row[label_col]).strip() if label_col is not None and not _blank(
             row[label_col]) else str(r - 1)
+        if len(label.encode("utf-16-le")) // 2 > MAX_CELL_TEXT:
+            raise SceneError(f"{where}: row {r}, variant: a name of {len(label):,} "
+                             f"characters, more than the {MAX_CELL_TEXT:,} an Excel cell holds")
         variants.append(Variant(r - 1, label, tuple(values)))
-    return Design(tuple(names), tuple(variants), "design")
+    return Design(tuple(names), tuple(variants), "design",
+                  options=tuple(n for n in names if n in by_name))

@@ -20,7 +20,7 @@ from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.formula import ast
 from workbook_gen.formula.functions import Unanswered
 from workbook_gen.formula.parser import parse
-from workbook_gen.formula.printer import column_letters
+from workbook_gen.cellref import column_letters
 from workbook_gen.formula.values import Range
 
 _BOOK = re.compile(r"\[(\d+)\](.*)", re.S)

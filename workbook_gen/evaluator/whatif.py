@@ -31,7 +31,7 @@ from dataclasses import dataclass
 from workbook_gen.evaluator.store import SheetResolver, value_scale
 from workbook_gen.formula import ast
 from workbook_gen.formula.functions import Unanswered
-from workbook_gen.formula.printer import column_letters
+from workbook_gen.cellref import column_letters
 from workbook_gen.formula.scalar import evaluate, unsupported_functions
 from workbook_gen.formula.tokenizer import CELL_PARTS, column_number
 from workbook_gen.formula.values import Range

@@ -161,7 +161,8 @@ class ArrayEvaluator(Evaluator):
                 return a if flag else b
             if not (_multi(cond) or _multi(then) or _multi(other)):
                 return pick(xv.scalar_of(cond), xv.scalar_of(then), xv.scalar_of(other))
-            return _broadcast(pick, [cond, then, other])
+            fast = _picked(cond, then, other)
+            return fast if fast is not None else _broadcast(pick, [cond, then, other])
         if len(args) != 2:
             return ExcelError.VALUE
         value, fallback = self.arg(args[0]), self.arg(args[1])
@@ -173,6 +174,25 @@ class ArrayEvaluator(Evaluator):
         if not (_multi(value) or _multi(fallback)):
             return choose(xv.scalar_of(value), xv.scalar_of(fallback))
         return _broadcast(choose, [value, fallback])
+
+
+def _picked(cond, then, other):
+    """IF over an array of booleans (a comparison's result, ``IF(C2:C9="ok", F2:F9)``)
+    with branches that are arrays of its shape or single values: what ``_broadcast``
+    gives, row by row without its per-element calls; None for anything else."""
+    if not (isinstance(cond, Range) and _multi(cond)):
+        return None
+    shape = cond.shape
+    if shape[0] * shape[1] > MAX_ELEMENTS or any(
+            isinstance(b, Range) and b.shape != shape for b in (then, other)):
+        return None
+    if any(type(flag) is not bool for row in cond.rows for flag in row):
+        return None
+    cols = shape[1]
+    then_rows = then.rows if isinstance(then, Range) else [(then,) * cols] * shape[0]
+    other_rows = other.rows if isinstance(other, Range) else [(other,) * cols] * shape[0]
+    return Range.array_of([[a if flag else b for flag, a, b in zip(flags, yes, no)]
+                           for flags, yes, no in zip(cond.rows, then_rows, other_rows)])
 
 
 def evaluate_array(node: ast.Node, resolver, dialect: str, cell) -> object:

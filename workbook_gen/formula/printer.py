@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import re
 
+from workbook_gen.cellref import column_letters  # noqa: F401  (part of this module's face)
 from workbook_gen.formula import ast
 from workbook_gen.formula.ast import INFIX_POWER as _INFIX_POWER
 from workbook_gen.formula.ast import PERCENT_POWER as _PERCENT_POWER
@@ -21,15 +22,6 @@ from workbook_gen.formula.ast import PREFIX_POWER as _PREFIX_POWER
 _PLAIN_SHEET = re.compile(r"[^\x00-@\[-^`{-\xa0\U00010000-\U0010ffff]"
                           r"[^\x00-\-/:-@\[-^`{-\xa0\U00010000-\U0010ffff]*")
 _R1C1_LIKE = re.compile(r"(?:R[0-9]*)?(?:C[0-9]*)?", re.IGNORECASE)
-
-
-def column_letters(col: int) -> str:
-    """1 -> ``A``, 16384 -> ``XFD``."""
-    letters = ""
-    while col > 0:
-        col, rem = divmod(col - 1, 26)
-        letters = chr(65 + rem) + letters
-    return letters
 
 
 def quote_sheet(sheet: str) -> str:

@@ -13,6 +13,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
+from workbook_gen.cellref import column_number  # noqa: F401  (part of this module's face)
 from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.xlerror import ExcelError
 
@@ -77,14 +78,6 @@ _WSPACE_RE = re.compile(r"[ \n\r\t]+")
 WHOLE_COL = re.compile(r"(\$?)([A-Za-z]{1,3})")
 WHOLE_ROW = re.compile(r"(\$?)([0-9]{1,7})")
 CELL_PARTS = re.compile(r"(\$?)([A-Za-z]{1,3})(\$?)([0-9]+)")
-
-
-def column_number(letters: str) -> int:
-    """``A`` -> 1, ``XFD`` -> 16384."""
-    number = 0
-    for ch in letters.upper():
-        number = number * 26 + ord(ch) - 64
-    return number
 
 
 def is_cell_ref(text: str) -> bool:

@@ -80,6 +80,16 @@ PARAMETERS = (
     ParamSpec("phi_hi", 4.64, "rad", "halving bracket, upper end"),
 )
 
+#: s_BC within this fraction of AC + AB of an assembly limit |AC - AB| or AC + AB is a
+#: dead centre: cross_A vanishes there, and a hair away its Heron factor carries the
+#: rounding of the irrational AC and AB amplified by (AC + AB) / (distance to the limit).
+DEAD_CENTRE_FRACTION = 1e-7
+NEAR_LIMIT = le(min_(s - abs_(r_len - a_len), r_len + a_len - s),
+                DEAD_CENTRE_FRACTION * (r_len + a_len))
+# the rates divide by cross_A, made 0 at a dead centre: #DIV/0!, not a huge number
+# (0 * cross_A: still #NUM! beyond the limits, where the triangle does not close)
+_cross_or_zero = if_(NEAR_LIMIT, 0 * cross_A, cross_A)
+
 Q = Quantity
 _xc, _yc = lever_point(phi_2)
 QUANTITIES = (
@@ -97,8 +107,8 @@ QUANTITIES = (
       "1 where MIN(gamma, pi - gamma) < gamma_min (dead zone), else 0"),
     Q("x_C", "-", _xc, "lever point C, x"),
     Q("y_C", "-", _yc, "lever point C, y"),
-    Q("omega_2", "rad/s", 2 * s * v_s / cross_A, "lever angular velocity"),
-    Q("alpha_2", "rad/s^2", (2 * v_s ** 2 - dot_A * omega_2 ** 2) / cross_A,
+    Q("omega_2", "rad/s", 2 * s * v_s / _cross_or_zero, "lever angular velocity"),
+    Q("alpha_2", "rad/s^2", (2 * v_s ** 2 - dot_A * omega_2 ** 2) / _cross_or_zero,
       "lever angular acceleration"),
     Q("vx_C", "1/s", -omega_2 * (y_C - y_A), "C, x velocity", output=False),
     Q("vy_C", "1/s", omega_2 * (x_C - x_A), "C, y velocity", output=False),
@@ -112,14 +122,6 @@ QUANTITIES = (
       (((x_C - x_B) * ay_C - (y_C - y_B) * ax_C) / s - 2 * v_s * omega_3) / s,
       "cylinder (and piston rod) angular acceleration"),
 )
-
-
-#: s_BC within this fraction of AC + AB of an assembly limit |AC - AB| or AC + AB is a
-#: dead centre: cross_A vanishes there, and a hair away its Heron factor carries the
-#: rounding of the irrational AC and AB amplified by (AC + AB) / (distance to the limit).
-DEAD_CENTRE_FRACTION = 1e-7
-NEAR_LIMIT = le(min_(s - abs_(r_len - a_len), r_len + a_len - s),
-                DEAD_CENTRE_FRACTION * (r_len + a_len))
 
 
 def _row_status(converged: Node | None = None, on_branch: Node | None = None) -> Node:
@@ -171,6 +173,7 @@ def _checks() -> tuple[Check, ...]:
 
 
 _ZERO = Num(0.0)  # fixed pivots: no acceleration
+TRIG_LIMIT = 2.0 ** 27  # Excel's SIN and COS of an argument this large are #NUM!
 
 CHARTS = (
     Chart("Lever angle", "s_BC", ("phi_2",), "phi_2 [rad]"),
@@ -216,6 +219,10 @@ def _validate(p) -> tuple[str, str] | None:
         return ("x_B", "the cylinder pivot B must not coincide with the lever pivot A")
     if not p["phi_hi"] > p["phi_lo"]:
         return ("phi_hi", f"must be > phi_lo = {p['phi_lo']:g}")
+    for key in ("phi_lo", "phi_hi"):   # the halving takes COS and SIN of the bracket
+        if abs(p[key]) >= TRIG_LIMIT:
+            return (key, f"must be smaller than 2^27 = {TRIG_LIMIT:.0f} rad in magnitude "
+                         "(Excel's SIN and COS give #NUM! from there)")
     return None
 
 
@@ -232,7 +239,7 @@ TEMPLATE = Template(
     description="Lever about A driven by a cylinder about B whose rod sets BC = s_BC; "
                 "closed form against successive halving.",
     input=InputSpec("s_BC", "-", "cylinder length BC (relative to its minimum length)",
-                    start=1.0, stop=1.687, step=0.0687),
+                    start=1.0, stop=1.687, step=0.0687, positive=True),
     parameters=PARAMETERS,
     quantities=QUANTITIES,
     status=_row_status(),

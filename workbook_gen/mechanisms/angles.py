@@ -15,7 +15,7 @@ repeating the reduction; the functions below take that reduced angle u.
 
 from __future__ import annotations
 
-from ..expr import Node, Var, abs_, if_, le, gt, mod, radians, sign, sin
+from ..expr import Node, Var, abs_, eq, if_, le, gt, mod, radians, sign, sin
 from .base import Quantity
 
 
@@ -50,3 +50,15 @@ def sin_half_squared(u: Node) -> Node:
 def cos_half_squared(u: Node) -> Node:
     """cos^2(u/2) for u (deg) in [-180, 180], accurate near u = +-180."""
     return sin(radians(abs_(u) - 180) / 2) ** 2
+
+
+def sin_half_squared_90(u: Node) -> Node:
+    """sin^2(u/2) for u in [-180, 180] (deg), accurate near u = 0 and exactly 1/2 at
+    u = +-90 (SIN(RADIANS(45))^2 is 0.4999999999999999): a four-bar whose loop closes
+    exactly at a crank angle of 90 or 270 deg is then exactly at its toggle there."""
+    return if_(eq(abs_(u), 90), 0.5, sin_half_squared(u))
+
+
+def cos_half_squared_90(u: Node) -> Node:
+    """cos^2(u/2) for u in [-180, 180] (deg), accurate near u = +-180, exactly 1/2 at +-90."""
+    return if_(eq(abs_(u), 90), 0.5, cos_half_squared(u))

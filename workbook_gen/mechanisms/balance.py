@@ -29,7 +29,7 @@ from typing import Mapping
 
 from ..errors import SceneError
 from ..expr import Node, Param, atan2, degrees, eq, if_, sqrt, wrap
-from .base import Derived, Mass, ParamSpec, Template
+from .base import Derived, Mass, ParamSpec, PointMass, Template
 
 _LINKS = ("crank", "coupler", "rocker")
 _LENGTHS = ("l_O1A", "l_AB", "l_O2B")
@@ -59,8 +59,6 @@ def counterweights(template: Template, masses: Mapping[str, Mass]):
     """(parameters, point masses, derived values) of the balancing counterweights: the
     radius is a parameter; mass, angle and position are derived values, live formulas
     on the Parameters sheet that the counterweight's columns refer to by name."""
-    from .dynamics import PointMass  # dynamics imports this module lazily: no cycle
-
     links = {link.name: link for link in template.links}
     params = {p.name: p for p in template.parameters}
     if not set(_LINKS) <= set(links) or not set(_LENGTHS) <= set(params):

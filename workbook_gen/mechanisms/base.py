@@ -30,6 +30,7 @@ class InputSpec:
     start: float = 0.0
     stop: float = 360.0
     step: float = 10.0
+    positive: bool = False   # a length: the sweep must start above 0
 
 
 @dataclass(frozen=True)
@@ -170,6 +171,18 @@ class Mass:
     m: float
     u: float
     v: float
+
+
+@dataclass(frozen=True)
+class PointMass:
+    """A mass carried by a link: ``m`` (kg) at (``u``, ``v``) in the link's frame, all trees."""
+
+    label: str      # column suffix: the link's name, or cw_crank for a counterweight
+    link: Link
+    m: Node
+    u: Node
+    v: Node
+    description: str
 
 
 @dataclass(frozen=True)

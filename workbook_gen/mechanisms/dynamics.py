@@ -29,19 +29,9 @@ from typing import Mapping
 
 from ..errors import SceneError
 from ..expr import Neg, Node, Num, Param, Var, abs_, cos, eq, if_, sin, sqrt, wrap
-from .base import Chart, Check, Derived, Figure, Link, Mass, ParamSpec, Quantity, Span, Template
-
-
-@dataclass(frozen=True)
-class PointMass:
-    """A mass carried by a link: ``m`` (kg) at (``u``, ``v``) in the link's frame, all trees."""
-
-    label: str      # column suffix: the link's name, or cw_crank for a counterweight
-    link: Link
-    m: Node
-    u: Node
-    v: Node
-    description: str
+from .balance import counterweights
+from .base import (Chart, Check, Derived, Figure, Link, Mass, ParamSpec, PointMass, Quantity, Span,
+                   Template)
 
 
 def point_trees(link: Link, u: Node, v: Node) -> tuple[Node, Node, Node, Node]:
@@ -176,7 +166,6 @@ def add_dynamics(template: Template, masses: Mapping[str, Mass],
               for link in template.links if link.name in masses]
     derived: tuple[Derived, ...] = ()
     if options.get("balance"):
-        from .balance import counterweights
         extra_params, extra_points, derived = counterweights(template, masses)
         params += extra_params
         points += extra_points

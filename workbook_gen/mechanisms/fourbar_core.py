@@ -35,8 +35,9 @@ mu = ATAN2(|b.c|, |b x c|).
 from __future__ import annotations
 
 from ..expr import (Node, abs_, and_, atan2, cos, degrees, eq, if_, iserror, le, lt, max_,
-                    min_, pi, radians, root, sin, sqrt, wrap)
-from .angles import cos_deg, cos_half_squared, reduced_input, sin_deg, sin_half_squared
+                    min_, or_, pi, radians, root, sin, sqrt, wrap)
+from .angles import (cos_deg, cos_half_squared_90, reduced, reduced_input, sin_deg,
+                     sin_half_squared_90)
 from .base import (Chart, Check, Figure, Link, ParamSpec, Quantity, only_if, quantity_vars,
                    speed_scale, symbols)
 
@@ -100,6 +101,42 @@ def _dot(u: tuple[Node, Node], w: tuple[Node, Node]) -> Node:
     return u[0] * w[0] + u[1] * w[1]
 
 
+#: Rows whose rates carry more than about this relative rounding are at a toggle.
+TOGGLE_LOSS = 1e-10
+_EPS = 2.0 ** -52
+
+
+def _rounded_toggle() -> Node:
+    """True where the rates' rounding exceeds TOGGLE_LOSS: coupler and rocker in line to
+    rounding away from a change point.  h_B^2 = far near / (4 d^2) comes from the factors
+    far = p^2 - d^2 and near = d^2 - q^2 formed with 4 g a cos^2(theta_2/2) and
+    4 g a sin^2(theta_2/2), whose rounding (eps times at most 2 g (a + x_A), resp.
+    2 g (a - x_A), beyond the factor itself) makes h_B, and with it every rate, off by
+    eps g ((a - x_A) far + (a + x_A) near) / (2 d^2 h_B^2) relative; far and near are only
+    weighed here, so their plain forms serve.  At a change point both terms vanish like
+    h_B^2 (the ratio y_A / h_B stays finite): not flagged by this, but by TOGGLE_FRACTION."""
+    p2, q2, d2 = (l_AB + l_O2B) ** 2, (l_AB - l_O2B) ** 2, d_AO2 ** 2
+    weight = l_O1O2 * ((l_O1A - x_A) * abs_(p2 - d2) + (l_O1A + x_A) * abs_(d2 - q2))
+    return lt(2 * TOGGLE_LOSS / _EPS * d2 * h_B ** 2, weight)
+
+
+_ROUNDED_TOGGLE = _rounded_toggle()
+#: Rows with B within this fraction of l_AB + l_O2B of the line A->O2 are flagged
+#: "toggle": the rates there are singular (b x c = 0) or, a hair away from a change
+#: point, their accelerations carry rounding amplified by (l_AB + l_O2B) / h_B (1e-4:
+#: the closure of the accelerations stays within 1e-10 outside it, docs/stability.md).
+TOGGLE_FRACTION = 1e-4
+_TOGGLE = or_(le(h_B, TOGGLE_FRACTION * (l_AB + l_O2B)), _ROUNDED_TOGGLE)
+
+
+def _coupler_direction() -> tuple[Node, Node]:
+    """COS and SIN of delta_C, the angle first reduced exactly to [-180, 180] deg
+    (angles.reduced; the same value for |delta_C| <= 180): RADIANS of a delta_C of 1e10 deg
+    is off by 2e-8 rad, and SIN of 2^27 rad or more is #NUM! in Excel."""
+    delta = radians(reduced(delta_C))
+    return cos(delta), sin(delta)
+
+
 def quantities(branch: str) -> tuple[Quantity, ...]:
     """The Table columns of a four-bar with coupler point C, for ``branch``."""
     s = 1 if branch == "open" else -1
@@ -117,18 +154,20 @@ def quantities(branch: str) -> tuple[Quantity, ...]:
     # the sums of lengths differenced in sorted pairs (_gap).
     ga4 = 4 * l_O1O2 * l_O1A
     far = (_gap(l_AB, l_O2B, l_O1O2, l_O1A) * (p + l_O1O2 + l_O1A)
-           + ga4 * cos_half_squared(theta_2r))
+           + ga4 * cos_half_squared_90(theta_2r))
     near = (_gap(l_O1O2, l_O2B, l_AB, l_O1A) * _gap(l_O1O2, l_AB, l_O2B, l_O1A)
-            + ga4 * sin_half_squared(theta_2r))
+            + ga4 * sin_half_squared_90(theta_2r))
     # a x e and a.e times d (e the unit vector A->O2): -g y_A and g x_A - a^2; the rates
     # as ratios y_A / h_B, both proportional to theta_2 near a change point
-    lever = l_O1O2 * y_A / h_B
+    # (#DIV/0! where the rates are singular to rounding: a toggle away from a change point)
+    lever = l_O1O2 * y_A / if_(_ROUNDED_TOGGLE, 0, h_B)
     a_e = l_O1O2 * x_A - l_O1A ** 2
 
-    def over_bxc(num: Node) -> Node:          # num / (b x c), b x c = s h d
-        return (num if s > 0 else -num) / (h_B * d_AO2)
+    def over_bxc(num: Node) -> Node:          # num / (b x c), b x c = s h d; #DIV/0! in a
+        # toggle row, where it is singular or (a hair from a change point) rounding noise
+        return (num if s > 0 else -num) / (if_(_TOGGLE, 0, h_B) * d_AO2)
 
-    cd, sd = cos(radians(delta_C)), sin(radians(delta_C))
+    cd, sd = _coupler_direction()
     k = l_AC / l_AB
     px, py = x_C - x_A, y_C - y_A           # C - A
     Q = Quantity
@@ -179,12 +218,7 @@ def quantities(branch: str) -> tuple[Quantity, ...]:
     )
 
 
-#: Rows with B within this fraction of l_AB + l_O2B of the line A->O2 are flagged
-#: "toggle": the rates there are singular (b x c = 0) or, a hair away from a change
-#: point, their accelerations carry rounding amplified by (l_AB + l_O2B) / h_B.
-TOGGLE_FRACTION = 1e-6
-STATUS = if_(iserror(h_B), "cannot assemble",
-             if_(le(h_B, TOGGLE_FRACTION * (l_AB + l_O2B)), "toggle", "ok"))
+STATUS = if_(iserror(h_B), "cannot assemble", if_(_TOGGLE, "toggle", "ok"))
 
 
 def _norm(x: Node, y: Node) -> Node:
@@ -195,8 +229,9 @@ def checks() -> tuple[Check, ...]:
     """Loop closure and the rigid coupler point, rebuilt from theta_2 and the angle columns."""
     t, t3, t4 = radians(theta_2), radians(theta_3), radians(theta_4)
     c2, s2, c3, s3, c4, s4 = cos(t), sin(t), cos(t3), sin(t3), cos(t4), sin(t4)
-    tc = t3 + radians(delta_C)
-    cc, sc = cos(tc), sin(tc)
+    # e(theta_3 + delta_C) by the angle sum, as the Table writes C
+    cd, sd = _coupler_direction()
+    cc, sc = c3 * cd - s3 * sd, s3 * cd + c3 * sd
     w2 = omega_2 ** 2
     loop = (l_O1A * c2 + l_AB * c3 - l_O1O2 - l_O2B * c4, l_O1A * s2 + l_AB * s3 - l_O2B * s4)
     loop_v = (-l_O1A * omega_2 * s2 - l_AB * omega_3 * s3 + l_O2B * omega_4 * s4,

@@ -17,15 +17,15 @@ alpha_2 = (q'' h - q' h') / h^2.
 
 from __future__ import annotations
 
-from ..expr import (Node, abs_, atan2, cos, degrees, eq, gt, if_, iserror, le, radians, root,
-                    sin, sqrt)
+from ..expr import (Node, abs_, atan2, cos, degrees, eq, gt, if_, iserror, le, min_, radians,
+                    root, sin, sqrt)
 from .angles import cos_deg, reduced_input, sin_deg, sin_half_squared
 from .base import Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span, Template
 from .base import only_if, quantity_vars, speed_scale, symbols
 
 l_AB, l_BC, e, phi_slide, omega_1 = symbols("l_AB l_BC e phi_slide omega_1")
-(theta_1, u_B, n_B, h_BC, dh_BC, ddh_BC, s_C, v_C, a_C, theta_2, omega_2,
- alpha_2) = quantity_vars("theta_1 u_B n_B h_BC dh_BC ddh_BC s_C v_C a_C theta_2 omega_2 alpha_2")
+(theta_1, u_B, n_B, f_BC, g_BC, h_BC, dh_BC, ddh_BC, s_C, v_C, a_C, theta_2, omega_2,
+ alpha_2) = quantity_vars("theta_1 u_B n_B f_BC g_BC h_BC dh_BC ddh_BC s_C v_C a_C theta_2 omega_2 alpha_2")
 
 w2 = omega_1 ** 2
 q = e - n_B
@@ -58,10 +58,11 @@ QUANTITIES = (
       output=False),
     Q("n_B", "mm", l_AB * sin_deg(psi), "crank pin across the slide",
       output=False),
-    Q("h_BC", "mm", root(
-        _exact_zero((l_BC - l_AB - e) + 2 * l_AB * sin_half_squared(psi + 90))
-        * _exact_zero((l_BC - l_AB + e) + 2 * l_AB * sin_half_squared(psi - 90))),
-      "rod's projection on the slide", output=False),
+    Q("f_BC", "mm", _exact_zero((l_BC - l_AB - e) + 2 * l_AB * sin_half_squared(psi + 90)),
+      "l_BC - q, first factor of h_BC^2", output=False),
+    Q("g_BC", "mm", _exact_zero((l_BC - l_AB + e) + 2 * l_AB * sin_half_squared(psi - 90)),
+      "l_BC + q, second factor of h_BC^2", output=False),
+    Q("h_BC", "mm", root(f_BC * g_BC), "rod's projection on the slide", output=False),
     Q("dh_BC", "mm/s", omega_1 * u_B * q / h_BC, "rate of h_BC", output=False),
     Q("ddh_BC", "mm/s^2", -(w2 * u_B ** 2 + q * w2 * n_B + dh_BC ** 2) / h_BC,
       "second rate of h_BC", output=False),
@@ -74,7 +75,15 @@ QUANTITIES = (
       "rod angular acceleration"),
 )
 
-STATUS = if_(iserror(h_BC), "cannot assemble", if_(eq(h_BC, 0), "dead centre", "ok"))
+# A row whose reach factor is within NEAR_REACH of the lengths is a dead centre too: the
+# factor's terms cancel there, and their rounding (a few ulps of the lengths, inherent in
+# the sine of a float angle) leaves the rates 8 digits, not 16, 1e-6 deg from a tangent
+# point or with the rod 1e-12 longer than the tangent length (tests/test_extremes_slider.py).
+# Outside the band the rates keep better than 1e-9 of their magnitude.
+NEAR_REACH = 1e-6
+STATUS = if_(iserror(h_BC), "cannot assemble",
+             if_(le(min_(f_BC, g_BC), NEAR_REACH * (l_BC + 3 * l_AB + abs_(e))),
+                 "dead centre", "ok"))
 
 
 def _checks() -> tuple[Check, ...]:

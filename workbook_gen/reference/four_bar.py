@@ -139,6 +139,12 @@ def _polish_toggles(p: Mapping[str, float], t2: Jet, motion: Motion, closure) ->
                 if mpmath.norm(r) < mpmath.mpf(10) ** -45 or mpmath.det(jac) == 0:
                     break
                 th = th - mpmath.lu_solve(jac, r)
+            if mpmath.norm(r) > mpmath.mpf(10) ** -30 * (g + l1 + l3 + l4):
+                # no root at 50 digits: the loop does not close (a hair beyond a toggle,
+                # which the float Newton accepted at its tolerance)
+                motion.assembled[i] = False
+                q[i] = [np.nan, np.nan]
+                continue
             q[i] = [float(th[0]), float(th[1])]
             if abs(mpmath.sin(th[0] - th[1])) < TOGGLE_SINGULAR:
                 motion.singular[i] = True
@@ -174,7 +180,7 @@ def columns(p: Mapping[str, float], loop: Loop) -> dict[str, np.ndarray]:
     l3, g = p["l_AB"], p["l_O1O2"]
     ok, sing = m.assembled, m.singular
     th3, th4 = loop.theta_3, loop.theta_4
-    delta = math.radians(p["delta_C"])
+    delta = math.radians(math.remainder(p["delta_C"], 360.0))
     x_c = x_a + p["l_AC"] * jcos(th3 + delta)
     y_c = y_a + p["l_AC"] * jsin(th3 + delta)
     bx, by = l3 * np.cos(th3.v), l3 * np.sin(th3.v)      # B - A

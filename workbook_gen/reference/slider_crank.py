@@ -58,6 +58,9 @@ def solve(p: Mapping[str, float], theta_1_deg: np.ndarray) -> dict[str, np.ndarr
     aux = {
         "u_B": p["l_AB"] * np.cos(t1 - phi) * assembled,
         "n_B": p["l_AB"] * np.sin(t1 - phi) * assembled,
+        # l_BC -+ q, q = l_BC sin(rel) the rod's reach across the slide: h_BC^2's factors
+        "f_BC": p["l_BC"] * (1.0 - np.sin(rel)),
+        "g_BC": p["l_BC"] * (1.0 + np.sin(rel)),
         "h_BC": p["l_BC"] * np.cos(rel),
         "dh_BC": -p["l_BC"] * np.sin(rel) * w2,
         "ddh_BC": -p["l_BC"] * (np.cos(rel) * w2 ** 2 + np.sin(rel) * a2),

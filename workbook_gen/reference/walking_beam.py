@@ -27,7 +27,7 @@ TAKES_OPTIONS = True
 
 def _copy_and_beam(p: Mapping[str, float]):
     g, l1, l3, l4, l_ac = p["l_O1O2"], p["l_O1A"], p["l_AB"], p["l_O2B"], p["l_AC"]
-    shift, delta = p["l_CD"], math.radians(p["delta_C"])
+    shift, delta = p["l_CD"], math.radians(math.remainder(p["delta_C"], 360.0))
 
     def closure(q, d):
         th3, th4, th7, length = q
@@ -50,7 +50,7 @@ def solve(p: Mapping[str, float], theta_2_deg: np.ndarray,
     t2 = four_bar.crank(p, theta_2_deg)
     loop = four_bar.solve_loop(p, t2, branch)
     out = four_bar.columns(p, loop)
-    delta = math.radians(p["delta_C"])
+    delta = math.radians(math.remainder(p["delta_C"], 360.0))
     x_c = loop.x_a + p["l_AC"] * jcos(loop.theta_3 + delta)
     y_c = loop.y_a + p["l_AC"] * jsin(loop.theta_3 + delta)
 

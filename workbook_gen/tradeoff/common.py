@@ -12,6 +12,7 @@ from typing import Callable
 import mpmath
 import numpy as np
 
+from ..extremes import ok_rows
 from ..tabulate import Evaluated
 from ..scene import Scene
 
@@ -85,10 +86,16 @@ def cost(scene: Scene) -> Cost:
                     scene.sweep.rows, report.ok, time.process_time() - cpu)
 
 
-def floats(result: Evaluated, name: str) -> np.ndarray:
-    """A column as float64, NaN where it holds an Excel error."""
+def floats(result: Evaluated, name: str, ok_only: bool = True) -> np.ndarray:
+    """A column as float64, NaN where it holds an Excel error and, with ``ok_only``, in the
+    rows whose status is not ok: the tradeoff measures what the workbook vouches for, by
+    the Summary's rule (a flagged row, a toggle, a dead centre, a row not converged never
+    sets an extreme nor an error; ``extremes.ok_rows``)."""
     column = result.columns[name]
-    return np.where(column.err != 0, np.nan, column.val.astype(float))
+    bad = column.err != 0
+    if ok_only:
+        bad = bad | ~ok_rows(result.status)
+    return np.where(bad, np.nan, column.val.astype(float))
 
 
 def studied(scene: Scene) -> tuple[str, ...]:

@@ -3,8 +3,13 @@
 from __future__ import annotations
 
 import io
+import re
 import threading
 from functools import partial
+
+import numpy as np
+
+from xlsxwriter.utility import xl_col_to_name
 
 from ..tabulate import Evaluated
 from .layout import A4, CHARTS, FIRST_ROW, TABLE, TableLayout, add_sheet
@@ -28,10 +33,33 @@ _XML: dict[tuple[str, int], str] = {}
 _XML_LIMIT = 512
 
 
-def _assemble_cached(chart, key: str, configure=None) -> None:
-    """``chart._assemble_xml_file()``, from the XML kept for ``key`` and its id;
-    ``configure()`` (the axes, title and legend, which only the XML reads) is called
-    first when the XML must be assembled."""
+# Each series' points, cached in the chart (<c:numCache>) as the cells hold them, so that
+# a viewer that does not calculate (file previews, web viewers) draws the chart.  The XML
+# kept above has none; they are spliced in after each <c:f> range, per workbook.
+_RANGE = re.compile(r"<c:f>([^<]*)</c:f>(?:<c:numCache>.*?</c:numCache>)?</c:numRef>")
+
+
+def _num_cache(values: np.ndarray, errors: np.ndarray) -> str:
+    """A <c:numCache> of the column: a point per number, none where the cell holds an
+    error (as Excel writes it)."""
+    points = "".join(f'<c:pt idx="{i}"><c:v>{v!r}</c:v></c:pt>'
+                     for i, (v, bad) in enumerate(zip(values.tolist(), errors.tolist()))
+                     if not bad)
+    return (f'<c:numCache><c:formatCode>General</c:formatCode>'
+            f'<c:ptCount val="{len(values)}"/>{points}</c:numCache>')
+
+
+def _with_caches(xml: str, caches: dict[str, str]) -> str:
+    def cached(m: re.Match) -> str:
+        found = caches.get(m.group(1))
+        return m.group(0) if found is None else f"<c:f>{m.group(1)}</c:f>{found}</c:numRef>"
+    return _RANGE.sub(cached, xml)
+
+
+def _assemble_cached(chart, key: str, configure=None, caches=None) -> None:
+    """``chart._assemble_xml_file()``, from the XML kept for ``key`` and its id, with the
+    series' ``caches`` spliced in; ``configure()`` (the axes, title and legend, which only
+    the XML reads) is called first when the XML must be assembled."""
     found = _XML.get((key, chart.id))
     if found is None:
         if configure is not None:
@@ -44,7 +72,7 @@ def _assemble_cached(chart, key: str, configure=None) -> None:
         if len(_XML) >= _XML_LIMIT:
             _XML.clear()
         _XML[(key, chart.id)] = found
-    chart.fh.write(found)
+    chart.fh.write(_with_caches(found, caches or {}))
     chart._xml_close()
 
 
@@ -57,9 +85,9 @@ _KEPT = threading.local()
 _KEPT_LIMIT = 256
 
 
-def _kept_chart(workbook, n: int, key: str):
-    """The chart kept for (n, key), added to ``workbook`` as ``add_chart`` adds one, or
-    None."""
+def _kept_chart(workbook, n: int, key: str, caches: dict[str, str]):
+    """The chart kept for (n, key), added to ``workbook`` as ``add_chart`` adds one, with
+    this workbook's series ``caches``, or None."""
     kept = getattr(_KEPT, "charts", None)
     chart = None if kept is None else kept.get((n, key))
     if chart is None or chart.date_1904 != workbook.date_1904 \
@@ -67,6 +95,7 @@ def _kept_chart(workbook, n: int, key: str):
         return None
     chart.already_inserted = False
     chart.formula_data = [None] * len(chart.formula_data)
+    chart._assemble_xml_file.keywords["caches"] = caches
     workbook.charts.append(chart)
     return chart
 
@@ -91,9 +120,19 @@ def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
     first, last = FIRST_ROW - 1, layout.last_row - 1
     index = {name: i for i, name in enumerate(model.names)}
     template = model.template
+    columns = [result.inputs] + [result.columns[name] for name in model.names[1:]]
+
+    def cache(i: int) -> str:
+        if i == 0:
+            return _num_cache(np.asarray(result.inputs, dtype=float),
+                              np.zeros(len(result.inputs), dtype=bool))
+        column = columns[i]
+        return _num_cache(np.asarray(column.val, dtype=float), column.err != 0)
+
     for n, spec in enumerate(model.charts):
         kind = {"type": "scatter", "subtype": "straight"}
         x = index[spec.x]
+        caches = {_range(first, i, last): cache(i) for i in [x] + [index[y] for y in spec.ys]}
         series = [{
             "name": template.quantity(y).header,
             "categories": [TABLE, first, x, last, x],
@@ -102,21 +141,25 @@ def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
         } for y in spec.ys]
         x_title = (f"{spec.x} [{template.input.unit}]" if spec.x == template.input.name
                    else template.quantity(spec.x).header)
-        x_axis = {"name": x_title, "label_position": "low", "major_gridlines": {"visible": True,
-                                                       "line": {"color": "#D9D9D9"}}}
+        # Both axes cross at the other's minimum, their labels outside the plot: a path
+        # chart's x runs through 0 mid-plot, and so does a sweep from -540 to 0.
+        x_axis = {"name": x_title, "label_position": "low", "crossing": "min",
+                  "major_gridlines": {"visible": True, "line": {"color": "#D9D9D9"}}}
         if spec.x == template.input.name:
             sweep = result.scene.sweep
             x_axis.update(min=sweep.start, max=result.inputs[-1])
             if sweep.stop - sweep.start == 360:
                 x_axis["major_unit"] = 30
-        y_axis = {"name": spec.y_title, "crossing": "min",
+        y_axis = {"name": spec.y_title, "crossing": "min", "label_position": "low",
                   "major_gridlines": {"visible": True, "line": {"color": "#D9D9D9"}}}
         title = {"name": spec.title, "name_font": {"size": 12}}
-        legend, size = {"none": True}, {"width": 560, "height": 380}
+        # a legend names the series where there are several (theta_3 and theta_4, vx and vy)
+        legend = {"position": "bottom"} if len(series) > 1 else {"none": True}
+        size = {"width": 560, "height": 380}
         # everything the chart is given, as text: its key in _XML (with its id)
         key = repr((kind, series, x_axis, y_axis, title, legend, size))
         row, col = divmod(n, _COLUMNS)
-        chart = _kept_chart(workbook, n, key)
+        chart = _kept_chart(workbook, n, key, caches)
         if chart is not None:
             sheet.insert_chart(row * _ROWS_PER_CHART, col * _COLS_PER_CHART, chart)
             continue
@@ -135,5 +178,11 @@ def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
             configure = None
         else:
             _keep_chart(n, key, chart)
-        chart._assemble_xml_file = partial(_assemble_cached, chart, key, configure)
+        chart._assemble_xml_file = partial(_assemble_cached, chart, key, configure,
+                                           caches=caches)
         sheet.insert_chart(row * _ROWS_PER_CHART, col * _COLS_PER_CHART, chart)
+
+
+def _range(first: int, col: int, last: int) -> str:
+    """The series range as XlsxWriter writes it in <c:f>: Table!$A$2:$A$38."""
+    return f"{TABLE}!{xl_col_to_name(col, True)}${first + 1}:{xl_col_to_name(col, True)}${last + 1}"

@@ -7,6 +7,7 @@ from functools import cached_property, lru_cache
 
 from xlsxwriter.utility import xl_col_to_name
 
+from ..cellref import quoted_sheet
 from ..tabulate import Evaluated
 from ..expr import Node
 from ..expr.excel import ROW, Piece, Row, RowTemplate, row_template, to_excel
@@ -77,6 +78,7 @@ FORMATS = {
     "title": {"bold": True, "font_size": 13},
     "label": {"bold": True},
     "wrap": {"text_wrap": True, "valign": "top"},
+    "note": {"text_wrap": True},  # wrapped, at the bottom like the row's other cells
 }
 
 
@@ -102,14 +104,90 @@ A4 = 9  # XlsxWriter's paper index
 excel_text = lru_cache(maxsize=4096)(to_excel)
 
 
+#: Every printed page's footer: the sheet's name left, the page number right.
+FOOTER = "&L&A&Rpage &P"
+
+
 def print_wide(sheet, header_row: int | None = None) -> None:
-    """Print a wide sheet landscape on A4, fitted to the page width (as many pages down
-    as it takes), with its header row, if any, repeated on every page."""
+    """Print a narrow sheet (Parameters, Summary, About) landscape on A4, fitted to the
+    page width (as many pages down as it takes), with its header row, if any, repeated
+    on every page."""
     sheet.set_landscape()
     sheet.set_paper(A4)
     sheet.fit_to_pages(1, 0)
+    sheet.set_footer(FOOTER)
     if header_row is not None:
         sheet.repeat_rows(header_row)
+
+
+#: Print scale of the Table and the Checks, in percent: their 11 pt text prints at
+#: 8.8 pt.  Fitted to one page width, the five-bar's 95 columns printed at 0.7 pt.  A
+#: fixed scale rather than "fit to N pages wide": it holds for a print area of several
+#: ranges (each starts its own pages, in Excel and LibreOffice alike), and the text is
+#: the same size in every workbook.
+PRINT_SCALE = 80
+
+
+def printed_runs(printed: list[bool]) -> list[tuple[int, int]]:
+    """The first and last column of each run of printed columns.  Column 0, the input,
+    is printed on every page as a title column: a run of it alone is left out."""
+    runs: list[tuple[int, int]] = []
+    for col, shown in enumerate(printed):
+        if not shown:
+            continue
+        if runs and runs[-1][1] == col - 1:
+            runs[-1] = (runs[-1][0], col)
+        else:
+            runs.append((col, col))
+    if len(runs) > 1 and runs[0] == (0, 0):
+        runs.pop(0)
+    return runs
+
+
+def print_columns(workbook, sheet, printed: list[bool], header_row: int,
+                  last_row: int) -> None:
+    """Print the columns marked in ``printed`` (rows 0 to ``last_row``, 0-based) at
+    PRINT_SCALE, landscape on A4, across as many pages as they take, with the header row
+    and the input column (A) repeated on every page.  Helper columns (intermediate
+    quantities, the Checks' terms) stay where they are and are left out of the print
+    area, which is then a list of ranges, one per run of printed columns.
+
+    Page order: down, then over (the default): a column is one quantity over the sweep,
+    so each quantity's whole cycle prints on consecutive pages, every page labelled by
+    the repeated input column and header row."""
+    sheet.set_landscape()
+    sheet.set_paper(A4)
+    sheet.set_print_scale(PRINT_SCALE)
+    sheet.set_margins(left=0.5, right=0.5, top=0.6, bottom=0.6)
+    sheet.set_footer(FOOTER)
+    sheet.repeat_rows(header_row)
+    sheet.repeat_columns(0)
+    runs = printed_runs(printed)
+    if len(runs) == 1:
+        sheet.print_area(0, runs[0][0], last_row, runs[0][1])
+        return
+    areas = ",".join(f"{quoted_sheet(sheet.name)}!${xl_col_to_name(first)}$1:"
+                     f"${xl_col_to_name(last)}${last_row + 1}" for first, last in runs)
+    workbook.define_name(f"{sheet.name}!_xlnm.Print_Area", areas)
+
+
+LINE_HEIGHT = 15  # points: a line of 11 pt text, as a row height
+
+
+def wrapped_lines(text: str, width: float) -> int:
+    """Lines ``text`` takes wrapped at spaces in a column ``width`` characters wide (a
+    character of the width is a digit's; most letters are narrower, so this errs
+    towards a line too many rather than too few)."""
+    room = max(1, int(width))
+    lines, used = 0, room  # as if after a full line
+    for word in text.split():
+        if used + 1 + len(word) <= room:
+            used += 1 + len(word)
+            continue
+        starts = -(-len(word) // room)  # a word wider than the column breaks anywhere
+        lines += starts
+        used = len(word) - (starts - 1) * room
+    return max(lines, 1)
 
 
 def add_sheet(workbook, name: str) -> Sheet:

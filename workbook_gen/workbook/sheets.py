@@ -9,7 +9,10 @@ import numpy as np
 from .. import xlmath as xm
 from ..tabulate import Evaluated
 from .table import cached_values
-from .layout import ABOUT, PARAMETERS, add_sheet, excel_text, print_wide
+from .layout import (ABOUT, LINE_HEIGHT, PARAMETERS, add_sheet, excel_text, print_wide,
+                     wrapped_lines)
+
+_VALUE_WIDTH = 100  # characters: the About sheet's values wrap within it
 
 
 def write_parameters(workbook, formats, result: Evaluated) -> None:
@@ -42,7 +45,7 @@ def write_about(workbook, formats, result: Evaluated, version: str, filename: st
     sheet = add_sheet(workbook, ABOUT)
     scene = result.scene
     sheet.set_column(0, 0, 22)
-    sheet.set_column(1, 1, 100)
+    sheet.set_column(1, 1, _VALUE_WIDTH)
     print_wide(sheet)
     sheet.write_string(0, 0, scene.title, formats["title"])
     rows = [
@@ -60,7 +63,12 @@ def write_about(workbook, formats, result: Evaluated, version: str, filename: st
     ]
     for r, (key, value) in enumerate(rows, start=2):
         sheet.write_string(r, 0, key, formats["label"])
-        sheet.write_string(r, 1, value)
+        # wrapped: a five-bar's 74 outputs ran 700 characters to the right, and the
+        # sheet, fitted to the page width, printed at 2 pt
+        sheet.write_string(r, 1, value, formats["note"])
+        lines = wrapped_lines(value, _VALUE_WIDTH)
+        if lines > 1:
+            sheet.set_row(r, LINE_HEIGHT * lines)
     r = len(rows) + 3
     sheet.write_string(r, 0, "scene as given", formats["label"])
     for i, line in enumerate(scene.text.splitlines()):

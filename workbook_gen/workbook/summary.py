@@ -16,8 +16,8 @@ from ..xlerror import ExcelError
 # where no row is ok: #N/A (AGGREGATE of nothing is #NUM! in Excel, #VALUE! in LibreOffice)
 NONE_OK = ExcelError.NA.value
 from .table import cached_values
-from .layout import (CHECK_FIRST_ROW, CHECKS, FIRST_ROW, STATUS, SUMMARY, TableLayout, add_sheet,
-                     excel_text, print_wide)
+from .layout import (CHECK_FIRST_ROW, CHECKS, FIRST_ROW, LINE_HEIGHT, STATUS, SUMMARY,
+                     TableLayout, add_sheet, excel_text, print_wide, wrapped_lines)
 from xlsxwriter.utility import xl_col_to_name
 
 
@@ -66,6 +66,19 @@ def _aggregate(function: int, rng: str, ok: str, counted: str) -> str:
     2010+ and LibreOffice; #N/A in both where no row is ok (``counted``: the cell that
     counts them)."""
     return f"=IF({counted},_xlfn.AGGREGATE({function},6,{rng}/{ok},1),NA())"
+
+
+_DESCRIPTION_WIDTH = 42  # characters: columns D to F, where a description wraps
+
+
+def _describe(sheet, formats, row: int, text: str) -> None:
+    """A figure's description in D, wrapped in D:F merged (E and F are empty in the
+    figures' rows): unwrapped, the longest ran far to the right and the Summary, fitted to
+    the page width, printed at 6 pt."""
+    sheet.merge_range(row, 3, row, 5, text, formats["note"])
+    lines = wrapped_lines(text, _DESCRIPTION_WIDTH)
+    if lines > 1:
+        sheet.set_row(row, LINE_HEIGHT * lines)
 
 
 def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> None:
@@ -119,7 +132,7 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
         sheet.write_string(row, 1, result.model.template.quantity(span.quantity).unit)
         sheet.write_formula(row, 2, f"=IF(C{line}-E{line}<={tie!r},0,C{line}-E{line})", None,
                             0.0 if tied else value)
-        sheet.write_string(row, 3, f"max - min of {span.quantity} over the sweep")
+        _describe(sheet, formats, row, f"max - min of {span.quantity} over the sweep")
         row += 1
     for figure in result.model.figures:
         value = compile_numpy(figure.expr)({}, result.params, 1)
@@ -127,7 +140,7 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
         sheet.write_string(row, 0, figure.label)
         sheet.write_string(row, 1, figure.unit)
         sheet.write_formula(row, 2, excel_text(figure.expr), None, cached)
-        sheet.write_string(row, 3, figure.description)
+        _describe(sheet, formats, row, figure.description)
         row += 1
     flags = xl_col_to_name(len(result.model.checks) + 1)
     last = CHECK_FIRST_ROW + result.rows - 1
@@ -138,13 +151,13 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
     sheet.write_string(row, 0, "rows in the extremes")
     sheet.write_formula(row, 2, f'=COUNTIF({layout.column(STATUS, absolute=True)},"{OK}")',
                         None, int(np.sum(ok_rows(result.status))))
-    sheet.write_string(row, 3, "the max and min above are taken over the ok rows only; "
-                               "the rows counted below are left out")
+    _describe(sheet, formats, row, "the max and min above are taken over the ok rows only; "
+                                   "the rows counted below are left out")
     row += 1
     sheet.write_string(row, 0, "rows that cannot be assembled")
     sheet.write_formula(row, 2, f"=SUM({CHECKS}!{flags}{CHECK_FIRST_ROW}:{flags}{last})", None,
                         int(np.sum(result.status == "cannot assemble")))
-    sheet.write_string(row, 3, "these rows hold #NUM! in the Table")
+    _describe(sheet, formats, row, "these rows hold #NUM! in the Table")
     row += 1
     flagged = xl_col_to_name(len(result.model.checks) + 2)
     texts = sorted({t for t in result.status if t not in ("ok", "cannot assemble")})
@@ -152,6 +165,6 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
     sheet.write_string(row, 0, "rows flagged singular or not converged")
     sheet.write_formula(row, 2, f"=SUM({CHECKS}!{flagged}{CHECK_FIRST_ROW}:{flagged}{last})",
                         None, int(sum(int(np.sum(result.status == t)) for t in texts)))
-    sheet.write_string(row, 3, "status other than ok (toggle, dead centre, not converged, "
-                               "...): rates there are singular or not to be trusted"
-                               + (f"; {counts}" if counts else ""))
+    _describe(sheet, formats, row, "status other than ok (toggle, dead centre, not converged, "
+                                   "...): rates there are singular or not to be trusted"
+                                   + (f"; {counts}" if counts else ""))

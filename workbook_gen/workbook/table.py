@@ -6,7 +6,7 @@ import numpy as np
 
 from ..tabulate import Evaluated, headers
 from .. import xlmath as xm
-from .layout import FIRST_ROW, TABLE, TableLayout, add_sheet, print_wide
+from .layout import FIRST_ROW, TABLE, TableLayout, add_sheet, print_columns
 from .rows import Column
 from ..xlerror import ExcelError
 
@@ -32,7 +32,9 @@ def write_table(workbook, formats, result: Evaluated, layout: TableLayout,
         sheet.write_string(0, col, header, formats["aux_header" if name in aux else "header"])
     sheet.set_row(0, 30)
     sheet.freeze_panes(1, 1)
-    print_wide(sheet, 0)
+    # printed: the input, the outputs and the status; not the intermediate columns
+    print_columns(workbook, sheet, [True] + [q.output for q in model.columns] + [True], 0,
+                  layout.last_row - 1)
     sheet.set_column(0, 0, 11, formats["input"])
     sheet.set_column(1, len(names) - 1, 13, formats["value"])
     sheet.set_column(len(names), len(names), 15)

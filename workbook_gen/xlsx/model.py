@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from workbook_gen.cellref import column_letters  # noqa: F401  (part of this module's face)
 from workbook_gen.xlerror import ExcelError
 
 MAX_COL = 16_384
@@ -265,10 +266,3 @@ class Workbook:
                    for cells, chunks in (s.parts() for s in self.sheets))
 
 
-def column_letters(col: int) -> str:
-    """1 -> 'A', 28 -> 'AB'."""
-    letters = ""
-    while col > 0:
-        col, rem = divmod(col - 1, 26)
-        letters = chr(65 + rem) + letters
-    return letters

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import re
 
+from workbook_gen.cellref import column_letters
 from workbook_gen.errors import WorkbookGenError
 from workbook_gen.formula.functions import coerce as c
 from workbook_gen.formula.functions.registry import register
@@ -128,12 +129,6 @@ def _indirect(ctx, text, a1=True):
     return target if isinstance(target, (Range, ExcelError)) else ctx.read(target)
 
 
-def _column_letters(col: int) -> str:
-    out = ""
-    while col:
-        col, rem = divmod(col - 1, 26)
-        out = chr(65 + rem) + out
-    return out
 
 
 _OMITTED = object()
@@ -153,7 +148,7 @@ def _address(ctx, row, col, absolute=1.0, a1=True, sheet=_OMITTED):
         return ExcelError.VALUE
     row_abs, col_abs = a in (1, 2), a in (1, 3)
     if style:
-        text = ("$" if col_abs else "") + _column_letters(k) + ("$" if row_abs else "") + str(r)
+        text = ("$" if col_abs else "") + column_letters(k) + ("$" if row_abs else "") + str(r)
     else:
         text = (f"R{r}" if row_abs else f"R[{r}]") + (f"C{k}" if col_abs else f"C[{k}]")
     if sheet is not _OMITTED:

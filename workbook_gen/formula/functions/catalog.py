@@ -1,0 +1,77 @@
+"""The function library describing itself: ``docs/functions.md``, generated from the registry.
+
+One row per registered name: its family and module, how many arguments it takes and of
+which kind, whether the column evaluator has a vectorised form, whether it is volatile,
+where LibreOffice's dialect differs, and a test file that calls it.  Made by
+``python scripts/functions_doc.py``; ``tests/test_functions_doc.py`` checks that the
+file is what the registry says.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from workbook_gen.formula.functions import REGISTRY
+from workbook_gen.formula.functions.dialect import (LIBREOFFICE_DIFFERENCES, LIBREOFFICE_ERRORS,
+                                                    NUMERIC_DEVIATIONS)
+
+HEADER = """# Worksheet functions the audit recomputes
+
+Generated from the registry (`workbook_gen/formula/functions/`) by
+`python scripts/functions_doc.py`; `tests/test_functions_doc.py` checks it is current.
+Kinds: `scalar` (one value; a larger reference is implicitly intersected), `range` (a
+range or array taken whole), `ref` (the reference itself: ROW, OFFSET), `lazy` (evaluated
+only if needed: IF, CHOOSE); the last kind repeats for further arguments. "vectorised":
+the column evaluator computes a block of rows at once where the arguments allow; the
+others go cell by cell. "LibreOffice": where its dialect (files LibreOffice saved) gives
+another result. "test": a test file that calls the function in a formula.
+"""
+
+
+def _arity(f) -> str:
+    if f.max_args is None:
+        return f"{f.min_args}+"
+    return str(f.min_args) if f.min_args == f.max_args else f"{f.min_args}-{f.max_args}"
+
+
+def _libreoffice(name: str) -> str:
+    notes = []
+    for excel, lo in LIBREOFFICE_ERRORS.get(name, {}).items():
+        notes.append(f"{excel.value} -> {lo.value}")
+    if name in NUMERIC_DEVIATIONS:
+        notes.append("numeric results")
+    for d in LIBREOFFICE_DIFFERENCES:
+        if re.match(rf"{re.escape(name)}\(", d.example):
+            notes.append(d.situation)
+    return "; ".join(dict.fromkeys(notes))
+
+
+def _tests(root: Path) -> dict[str, str]:
+    """name -> the first test file (sorted) whose text calls it as NAME( ."""
+    found: dict[str, str] = {}
+    call = re.compile(r"(?<![\w.])(?:_xlfn\.|_xlws\.)?([A-Z][A-Z0-9.]*)\(")
+    paths = sorted((root / "tests").glob("*.py"), key=lambda p: (not p.name.startswith("test_"), p.name))
+    for path in paths:
+        for name in set(call.findall(path.read_text(errors="replace"))):
+            found.setdefault(name, path.name)
+    return found
+
+
+def markdown(root: Path) -> str:
+    tests = _tests(root)
+    lines = [HEADER, f"{len(REGISTRY)} functions.\n",
+             "| function | family | module | arguments | kinds | vectorised | volatile "
+             "| LibreOffice | test |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for name in sorted(REGISTRY):
+        f = REGISTRY[name]
+        module = f.fn.__module__.rsplit(".", 1)[-1]
+        lines.append(" | ".join([
+            f"| `{name}`", f.family, module, _arity(f), ", ".join(f.kinds) or "-",
+            "yes" if f.vector is not None else "", "yes" if f.volatile else "",
+            _libreoffice(name).replace("|", "\\|"), tests.get(name, "none")]) + " |")
+    untested = sorted(n for n in REGISTRY if n not in tests)
+    lines += ["", f"Without a test that calls them in a formula ({len(untested)}): "
+              + ", ".join(untested) + "."]
+    return "\n".join(lines) + "\n"
