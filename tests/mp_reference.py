@@ -21,6 +21,8 @@ from typing import Callable, Mapping, Sequence
 import mpmath
 from mpmath import mp, mpf
 
+import mp_parallel_4dof
+
 DPS = 50
 SINGULAR = mpf(10) ** -30   # |det J| over the scale of J: below this a row is singular
 
@@ -339,6 +341,8 @@ def solve(mechanism: str, params: Mapping[str, float], inputs, options=None):
         for x in inputs:
             if mechanism == "four_bar":
                 row, sing = four_bar(params, x, options.get("branch", "open"))
+            elif mechanism == "parallel_4dof":
+                row, sing = mp_parallel_4dof.solve(params, x, options)
             elif mechanism == "walking_beam":
                 from mp_walking_beam import walking_beam
                 row, sing = walking_beam(params, x, options.get("branch", "open"))

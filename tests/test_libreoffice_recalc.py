@@ -44,9 +44,10 @@ def _tied_extreme(path, ref: str, ours: float, theirs: float) -> bool:
     return abs(values[ours] - values[theirs]) <= 1e-12 * magnitude
 
 
-def compare_with_libreoffice(path, theirs=None) -> tuple[int, float]:
+def compare_with_libreoffice(path, theirs=None, tolerance=TOLERANCE) -> tuple[int, float]:
     """Every formula cell of ``path`` against LibreOffice's values (``theirs``: already
-    recalculated, e.g. several files in one run; None: recalculate now)."""
+    recalculated, e.g. several files in one run; None: recalculate now), to ``tolerance``
+    of the column's magnitude."""
     ours = read_formula_values(path)
     theirs = recalculated_values(path) if theirs is None else theirs
     cells, worst = 0, 0.0
@@ -65,7 +66,7 @@ def compare_with_libreoffice(path, theirs=None) -> tuple[int, float]:
                 f"{sheet}!{ref}: ours {value!r}, LibreOffice {other!r}")
             error = abs(value - other) / max(scale[_column(ref)], 1e-300)
             worst = max(worst, error)
-            assert error <= TOLERANCE, (f"{sheet}!{ref}: ours {value!r}, LibreOffice {other!r}, "
+            assert error <= tolerance, (f"{sheet}!{ref}: ours {value!r}, LibreOffice {other!r}, "
                                         f"{error:.3g} of the column's magnitude")
     return cells, worst
 

@@ -262,7 +262,7 @@ def test_theta_11_alone_models_leg_1_only(tmp_path, generate):
     model = select(scene.template, scene.outputs)
     names = set(model.names)
     expected = {"t", "alpha", "psi", "vartheta", "phi", "x_P5", "z_P5", "x_P1", "y_P1", "z_P1",
-                "A_1", "B_1", "C_1", "theta_11"} | {f"Q_{r}{c}" for r in "123" for c in "123"}
+                "A_1", "B_1", "C_1", "K_1", "theta_11"} | {f"Q_{r}{c}" for r in "123" for c in "123"}
     assert names == expected
     assert [c.name for c in model.checks] == ["leg1_closure"]
     assert not model.conditions and not model.charts

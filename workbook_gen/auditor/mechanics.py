@@ -29,7 +29,7 @@ TURN = {"deg": 360.0, "rad": 2.0 * np.pi}
 # Rows the workbook flags as singular: their rates are undefined or half their digits are
 # the model's (Newton at a double root), so they are counted, not compared.  A row that is
 # "not converged" or on the "other branch" is compared: the model shows how far off it is.
-SINGULAR = frozenset({"dead centre", "toggle"})
+SINGULAR = frozenset({"dead centre", "toggle", "limit", "singular"})  # five_bar, parallel_4dof: limit, singular
 # Rounding noise m (noise.py) allows an error of NOISE_ULPS * eps * m: as a magnitude to
 # measure the error against, that is m * NOISE_ULPS * eps / REFERENCE_TOLERANCE.
 NOISE_ULPS = 1024

@@ -16,6 +16,11 @@ is continuous whenever the path does not surround A.  D likewise, on the right.
 ``method = "newton"``: theta_1 and theta_4 by ``iterations`` Newton-Raphson steps,
 see ``five_bar_newton.py``.  Sensitivity and clearance: ``five_bar_errors.py``.
 Position-only template: it has no rates, so no links for the shaking force.
+
+Limits (issue 21, docs/stability.md): a dyad stretched or folded (h_B or h_D within
+LIMIT_FRACTION of its reach) is flagged "limit"; B, C, D in line (the forward singularity,
+det_BCD within five_bar_errors.SINGULAR_FRACTION) "singular", with the sensitivities and
+the clearance errors #DIV/0!.
 """
 
 from __future__ import annotations
@@ -23,7 +28,7 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import Mapping
 
-from ..expr import Node, abs_, atan2, degrees, iserror, if_, or_, root, sqrt
+from ..expr import Node, Var, abs_, atan2, degrees, eq, iserror, if_, le, or_, root, sqrt
 from ..expr import cos, radians, sin, min_, max_
 from .base import (Chart, Check, InputSpec, OptionSpec, ParamSpec, Quantity, Span, Template,
                    quantity_vars, symbols)
@@ -89,7 +94,28 @@ CLOSED = (
 )
 
 CANNOT = or_(iserror(h_B), iserror(h_D))
-CLOSED_STATUS = if_(CANNOT, "cannot assemble", "ok")
+#: A dyad whose elbow is within this fraction of its reach (h_B <= LIMIT_FRACTION (l_1 + l_2),
+#: stretched or folded) is at the limit of its workspace: the half chord carries an absolute
+#: rounding of about eps (l_1 + l_2)^2 / h_B, so theta_1 keeps ~eps (l_1 + l_2) / h_B rad, and
+#: the clearance columns (C' - C of size r_clear, from B and D) amplify it further: 6.6e-9 of
+#: their magnitude at h_B = 2.4e-6 (l_1 + l_2) against 50-digit mpmath, 4.2e-12 at 2.4e-3.
+#: The row is flagged "limit".
+LIMIT_FRACTION = 1e-3
+AT_LIMIT = or_(le(h_B, LIMIT_FRACTION * (l_1 + l_2)), le(h_D, LIMIT_FRACTION * (l_3 + l_4)))
+IN_LINE = eq(Var("det_BCD"), 0)   # B, C, D in line (five_bar_errors.SINGULAR_FRACTION)
+
+
+def flagged(unconverged: Node | None = None) -> Node:
+    """'cannot assemble', 'limit' (a dyad stretched or folded), 'not converged' (Newton,
+    where ``unconverged``), 'singular' (B, C, D in line: the sensitivities are #DIV/0!),
+    else 'ok'."""
+    rest = if_(IN_LINE, "singular", "ok")
+    if unconverged is not None:
+        rest = if_(unconverged, "not converged", rest)
+    return if_(CANNOT, "cannot assemble", if_(AT_LIMIT, "limit", rest))
+
+
+CLOSED_STATUS = flagged()
 
 
 def _checks() -> tuple[Check, ...]:
@@ -131,7 +157,7 @@ def configure(template: Template, options: Mapping[str, object]) -> Template:
         return template
     steps = int(options["iterations"])  # type: ignore[arg-type]
     quantities = PATH_AND_REACH + newton_quantities(steps) + SENSITIVITY + CLEARANCE
-    return replace(template, quantities=quantities, status=newton_status(steps, CANNOT))
+    return replace(template, quantities=quantities, status=newton_status(steps, flagged))
 
 
 def _validate(p: Mapping[str, float]) -> tuple[str, str] | None:

@@ -6,7 +6,8 @@ A = d(f1, f2)/d(x_C, y_C) = 2 [p; q] and B = d(f1, f2)/d(l_1..l_5) =
 -2 [p.u_1, l_2, 0, 0, 0; 0, 0, l_3, q.u_4, q_x] (u_1, u_4 the crank directions; E moves
 with l_5 along x).  S = -A^-1 B with the 2x2 inverse written out:
 S = [q_y, -p_y; -q_x, p_x] [p.u_1, l_2, 0, 0, 0; 0, 0, l_3, q.u_4, q_x] / det_BCD,
-det_BCD = p x q (zero when B, C, D are in line: C is then not located).
+det_BCD = p x q (zero when B, C, D are in line: C is then not located; made 0 within
+SINGULAR_FRACTION l_2 l_3 of that, so S is #DIV/0! in the rows flagged "singular").
 
 Clearance r_clear at one joint, direction alpha, u = (cos alpha, sin alpha) (issue 12):
   joint A or E (a crank's pivot): the crank's journal is offset from its ground pivot by
@@ -33,7 +34,7 @@ the intermediate columns en_B_<alpha> / en_D_<alpha> hold en for coupler end B /
 
 from __future__ import annotations
 
-from ..expr import Node, Var, cos, radians, root, sign, sin, sqrt
+from ..expr import Node, Var, abs_, cos, eq, if_, le, radians, root, sign, sin, sqrt
 from .base import Chart, Quantity, symbols
 
 l_1, l_2, l_3, l_4, l_5, r_clear = symbols("l_1 l_2 l_3 l_4 l_5 r_clear")
@@ -64,9 +65,20 @@ def _sensitivity(axis: str, i: int) -> Node:
     return term / det_BCD
 
 
+#: B, C, D within this fraction of l_2 l_3 of a line (|sin BCD| below it) is the forward
+#: singularity: det_BCD is made 0 there, so the sensitivities are #DIV/0! and the row is
+#: flagged "singular".  det_BCD carries an absolute rounding of a few eps (l_1 + |C|)
+#: (l_2 + l_3) (B, D rebuilt from the angles), and S = term / det_BCD and the clearance's
+#: small root divide by it: 3.5e-10 of S's magnitude at l_2 3e-6 from in line, 6.3e-11 at
+#: 3e-4 (50-digit mpmath).
+SINGULAR_FRACTION = 1e-4
+cross_BCD = Var("cross_BCD")
+
 SENSITIVITY = POSITIONS + (
-    Q("det_BCD", "m^2", px * qy - py * qx, "(C - B) x (C - D): det(A)/4 of the closure "
-      "Jacobian in (x_C, y_C)", output=False),
+    Q("cross_BCD", "m^2", px * qy - py * qx, "(C - B) x (C - D) as computed", output=False),
+    Q("det_BCD", "m^2", if_(le(abs_(cross_BCD), SINGULAR_FRACTION * l_2 * l_3), 0, cross_BCD),
+      "(C - B) x (C - D): det(A)/4 of the closure Jacobian in (x_C, y_C); 0 within "
+      "SINGULAR_FRACTION l_2 l_3 of B, C, D in line (C is not located there)", output=False),
 ) + tuple(
     Q(f"S_{axis}_l{i}", "m/m", _sensitivity(axis, i),
       f"sensitivity d{axis}_C/dl_{i} with theta_1, theta_4 held (S = -A^-1 B)")
@@ -110,7 +122,10 @@ def _clearance_pair(end: str, alpha: int) -> tuple[Node, Node, tuple[Node, Node,
     gamma = ea ** 2 + 2 * ea * (gx * wx + gy * wy) / g
     if k_1 is not None:
         gamma = gamma + k_1
-    return ea, -gamma / (beta + sign(beta) * root(beta ** 2 - gamma)), (gx, gy, g)
+    # B, C, D in line (det_BCD made 0, "singular"): beta is rounding, and which of the two
+    # C' is meant is not decided by its sign: #DIV/0! in every engine
+    return ea, -gamma / if_(eq(det_BCD, 0), 0, beta + sign(beta) * root(beta ** 2 - gamma)), \
+        (gx, gy, g)
 
 
 def _clearance_columns() -> tuple[Quantity, ...]:

@@ -11,13 +11,16 @@ Start (row-local, crude closed form): the crank perpendicular to the line from
 its pivot to C, on the elbows-out side: th1_0 = psi_AC + 90, th4_0 = psi_EC - 90
 (#NUM! where C is out of the dyad's reach, which h_B / h_D flag).  From there the
 iteration converges monotonically to the elbows-out root, quadratically at the end.
-Columns: th1_0, th4_0, th1_1, th4_1, ..., th1_{k-1}, th4_{k-1}, theta_1, theta_4:
-``iterations`` = k steps, the k-th is theta_1 / theta_4.
+Columns: th1_0, th4_0, th1_1, th4_1, ..., th1_k, th4_k (``iterations`` = k steps), then
+theta_1 / theta_4: the k-th iterate where the k-th step moved it by at most CONVERGED_DEG,
+else #NUM! (status "not converged"; never an unconverged angle shown as the answer).
 """
 
 from __future__ import annotations
 
-from ..expr import Node, Var, abs_, cos, degrees, gt, if_, iserror, or_, radians, sin
+from typing import Callable
+
+from ..expr import Node, Var, abs_, cos, degrees, if_, iserror, le, or_, radians, root, sin
 from .base import Quantity, symbols
 
 l_1, l_2, l_3, l_4, l_5 = symbols("l_1 l_2 l_3 l_4 l_5")
@@ -37,12 +40,22 @@ def _step(t: Node, cx: Node, cy: Node, d: Node, a: Node, b: Node) -> Node:
 
 
 def _names(steps: int, which: str) -> list[str]:
-    final = {"1": "theta_1", "4": "theta_4"}[which]
-    return [f"th{which}_{j}" for j in range(steps)] + [final]
+    return [f"th{which}_{j}" for j in range(steps + 1)]
+
+
+def _converged(names: list[str], final: str, crank: str) -> Quantity:
+    """The k-th iterate where its step moved the angle by at most CONVERGED_DEG, else
+    #NUM! (the square root of a negative number, as the actuator's halving does)."""
+    last, before = Var(names[-1]), Var(names[-2])
+    moved = abs_(last - before)
+    return Quantity(final, "deg", if_(le(moved, CONVERGED_DEG), last, root(CONVERGED_DEG - moved)),
+                    f"crank {crank} angle, inverse kinematics by Newton-Raphson: the last "
+                    f"iterate, #NUM! where its step still moved more than {CONVERGED_DEG:g} deg")
 
 
 def newton_quantities(steps: int) -> tuple[Quantity, ...]:
-    """Guess and ``steps`` Newton steps for both cranks, chained along the row."""
+    """Guess and ``steps`` Newton steps for both cranks, chained along the row; theta_1 and
+    theta_4 are the last iterates where they converged."""
     one, four = _names(steps, "1"), _names(steps, "4")
     out = [
         Quantity(one[0], "deg", if_(iserror(h_B), h_B, psi_AC + 90),
@@ -53,21 +66,17 @@ def newton_quantities(steps: int) -> tuple[Quantity, ...]:
                  output=False),
     ]
     for j in range(1, steps + 1):
-        last = j == steps
-        out.append(Quantity(
-            one[j], "deg", _step(Var(one[j - 1]), x_C, y_C, d_AC, l_1, l_2),
-            "crank AB angle, inverse kinematics by Newton-Raphson (B left of A->C)" if last
-            else f"theta_1 after Newton step {j}", output=last))
-        out.append(Quantity(
-            four[j], "deg", _step(Var(four[j - 1]), x_C - l_5, y_C, d_EC, l_4, l_3),
-            "crank ED angle, inverse kinematics by Newton-Raphson (D right of E->C)" if last
-            else f"theta_4 after Newton step {j}", output=last))
+        out.append(Quantity(one[j], "deg", _step(Var(one[j - 1]), x_C, y_C, d_AC, l_1, l_2),
+                            f"theta_1 after Newton step {j}", output=False))
+        out.append(Quantity(four[j], "deg",
+                            _step(Var(four[j - 1]), x_C - l_5, y_C, d_EC, l_4, l_3),
+                            f"theta_4 after Newton step {j}", output=False))
+    out += [_converged(one, "theta_1", "AB (B left of A->C)"),
+            _converged(four, "theta_4", "ED (D right of E->C)")]
     return tuple(out)
 
 
-def newton_status(steps: int, cannot: Node) -> Node:
-    """'cannot assemble', 'not converged' (last step above CONVERGED_DEG) or 'ok'."""
-    one, four = _names(steps, "1"), _names(steps, "4")
-    moved = or_(gt(abs_(Var(one[-1]) - Var(one[-2])), CONVERGED_DEG),
-                gt(abs_(Var(four[-1]) - Var(four[-2])), CONVERGED_DEG))
-    return if_(cannot, "cannot assemble", if_(moved, "not converged", "ok"))
+def newton_status(steps: int, flagged: Callable[[Node | None], Node]) -> Node:
+    """The closed form's flags (``flagged``: cannot assemble, limit, singular), then
+    'not converged' (theta_1 or theta_4 #NUM!: the last step above CONVERGED_DEG) or 'ok'."""
+    return flagged(or_(iserror(Var("theta_1")), iserror(Var("theta_4"))))

@@ -141,6 +141,21 @@ def pose_quantities() -> list[Quantity]:
     ]
 
 
+#: A leg whose reach discriminant K_i = A^2 + B^2 - C^2 is below (EDGE_FRACTION (l_i1 +
+#: l_i2))^2 is at the edge of its reach (links i1 and i2 in the plane of d and the hinge
+#: axis, a double root): its rate's denominator B cos theta - A sin theta = -+sqrt(K_i)
+#: vanishes there.  K_i carries an absolute rounding of a few eps (l_i1 + l_i2)^2 (A, B, C
+#: from the rounded joint positions), so the rate keeps a relative error of about
+#: 0.05 eps (l_i1 + l_i2)^2 / K_i (measured against 50-digit mpmath: 7e-6 at K_i =
+#: 2.6e-10 (l_i1 + l_i2)^2): outside the band <= 2e-11.  The row is flagged "singular" and
+#: the leg's rate is #DIV/0! (its denominator is made 0).
+EDGE_FRACTION = 1e-3
+
+
+def _at_edge(i: int) -> Node:
+    return le(_v(f"K_{i}"), (EDGE_FRACTION * (_p(f"l_{i}1") + _p(f"l_{i}2"))) ** 2)
+
+
 def leg_quantities(i: int, sign: int) -> list[Quantity]:
     """Leg i: its platform joint, A, B, C, theta_i1 and its rate, O_i2."""
     P = _vv("", f"P{i}")
@@ -151,7 +166,8 @@ def leg_quantities(i: int, sign: int) -> list[Quantity]:
     a_i = vec(_p(f"a_{i}"), _p(f"b_{i}"), _p(f"c_{i}"))
     velocity = add(vec(_v("vx_P5"), ZERO, _v("vz_P5")),
                    cross(vec(_v("w_x"), _v("w_y"), _v("w_z")), sub(P, P5)))
-    reach = atan2(C, root(A ** 2 + B ** 2 - C ** 2))
+    K = _v(f"K_{i}")
+    reach = atan2(C, root(K))
     th = radians(_v(f"theta_{i}1"))
     c, s = cos(th), sin(th)
     rate_a, rate_b, rate_c = vP[2], dot(vP, _h(i)), dot(d, vP) / l1
@@ -165,11 +181,16 @@ def leg_quantities(i: int, sign: int) -> list[Quantity]:
            output=False),
         Qn(f"C_{i}", "m", (dot(d, d) + l1 ** 2 - l2 ** 2) / (2 * l1),
            f"leg {i}: C = (|P{i} - O_{i}1|^2 + l_{i}1^2 - l_{i}2^2) / (2 l_{i}1)", output=False),
+        Qn(f"K_{i}", "m^2", A ** 2 + B ** 2 - C ** 2,
+           f"leg {i}: A^2 + B^2 - C^2, the reach discriminant (< 0 out of reach, 0 at the "
+           f"edge)", output=False),
         Qn(f"theta_{i}1", "deg",
            degrees(atan2(A, B) + reach if sign > 0 else atan2(A, B) - reach),
            f"leg {i}: drive angle of link {i}1 from z (branch {'+' if sign > 0 else '-'})"),
-        Qn(f"omega_{i}1", "rad/s", (rate_c - rate_a * c - rate_b * s) / (B * c - A * s),
-           f"leg {i}: drive rate"),
+        Qn(f"omega_{i}1", "rad/s",
+           (rate_c - rate_a * c - rate_b * s) / if_(_at_edge(i), 0, B * c - A * s),
+           f"leg {i}: drive rate (#DIV/0! at the edge of the leg's reach, status "
+           f"'singular')"),
         *_columns(_xyz(f"O{i}2"), "m", o2, f"leg {i}: universal joint O_{i}2"),
     ]
 
@@ -242,10 +263,6 @@ def checks() -> tuple[Check, ...]:
     return tuple(out)
 
 
-#: A leg whose platform joint is within this fraction of l_i1 + l_i2 of the edge of its
-#: reach (A^2 + B^2 - C^2 = 0, links i1 and i2 in the plane of d and the hinge axis) is
-#: "singular": its rate's denominator B cos theta - A sin theta vanishes there.
-EDGE_FRACTION = 1e-6
 
 
 def status_for(keep: frozenset[str]) -> Node:
@@ -254,8 +271,7 @@ def status_for(keep: frozenset[str]) -> Node:
     legs = [i for i in LEGS if f"theta_{i}1" in keep]
     if not legs:
         return wrap("ok")
-    edge = [le(_v(f"A_{i}") ** 2 + _v(f"B_{i}") ** 2 - _v(f"C_{i}") ** 2,
-               (EDGE_FRACTION * (_p(f"l_{i}1") + _p(f"l_{i}2"))) ** 2) for i in legs]
+    edge = [_at_edge(i) for i in legs]
     return if_(or_(*[iserror(_v(f"theta_{i}1")) for i in legs]), "cannot assemble",
                if_(or_(*edge), "singular", "ok"))
 

@@ -3,10 +3,11 @@
 Inverse kinematics: each dyad separately, unknowns (theta_1, theta_2) with
 l_1 u(theta_1) + l_2 u(theta_2) = C, and (theta_4, theta_3) with
 E + l_4 u(theta_4) + l_3 u(theta_3) = C; branch B left of A->C, D right of E->C.
-``method = "newton"``: the iterates th1_0 .. th1_{k-1} the workbook shows, from the same
+``method = "newton"``: the iterates th1_0 .. th1_k the workbook shows, from the same
 start (crank perpendicular to pivot->C), each step t <- t - f/f' with
-f = |C - B(t)|^2 - l_2^2; theta_1 / theta_4 (the k-th step in the workbook) stay the exact
-angles, so a table whose Newton has not converged disagrees where it says "not converged".
+f = |C - B(t)|^2 - l_2^2; theta_1 / theta_4 stay the exact angles where the model's own
+k-th step moved by at most CONVERGED_DEG, and are NaN elsewhere (the workbook's #NUM!,
+"not converged"), with everything computed from them.
 
 Sensitivity: the vector loop l_1 u_1 + l_2 u_2 = l_5 e_x + l_4 u_4 + l_3 u_3 in the
 coupler angles (theta_2, theta_3) with the crank angles held, differentiated along
@@ -25,6 +26,9 @@ from typing import Mapping
 import numpy as np
 
 from .newton import Jet, jcos, jsin, newton, rates, solve_stage, wrap_deg
+
+CONVERGED_DEG = 1e-9   # as the template's five_bar_newton (a rule, not a formula)
+ITERATIONS = 8         # the template's default (About lists only the options a scene sets)
 
 DEFAULTS = {"l_1": 1.2, "l_2": 1.0, "l_3": 1.0, "l_4": 1.2, "l_5": 1.6,
             "x_0": 0.8, "y_0": 1.6, "R_path": 0.3, "r_clear": 1e-5}
@@ -194,14 +198,28 @@ def solve(p: Mapping[str, float], phi_deg: np.ndarray,
             "h_B": (c_x * y_b - c_y * x_b) / out["d_AC"],
             "h_D": -((c_x - l_5) * (y_d) - c_y * (x_d - l_5)) / out["d_EC"],
             "det_BCD": (c_x - x_b) * (c_y - y_d) - (c_y - y_b) * (c_x - x_d)}
+    out["cross_BCD"] = out["det_BCD"]   # the workbook's det_BCD is 0 where it flags "singular"
     if options.get("method", "closed") == "newton":
-        steps = int(options.get("iterations", 5))
+        steps = int(options.get("iterations", ITERATIONS))
         ones = _newton_iterates(c_x, c_y, 0.0, p["l_1"], p["l_2"],
                                 np.where(np.isfinite(t1), psi_a + 90.0, np.nan), steps)
         fours = _newton_iterates(c_x, c_y, l_5, p["l_4"], p["l_3"],
                                  np.where(np.isfinite(t4), psi_e - 90.0, np.nan), steps)
-        for j in range(steps):   # the k-th iterate is theta_1: compared with the exact one
+        for j in range(steps + 1):
             out[f"th1_{j}"], out[f"th4_{j}"] = ones[j], fours[j]
+        # theta_1 / theta_4 are the exact angles where the model's own k-th step moved by
+        # at most CONVERGED_DEG; elsewhere "not converged": no angle, nor anything from it
+        with np.errstate(invalid="ignore"):
+            moved_1 = ~(np.abs(ones[-1] - ones[-2]) <= CONVERGED_DEG)
+            moved_4 = ~(np.abs(fours[-1] - fours[-2]) <= CONVERGED_DEG)
+        theta_1, theta_4 = np.where(moved_1, np.nan, theta_1), np.where(moved_4, np.nan, theta_4)
+        t1, t4 = np.where(moved_1, np.nan, t1), np.where(moved_4, np.nan, t4)
+        for name in ("x_B", "y_B"):
+            out[name] = np.where(moved_1, np.nan, out[name])
+        for name in ("x_D", "y_D"):
+            out[name] = np.where(moved_4, np.nan, out[name])
+        out["det_BCD"] = np.where(moved_1 | moved_4, np.nan, out["det_BCD"])
+        out["cross_BCD"] = out["det_BCD"]
     out["theta_1"], out["theta_4"] = theta_1, theta_4
     out |= _sensitivity(p, t1, t2, t3, t4)
     out |= _clearance(p, t1, t2, t3, t4)

@@ -274,6 +274,7 @@ def positions(p: Mapping[str, float], pose, options: Mapping[str, object]):
         l1, l2 = p[f"l_{i}1"], p[f"l_{i}2"]
         out[f"A_{i}"], out[f"B_{i}"] = d[2], _dot(d, across)
         out[f"C_{i}"] = (_dot(d, d) - l2 * l2 + l1 * l1) / (2 * l1)
+        out[f"K_{i}"] = out[f"A_{i}"] ** 2 + out[f"B_{i}"] ** 2 - out[f"C_{i}"] ** 2
         theta = _solve_leg(g, i, joint, sign)
         thetas[i] = theta
         out[f"theta_{i}1"] = np.degrees(_report(theta, d[2], out[f"B_{i}"], sign))

@@ -1,7 +1,7 @@
 """The method dimension: closed form against an iterative method, at the scene's step.
 
-five_bar: ``method = "newton"`` with 1..8 iterations; theta_1 and theta_4 against
-the 50-digit closed form.  actuator_linkage: ``method = "bisection"`` at epsilon
+five_bar: ``method = "newton"`` with 1..8 iterations; the last iterates th1_k and th4_k
+against the 50-digit closed form.  actuator_linkage: ``method = "bisection"`` at epsilon
 1e-2..1e-10 with the fewest halvings that converge in every row (found with 60);
 phi_2_iter against the 50-digit closed-form phi_2.  Other templates have a
 closed form only: one "n/a" row.
@@ -22,8 +22,9 @@ from .variants import variant
 NEWTON_ITERATIONS = tuple(range(1, 9))
 EPSILONS = tuple(10.0 ** -k for k in range(2, 11))
 MAX_HALVINGS = 60
-#: template -> (iterated column, closed-form column) pairs
-NEWTON = {"five_bar": (("theta_1", "theta_1"), ("theta_4", "theta_4"))}
+#: template -> (iterated column, closed-form column) pairs; ``{k}`` the iteration count (the
+#: last iterate: theta_1 itself is #NUM! where that iterate has not converged)
+NEWTON = {"five_bar": (("th1_{k}", "theta_1"), ("th4_{k}", "theta_4"))}
 HALVING = {"actuator_linkage": (("phi_2_iter", "phi_2"),)}
 
 
@@ -84,10 +85,11 @@ def _against(result, pairs, reference) -> tuple[dict[str, float], float, int]:
 
 
 def _newton(scene: Scene, progress: Progress) -> list[Row]:
-    pairs = NEWTON[scene.template.id]
-    first, reference = _closed(scene, pairs, progress)
+    templates = NEWTON[scene.template.id]
+    first, reference = _closed(scene, templates, progress)
     rows = [first]
     for k in NEWTON_ITERATIONS:
+        pairs = tuple((it.format(k=k), cl) for it, cl in templates)
         current = variant(scene, options={"method": "newton", "iterations": k},
                           outputs=_with(scene, [it for it, _ in pairs]))
         result = evaluate(current)
