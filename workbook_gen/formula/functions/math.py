@@ -14,8 +14,6 @@ from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
 from workbook_gen.xlmath import kernels as k
 
-TRIG_LIMIT = 2.0 ** 27  # Excel's SIN, COS, TAN give #NUM! from here on
-
 
 def power(x: float, y: float) -> float | ExcelError:
     """Excel's ``x^y`` and POWER: 0^0 #NUM!, 0^-n #DIV/0!, (-x)^fraction #NUM!."""
@@ -64,7 +62,7 @@ def _unary_vector(name):
 
 
 def _trig(fn):
-    return lambda x: ExcelError.NUM if abs(x) >= TRIG_LIMIT else fn(x)
+    return lambda x: ExcelError.NUM if abs(x) >= k.TRIG_LIMIT else fn(x)
 
 
 def _domain(fn, lo, hi, open_lo=False):
