@@ -16,7 +16,7 @@ from workbook_gen.formula.functions import coerce as c
 from workbook_gen.formula.functions.datetext import parse_date_text
 from workbook_gen.formula.functions.registry import register
 from workbook_gen.formula.functions.serials import (  # noqa: F401  (re-exported)
-    from_serial, max_serial, null_date_plus, to_serial, weekday,
+    from_serial, max_serial, moment_serial, null_date_plus, to_serial, weekday,
 )
 from workbook_gen.xlerror import ExcelError
 
@@ -107,8 +107,7 @@ def _today(ctx):
 
 @register("NOW", "date", 0, 0, volatile=True)
 def _now(ctx):
-    now = dt.datetime.now()
-    return to_serial(now.date()) + (now.hour * 3600 + now.minute * 60 + now.second) / 86400.0
+    return moment_serial(dt.datetime.now())
 
 
 def _ymd_date(ymd) -> dt.date:
