@@ -26,7 +26,8 @@ from ..expr import (Node, atan2, cos, degrees, eq, ge, if_, iserror, pi, radians
                     sin, sqrt)
 from .angles import cos_deg, cos_half_squared, reduced_input, sin_deg, sin_half_squared
 from .base import (Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span,
-                   Template, only_if, quantity_vars, speed_scale, symbols)
+                   Template, only_if, quantity_vars, slide_charts, speed_scale, symbols,
+                   turn_charts)
 
 l_AB, l_BC, l_BE, beta_E, x_F, y_F, l_FG, omega_1 = symbols(
     "l_AB l_BC l_BE beta_E x_F y_F l_FG omega_1")
@@ -206,13 +207,8 @@ TEMPLATE = Template(
     status=STATUS,
     checks=_rod_point_checks(),
     charts=(
-        Chart("Needle bar displacement", "theta_1", ("y_C",), "y_C [mm]"),
-        Chart("Needle bar velocity", "theta_1", ("v_C",), "v_C [mm/s]"),
-        Chart("Needle bar acceleration", "theta_1", ("a_C",), "a_C [mm/s^2]"),
-        Chart("Take-up lever angle", "theta_1", ("theta_5",), "theta_5 [deg]"),
-        Chart("Take-up lever angular velocity", "theta_1", ("omega_5",), "omega_5 [rad/s]"),
-        Chart("Take-up lever angular acceleration", "theta_1", ("alpha_5",),
-              "alpha_5 [rad/s^2]"),
+        *slide_charts("Needle bar", "theta_1", ("y_C", "v_C", "a_C")),
+        *turn_charts("Take-up lever", "theta_1", ("theta_5", "omega_5", "alpha_5")),
         Chart("Path of E (lever pin on the rod)", "x_E", ("y_E",), "y_E [mm]", path=True),
         Chart("Path of G (thread eye)", "x_G", ("y_G",), "y_G [mm]", path=True),
     ),

@@ -20,8 +20,8 @@ from __future__ import annotations
 from ..expr import (Node, abs_, atan2, cos, degrees, eq, gt, if_, iserror, le, min_, radians,
                     root, sin, sqrt)
 from .angles import cos_deg, reduced_input, sin_deg, sin_half_squared
-from .base import Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span, Template
-from .base import only_if, quantity_vars, speed_scale, symbols
+from .base import Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span, Template
+from .base import only_if, quantity_vars, slide_charts, speed_scale, symbols, turn_charts
 
 l_AB, l_BC, e, phi_slide, omega_1 = symbols("l_AB l_BC e phi_slide omega_1")
 (theta_1, u_B, n_B, f_BC, g_BC, h_BC, dh_BC, ddh_BC, s_C, v_C, a_C, theta_2, omega_2,
@@ -165,14 +165,8 @@ TEMPLATE = Template(
     quantities=QUANTITIES,
     status=STATUS,
     checks=_checks(),
-    charts=(
-        Chart("Slider displacement", "theta_1", ("s_C",), "s_C [mm]"),
-        Chart("Slider velocity", "theta_1", ("v_C",), "v_C [mm/s]"),
-        Chart("Slider acceleration", "theta_1", ("a_C",), "a_C [mm/s^2]"),
-        Chart("Rod angle", "theta_1", ("theta_2",), "theta_2 [deg]"),
-        Chart("Rod angular velocity", "theta_1", ("omega_2",), "omega_2 [rad/s]"),
-        Chart("Rod angular acceleration", "theta_1", ("alpha_2",), "alpha_2 [rad/s^2]"),
-    ),
+    charts=(slide_charts("Slider", "theta_1", ("s_C", "v_C", "a_C"))
+            + turn_charts("Rod", "theta_1", ("theta_2", "omega_2", "alpha_2"))),
     spans=(Span("stroke", "s_C"), Span("rod swing", "theta_2")),
     figures=(
         Figure("stroke, exact", "mm", only_if(sqrt((l_BC + l_AB) ** 2 - e ** 2)
