@@ -28,6 +28,7 @@ from .angles import cos_deg, cos_half_squared, reduced_input, sin_deg, sin_half_
 from .base import (Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span,
                    Template, only_if, quantity_vars, slide_charts, speed_scale, symbols,
                    turn_charts)
+from .slider_crank import rod_checks
 
 l_AB, l_BC, l_BE, beta_E, x_F, y_F, l_FG, omega_1 = symbols(
     "l_AB l_BC l_BE beta_E x_F y_F l_FG omega_1")
@@ -139,17 +140,10 @@ def _rod_point_checks() -> tuple[Check, ...]:
         return a[0] * b[0] + a[1] * b[1]
 
     ws = speed_scale(omega_1)  # 1 at zero speed, where every rate is 0
-    pos, vel, acc = l_BC, ws * l_AB * l_BC, ws ** 2 * l_AB * l_BC
     lever_v, lever_a = ws * l_FG, ws ** 2 * l_FG
     gx, gy = x_G - x_F, y_G - y_F
     return (
-        Check("rod_length", "position", (sqrt(r[0] ** 2 + r[1] ** 2) - l_BC) / pos,
-              "|C - B| - l_BC, over l_BC"),
-        Check("rod_velocity", "velocity", (r[0] * rv[0] + r[1] * rv[1]) / vel,
-              "(C - B).(C' - B'), over omega_1 l_AB l_BC"),
-        Check("rod_acceleration", "acceleration",
-              (rv[0] ** 2 + rv[1] ** 2 + r[0] * ra[0] + r[1] * ra[1]) / acc,
-              "|C' - B'|^2 + (C - B).(C'' - B''), over omega_1^2 l_AB l_BC"),
+        *rod_checks(r, rv, ra, l_AB, l_BC, ws),
         Check("lever_position", "position", cross(d) / l_FG,
               "distance of E from the lever line, over l_FG"),
         Check("lever_velocity", "velocity", (cross(dv) + dot(d) * omega_5) / lever_v,

@@ -86,6 +86,21 @@ STATUS = if_(iserror(h_BC), "cannot assemble",
                  "dead centre", "ok"))
 
 
+def rod_checks(r, rv, ra, l_AB: Node, l_BC: Node, ws: Node) -> tuple[Check, ...]:
+    """The rod BC of a crank AB keeps its length: ``r`` = C - B, ``rv`` and ``ra`` its
+    rates; ``ws`` = speed_scale(omega_1). Also the sewing machine's rod."""
+    pos, vel, acc = l_BC, ws * l_AB * l_BC, ws ** 2 * l_AB * l_BC
+    return (
+        Check("rod_length", "position", (sqrt(r[0] ** 2 + r[1] ** 2) - l_BC) / pos,
+              "|C - B| - l_BC, over l_BC"),
+        Check("rod_velocity", "velocity", (r[0] * rv[0] + r[1] * rv[1]) / vel,
+              "(C - B).(C' - B'), over omega_1 l_AB l_BC"),
+        Check("rod_acceleration", "acceleration",
+              (rv[0] ** 2 + rv[1] ** 2 + r[0] * ra[0] + r[1] * ra[1]) / acc,
+              "|C' - B'|^2 + (C - B).(C'' - B''), over omega_1^2 l_AB l_BC"),
+    )
+
+
 def _checks() -> tuple[Check, ...]:
     psi = radians(theta_1 - phi_slide)
     ub, nb = l_AB * cos(psi), l_AB * sin(psi)
@@ -97,15 +112,8 @@ def _checks() -> tuple[Check, ...]:
     rel = radians(theta_2 - phi_slide)
     c2, s2 = cos(rel), sin(rel)
     ws = speed_scale(omega_1)  # 1 at zero speed, where every rate is 0
-    pos, vel, acc = l_BC, ws * l_AB * l_BC, ws ** 2 * l_AB * l_BC
     return (
-        Check("rod_length", "position", (sqrt(r[0] ** 2 + r[1] ** 2) - l_BC) / pos,
-              "|C - B| - l_BC, over l_BC"),
-        Check("rod_velocity", "velocity", (r[0] * rv[0] + r[1] * rv[1]) / vel,
-              "(C - B).(C' - B'), over omega_1 l_AB l_BC"),
-        Check("rod_acceleration", "acceleration",
-              (rv[0] ** 2 + rv[1] ** 2 + r[0] * ra[0] + r[1] * ra[1]) / acc,
-              "|C' - B'|^2 + (C - B).(C'' - B''), over omega_1^2 l_AB l_BC"),
+        *rod_checks(r, rv, ra, l_AB, l_BC, ws),
         Check("rod_angle", "position", (r[0] * s2 - r[1] * c2) / l_BC,
               "(C - B) x e_2, over l_BC"),
         Check("rod_angular_velocity", "velocity",
