@@ -133,7 +133,10 @@ def oddf_price(s, m, issue, first, f, b, r, y, red) -> float:
     return price - cpn * a_sum
 
 
-def _oddf_args(settle, maturity, issue, first, freq, basis, nums):
+def _oddf_args(settle, maturity, issue, first, freq, basis, nums, x_bad):
+    """ODDFPRICE's and ODDFYIELD's arguments (settlement, maturity, issue, first coupon,
+    frequency, basis, (rate, x, redemption)), or the error; #NUM! for dates out of order, a
+    negative rate, ``x_bad(x)`` (the yield or the price) or a redemption <= 0."""
     got = dc.bond_args(settle, maturity, freq, basis, nums)
     dates = [dc.serial_arg(d) for d in (issue, first)]
     for v in (got, *dates):
@@ -145,17 +148,19 @@ def _oddf_args(settle, maturity, issue, first, freq, basis, nums):
     i, fc = (dc.date_of(math.floor(d)) for d in dates)
     if not i < s < fc <= m:  # maturity >= first_coupon > settlement > issue
         return ExcelError.NUM
+    r, x, red = xs
+    if r < 0 or x_bad(x) or red <= 0:
+        return ExcelError.NUM
     return s, m, i, fc, f, b, xs
 
 
 @register("ODDFPRICE", "finance", 8, 9)
 def _oddfprice(ctx, settle, maturity, issue, first, rate, yld, redemption, freq, basis=None):
-    got = _oddf_args(settle, maturity, issue, first, freq, basis, (rate, yld, redemption))
+    got = _oddf_args(settle, maturity, issue, first, freq, basis, (rate, yld, redemption),
+                     lambda y: y < 0)
     if isinstance(got, ExcelError):
         return got
     s, m, i, fc, f, b, (r, y, red) = got
-    if r < 0 or y < 0 or red <= 0:
-        return ExcelError.NUM
     try:
         return c.result(oddf_price(s, m, i, fc, f, b, r, y, red))
     except (ZeroDivisionError, OverflowError):
@@ -166,12 +171,11 @@ def _oddfprice(ctx, settle, maturity, issue, first, rate, yld, redemption, freq,
 def _oddfyield(ctx, settle, maturity, issue, first, rate, pr, redemption, freq, basis=None):
     """The yield at which ODDFPRICE is the price (Newton's method, bisection as a guard)."""
     from workbook_gen.formula.functions.bonds import _solve
-    got = _oddf_args(settle, maturity, issue, first, freq, basis, (rate, pr, redemption))
+    got = _oddf_args(settle, maturity, issue, first, freq, basis, (rate, pr, redemption),
+                     lambda p: p <= 0)
     if isinstance(got, ExcelError):
         return got
     s, m, i, fc, f, b, (r, p, red) = got
-    if r < 0 or p <= 0 or red <= 0:
-        return ExcelError.NUM
     try:
         y = _solve(lambda y: oddf_price(s, m, i, fc, f, b, r, y, red) - p)
     except (ZeroDivisionError, OverflowError):
