@@ -14,12 +14,14 @@ import zipfile
 
 import openpyxl
 import pytest
-from openpyxl.utils.datetime import CALENDAR_MAC_1904
+import datetime as dt
+
+from openpyxl.utils.datetime import CALENDAR_MAC_1904, CALENDAR_WINDOWS_1900, to_excel
 
 from workbook_gen import audit
 from workbook_gen.engines.libreoffice import recalculate
 from workbook_gen.formula import functions as fx
-from workbook_gen.formula.functions.serials import date_system
+from workbook_gen.formula.functions.serials import date_system, moment_of, moment_serial
 
 
 def _call(name, *args):
@@ -34,6 +36,29 @@ def _call(name, *args):
 def test_datevalue_in_both_systems(text, serial_1900, serial_1904):
     assert fx.call("DATEVALUE", [text]) == serial_1900
     assert _call("DATEVALUE", text) == serial_1904
+
+
+MOMENTS = [dt.datetime(1900, 1, 1), dt.datetime(1900, 2, 28, 18), dt.datetime(1900, 3, 1, 6),
+           dt.datetime(1904, 1, 1), dt.datetime(2008, 1, 1, 12), dt.datetime(2024, 2, 29, 23, 59, 59)]
+
+
+@pytest.mark.parametrize("moment", MOMENTS)
+def test_a_moment_and_its_serial_agree_with_openpyxl_in_both_systems(moment):
+    """The save time the audit reads (TODAY/NOW contracts) and NOW: openpyxl's to_excel is
+    the reference (the 1900 system's missing 29 February 1900 included)."""
+    for date1904, epoch in ((False, CALENDAR_WINDOWS_1900), (True, CALENDAR_MAC_1904)):
+        if date1904 and moment.year < 1904:
+            continue
+        x = moment_serial(moment, date1904)
+        assert x == pytest.approx(to_excel(moment, epoch), abs=1e-9)
+        assert moment_of(x, date1904) == moment
+        with date_system(date1904):
+            assert moment_serial(moment) == x and moment_of(x) == moment
+
+
+def test_the_days_that_are_no_calendar_day_have_no_moment():
+    assert moment_of(0.5, False) is None and moment_of(60.25, False) is None
+    assert moment_of(-1.0, True) is None and moment_of(2958466.0, False) is None
 
 
 def test_limits_of_the_1904_system():

@@ -38,6 +38,7 @@ from ..formula import ast
 from ..cellref import column_letters
 from ..xlerror import ExcelError
 from .grid import ERROR, FORMULA, NUMBER, TEXT, Grid, Key, value_kind
+from .report import _show
 from .structure import Finding
 
 _ERROR = frozenset({ExcelError})
@@ -433,11 +434,3 @@ def _at(key: Key, along: int, pos: int) -> Key:
 
 def _step(key: Key, along: int, by: int) -> Key:
     return _at(key, along, key[along] + by)
-
-
-def _show(value) -> str:
-    if isinstance(value, float):
-        return f"{value:.15g}"
-    if isinstance(value, ExcelError):
-        return value.value
-    return repr(value)

@@ -11,16 +11,10 @@ import re
 from collections import defaultdict
 from dataclasses import dataclass
 
-from ..cellref import column_number
 from ..formula import ast
+from ..names import excel_name_problem
 from ..xlsx.reader import MISSING_PART
 
-# Excel's rules: a letter of any script, '_' or '\' first; then letters, digits, '_', '.',
-# '\' and '?'; not a cell reference, not R1C1-like; at most 255 characters.
-_NAME = re.compile(r"[^\W\d]|[_\\]", re.UNICODE)
-_NAME_REST = re.compile(r"[\w.\\?]*", re.UNICODE)
-_A1 = re.compile(r"\$?([A-Za-z]{1,3})\$?([0-9]+)")
-_R1C1 = re.compile(r"[Rr][0-9]*[Cc]?[0-9]*|[Cc][0-9]*")
 _BUILT_IN = re.compile(r"_xlnm\.[A-Za-z_]+")
 
 
@@ -31,33 +25,13 @@ class Finding:
     message: str
 
 
-def excel_name_problem(name: str) -> str | None:
-    """Why Excel would refuse ``name`` as a defined name, or None."""
-    if _BUILT_IN.fullmatch(name):
-        return None  # _xlnm.Print_Area and friends
-    if not name or len(name) > 255:
-        return "a name has 1 to 255 characters"
-    if not _NAME.match(name[0]) or not _NAME_REST.fullmatch(name, 1):
-        return ("a name starts with a letter, '_' or '\\' and holds only letters, digits, "
-                "'_', '.', '\\' and '?'")
-    a1 = _A1.fullmatch(name)
-    if a1 and len(a1.group(1)) <= 3 and column_number(a1.group(1)) <= 16384 \
-            and 1 <= int(a1.group(2)) <= 1048576:
-        return "it is a cell reference"
-    if _R1C1.fullmatch(name):
-        return "it reads as an R1C1 reference"
-    if name.upper() in ("TRUE", "FALSE"):
-        return "it is a boolean literal"
-    return None
-
-
 def check_structure(inputs, evaluation, cell_name) -> list[Finding]:
     book = inputs.book
     findings = []
     scoped = [(n, None) for n in book.defined_names] + [
         (n, s.name) for s in book.sheets for n in s.defined_names]
     for name, sheet in scoped:
-        problem = excel_name_problem(name)
+        problem = None if _BUILT_IN.fullmatch(name) else excel_name_problem(name)
         if problem:
             findings.append(Finding(name if sheet is None else f"{sheet}!{name}",
                                     "illegal_name", problem))

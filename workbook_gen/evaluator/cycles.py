@@ -40,6 +40,7 @@ from __future__ import annotations
 import sys
 from collections.abc import Callable, Sequence
 
+from workbook_gen.evaluator.graph import is_cycle, order
 from workbook_gen.xlerror import ExcelError
 
 MAX_CELLS = 400   # larger components are reported as cycles without trying
@@ -194,51 +195,9 @@ def run(units: Sequence, cells_of: Callable, store, evaluate: Callable) -> list[
 
 def _strong_parts(graph: dict) -> list[set]:
     """The strongly connected parts of ``graph`` that hold a cycle (two cells or more, or
-    a cell that reads itself); Tarjan's algorithm without recursion."""
-    index: dict = {}
-    low: dict = {}
-    on_stack: set = set()
-    stack: list = []
-    parts: list[set] = []
-    counter = 0
-    for root in graph:
-        if root in index:
-            continue
-        work = [(root, iter(graph.get(root, ())))]
-        index[root] = low[root] = counter
-        counter += 1
-        stack.append(root)
-        on_stack.add(root)
-        while work:
-            node, children = work[-1]
-            advanced = False
-            for child in children:
-                if child not in graph:
-                    continue
-                if child not in index:
-                    index[child] = low[child] = counter
-                    counter += 1
-                    stack.append(child)
-                    on_stack.add(child)
-                    work.append((child, iter(graph.get(child, ()))))
-                    advanced = True
-                    break
-                if child in on_stack:
-                    low[node] = min(low[node], index[child])
-            if advanced:
-                continue
-            work.pop()
-            if work:
-                parent = work[-1][0]
-                low[parent] = min(low[parent], low[node])
-            if low[node] == index[node]:
-                part = set()
-                while True:
-                    top = stack.pop()
-                    on_stack.discard(top)
-                    part.add(top)
-                    if top == node:
-                        break
-                if len(part) > 1 or node in graph.get(node, ()):
-                    parts.append(part)
-    return parts
+    a cell that reads itself): graph.order's Tarjan over the cells numbered in ``graph``'s
+    order, reads of cells outside ``graph`` left out."""
+    cells = list(graph)
+    number = {cell: k for k, cell in enumerate(cells)}
+    deps = [[number[c] for c in graph[cell] if c in number] for cell in cells]
+    return [{cells[k] for k in part} for part in order(deps) if is_cycle(part, deps)]

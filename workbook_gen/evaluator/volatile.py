@@ -49,13 +49,12 @@ from dataclasses import dataclass, field
 
 from workbook_gen.formula import ast
 from workbook_gen.formula.functions import coerce
-from workbook_gen.formula.functions.serials import OFFSET_1904
+from workbook_gen.formula.functions.serials import moment_of, moment_serial
 from workbook_gen.xlerror import ExcelError
 
 CHANGING = frozenset({"NOW", "TODAY", "RAND", "RANDBETWEEN", "RANDARRAY"})
 SHARED = frozenset({"NOW", "TODAY"})  # one value per recalculation (the clock's moment)
 MAX_MOMENTS = 8  # distinct moments tried for a formula mixing NOW/TODAY with others
-_EPOCH = dt.datetime(1899, 12, 30)
 SMALL_RANGE = 2000  # whole-number contracts searched value by value up to this size
 
 
@@ -72,8 +71,7 @@ class Clock:
     def serial(self) -> float | None:
         if self.saved is None:
             return None
-        delta = self.saved.replace(tzinfo=None) - _EPOCH
-        return delta.total_seconds() / 86400.0 - (OFFSET_1904 if self.date1904 else 0)
+        return moment_serial(self.saved.replace(tzinfo=None), self.date1904)
 
 
 @dataclass
@@ -88,9 +86,8 @@ def calls(node: ast.Node) -> list[ast.Func]:
 
 
 def _date(serial: float, date1904: bool = False) -> str:
-    try:
-        day = _EPOCH + dt.timedelta(days=serial + (OFFSET_1904 if date1904 else 0))
-    except (OverflowError, ValueError):
+    day = moment_of(serial, date1904)
+    if day is None:
         return f"serial {serial:g}"
     return day.strftime("%Y-%m-%d %H:%M" if serial != int(serial) else "%Y-%m-%d")
 

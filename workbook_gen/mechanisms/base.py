@@ -67,6 +67,25 @@ class Chart:
     path: bool = False  # True: y against x of a point, equal axis scales
 
 
+def slide_charts(what: str, x: str, names: tuple[str, str, str], unit: str = "mm"
+                 ) -> tuple[Chart, ...]:
+    """A sliding part's displacement, velocity and acceleration against ``x``; ``names``:
+    its three quantities (s, v, a), in ``unit``, ``unit``/s and ``unit``/s^2."""
+    s, v, a = names
+    return (Chart(f"{what} displacement", x, (s,), f"{s} [{unit}]"),
+            Chart(f"{what} velocity", x, (v,), f"{v} [{unit}/s]"),
+            Chart(f"{what} acceleration", x, (a,), f"{a} [{unit}/s^2]"))
+
+
+def turn_charts(what: str, x: str, names: tuple[str, str, str]) -> tuple[Chart, ...]:
+    """A turning link's angle (deg), angular velocity and angular acceleration against
+    ``x``; ``names``: its three quantities (theta, omega, alpha)."""
+    theta, omega, alpha = names
+    return (Chart(f"{what} angle", x, (theta,), f"{theta} [deg]"),
+            Chart(f"{what} angular velocity", x, (omega,), f"{omega} [rad/s]"),
+            Chart(f"{what} angular acceleration", x, (alpha,), f"{alpha} [rad/s^2]"))
+
+
 @dataclass(frozen=True)
 class Span:
     """A Summary row: max - min of a quantity over the sweep (stroke, swing)."""

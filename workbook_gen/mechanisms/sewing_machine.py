@@ -26,7 +26,9 @@ from ..expr import (Node, abs_, atan2, cos, degrees, eq, ge, gt, if_, iserror, l
                     radians, root, sin, sqrt)
 from .angles import cos_deg, cos_half_squared, reduced_input, sin_deg, sin_half_squared
 from .base import (Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span,
-                   Template, only_if, quantity_vars, speed_scale, symbols)
+                   Template, only_if, quantity_vars, slide_charts, speed_scale, symbols,
+                   turn_charts)
+from .slider_crank import rod_checks
 
 l_AB, l_BC, l_BE, beta_E, x_F, y_F, l_FG, omega_1 = symbols(
     "l_AB l_BC l_BE beta_E x_F y_F l_FG omega_1")
@@ -192,17 +194,10 @@ def _rod_point_checks() -> tuple[Check, ...]:
         return a[0] * b[0] + a[1] * b[1]
 
     ws = speed_scale(omega_1)  # 1 at zero speed, where every rate is 0
-    pos, vel, acc = l_BC, ws * l_AB * l_BC, ws ** 2 * l_AB * l_BC
     lever_v, lever_a = ws * l_FG, ws ** 2 * l_FG
     gx, gy = x_G - x_F, y_G - y_F
     return (
-        Check("rod_length", "position", (sqrt(r[0] ** 2 + r[1] ** 2) - l_BC) / pos,
-              "|C - B| - l_BC, over l_BC"),
-        Check("rod_velocity", "velocity", (r[0] * rv[0] + r[1] * rv[1]) / vel,
-              "(C - B).(C' - B'), over omega_1 l_AB l_BC"),
-        Check("rod_acceleration", "acceleration",
-              (rv[0] ** 2 + rv[1] ** 2 + r[0] * ra[0] + r[1] * ra[1]) / acc,
-              "|C' - B'|^2 + (C - B).(C'' - B''), over omega_1^2 l_AB l_BC"),
+        *rod_checks(r, rv, ra, l_AB, l_BC, ws),
         Check("lever_position", "position", cross(d) / l_FG,
               "distance of E from the lever line, over l_FG"),
         Check("lever_velocity", "velocity", (cross(dv) + dot(d) * omega_5) / lever_v,
@@ -261,13 +256,8 @@ TEMPLATE = Template(
     status_for=_status_for,
     checks=_rod_point_checks(),
     charts=(
-        Chart("Needle bar displacement", "theta_1", ("y_C",), "y_C [mm]"),
-        Chart("Needle bar velocity", "theta_1", ("v_C",), "v_C [mm/s]"),
-        Chart("Needle bar acceleration", "theta_1", ("a_C",), "a_C [mm/s^2]"),
-        Chart("Take-up lever angle", "theta_1", ("theta_5",), "theta_5 [deg]"),
-        Chart("Take-up lever angular velocity", "theta_1", ("omega_5",), "omega_5 [rad/s]"),
-        Chart("Take-up lever angular acceleration", "theta_1", ("alpha_5",),
-              "alpha_5 [rad/s^2]"),
+        *slide_charts("Needle bar", "theta_1", ("y_C", "v_C", "a_C")),
+        *turn_charts("Take-up lever", "theta_1", ("theta_5", "omega_5", "alpha_5")),
         Chart("Path of E (lever pin on the rod)", "x_E", ("y_E",), "y_E [mm]", path=True),
         Chart("Path of G (thread eye)", "x_G", ("y_G",), "y_G [mm]", path=True),
     ),

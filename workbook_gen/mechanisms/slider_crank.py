@@ -20,8 +20,8 @@ from __future__ import annotations
 from ..expr import (Node, abs_, atan2, cos, degrees, eq, gt, if_, iserror, le, min_, radians,
                     root, sin, sqrt)
 from .angles import cos_deg, reduced_input, sin_deg, sin_half_squared
-from .base import Chart, Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span, Template
-from .base import only_if, quantity_vars, speed_scale, symbols
+from .base import Check, Figure, InputSpec, Link, ParamSpec, Quantity, Span, Template
+from .base import only_if, quantity_vars, slide_charts, speed_scale, symbols, turn_charts
 
 l_AB, l_BC, e, phi_slide, omega_1 = symbols("l_AB l_BC e phi_slide omega_1")
 (theta_1, u_B, n_B, f_BC, g_BC, h_BC, dh_BC, ddh_BC, s_C, v_C, a_C, theta_2, omega_2,
@@ -86,6 +86,21 @@ STATUS = if_(iserror(h_BC), "cannot assemble",
                  "dead centre", "ok"))
 
 
+def rod_checks(r, rv, ra, l_AB: Node, l_BC: Node, ws: Node) -> tuple[Check, ...]:
+    """The rod BC of a crank AB keeps its length: ``r`` = C - B, ``rv`` and ``ra`` its
+    rates; ``ws`` = speed_scale(omega_1). Also the sewing machine's rod."""
+    pos, vel, acc = l_BC, ws * l_AB * l_BC, ws ** 2 * l_AB * l_BC
+    return (
+        Check("rod_length", "position", (sqrt(r[0] ** 2 + r[1] ** 2) - l_BC) / pos,
+              "|C - B| - l_BC, over l_BC"),
+        Check("rod_velocity", "velocity", (r[0] * rv[0] + r[1] * rv[1]) / vel,
+              "(C - B).(C' - B'), over omega_1 l_AB l_BC"),
+        Check("rod_acceleration", "acceleration",
+              (rv[0] ** 2 + rv[1] ** 2 + r[0] * ra[0] + r[1] * ra[1]) / acc,
+              "|C' - B'|^2 + (C - B).(C'' - B''), over omega_1^2 l_AB l_BC"),
+    )
+
+
 def _checks() -> tuple[Check, ...]:
     psi = radians(theta_1 - phi_slide)
     ub, nb = l_AB * cos(psi), l_AB * sin(psi)
@@ -97,15 +112,8 @@ def _checks() -> tuple[Check, ...]:
     rel = radians(theta_2 - phi_slide)
     c2, s2 = cos(rel), sin(rel)
     ws = speed_scale(omega_1)  # 1 at zero speed, where every rate is 0
-    pos, vel, acc = l_BC, ws * l_AB * l_BC, ws ** 2 * l_AB * l_BC
     return (
-        Check("rod_length", "position", (sqrt(r[0] ** 2 + r[1] ** 2) - l_BC) / pos,
-              "|C - B| - l_BC, over l_BC"),
-        Check("rod_velocity", "velocity", (r[0] * rv[0] + r[1] * rv[1]) / vel,
-              "(C - B).(C' - B'), over omega_1 l_AB l_BC"),
-        Check("rod_acceleration", "acceleration",
-              (rv[0] ** 2 + rv[1] ** 2 + r[0] * ra[0] + r[1] * ra[1]) / acc,
-              "|C' - B'|^2 + (C - B).(C'' - B''), over omega_1^2 l_AB l_BC"),
+        *rod_checks(r, rv, ra, l_AB, l_BC, ws),
         Check("rod_angle", "position", (r[0] * s2 - r[1] * c2) / l_BC,
               "(C - B) x e_2, over l_BC"),
         Check("rod_angular_velocity", "velocity",
@@ -165,14 +173,8 @@ TEMPLATE = Template(
     quantities=QUANTITIES,
     status=STATUS,
     checks=_checks(),
-    charts=(
-        Chart("Slider displacement", "theta_1", ("s_C",), "s_C [mm]"),
-        Chart("Slider velocity", "theta_1", ("v_C",), "v_C [mm/s]"),
-        Chart("Slider acceleration", "theta_1", ("a_C",), "a_C [mm/s^2]"),
-        Chart("Rod angle", "theta_1", ("theta_2",), "theta_2 [deg]"),
-        Chart("Rod angular velocity", "theta_1", ("omega_2",), "omega_2 [rad/s]"),
-        Chart("Rod angular acceleration", "theta_1", ("alpha_2",), "alpha_2 [rad/s^2]"),
-    ),
+    charts=(slide_charts("Slider", "theta_1", ("s_C", "v_C", "a_C"))
+            + turn_charts("Rod", "theta_1", ("theta_2", "omega_2", "alpha_2"))),
     spans=(Span("stroke", "s_C"), Span("rod swing", "theta_2")),
     figures=(
         Figure("stroke, exact", "mm", only_if(sqrt((l_BC + l_AB) ** 2 - e ** 2)

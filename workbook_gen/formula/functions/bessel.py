@@ -48,22 +48,24 @@ def j1(x):
     return -r if x<0 else r
 
 
+def _upward(n, tox, f0, f1, sign):
+    """f_n by the upward recurrence f_(j+1) = j*tox*f_j + sign*f_(j-1) from f_0 and f_1
+    (tox = 2/x; sign -1 for J and Y, +1 for K)."""
+    fm, f = f0, f1
+    for j in range(1,n):
+        fm, f = f, j*tox*f+sign*fm
+    return f
+
+
 def jn(n,x,ACC=40.0):
     if n==0: return j0(x)
     if n==1: return j1(x)
     ax = abs(x)
     if ax==0: return 0.0
+    tox = 2/ax
     if ax>n:
-        tox = 2/ax
-        bjm = j0(ax)
-        bj = j1(ax)
-        for j in range(1,n):
-            bjp = j*tox*bj-bjm
-            bjm = bj
-            bj = bjp
-        ans = bj
+        ans = _upward(n, tox, j0(ax), j1(ax), -1.0)
     else:
-        tox = 2/ax
         m = 2*((n+int(math.sqrt(ACC*n)))//2)
         jsum = False
         bjp = ans=s=0.0
@@ -146,14 +148,7 @@ def k1(x):
 def kn(n,x):
     if n==0: return k0(x)
     if n==1: return k1(x)
-    tox = 2/x
-    bkm = k0(x)
-    bk = k1(x)
-    for j in range(1,n):
-        bkp = bkm+j*tox*bk
-        bkm = bk
-        bk = bkp
-    return bk
+    return _upward(n, 2/x, k0(x), k1(x), 1.0)
 
 
 def y0(x):
@@ -187,14 +182,7 @@ def y1(x):
 def yn(n,x):
     if n==0: return y0(x)
     if n==1: return y1(x)
-    tox = 2/x
-    by = y1(x)
-    bym = y0(x)
-    for j in range(1,n):
-        byp = j*tox*by-bym
-        bym = by
-        by = byp
-    return by
+    return _upward(n, 2/x, y0(x), y1(x), -1.0)
 
 
 def _bessel(fn, positive):

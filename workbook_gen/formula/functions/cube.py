@@ -75,16 +75,26 @@ def _tuple_text(cache, members) -> str:
     return "(" + ", ".join(sorted(cache.unique_name(m) for m in members)) + ")"
 
 
-@register("CUBEMEMBER", "cube", 2, 3, ("scalar", "range", "scalar"))
-def _cubemember(ctx, connection, member, caption=None):
-    cache = _cache(ctx, "CUBEMEMBER", connection)
+def _member_args(ctx, name: str, connection, member, extra):
+    """(cache, members) for a function of a connection, a member and one more argument,
+    or the first error among the three, in argument order."""
+    cache = _cache(ctx, name, connection)
     if isinstance(cache, ExcelError):
         return cache
-    members = _members("CUBEMEMBER", cache, member)
+    members = _members(name, cache, member)
     if isinstance(members, ExcelError):
         return members
-    if isinstance(caption, ExcelError):
-        return caption
+    if isinstance(extra, ExcelError):
+        return extra
+    return cache, members
+
+
+@register("CUBEMEMBER", "cube", 2, 3, ("scalar", "range", "scalar"))
+def _cubemember(ctx, connection, member, caption=None):
+    got = _member_args(ctx, "CUBEMEMBER", connection, member, caption)
+    if isinstance(got, ExcelError):
+        return got
+    cache, members = got
     if isinstance(caption, str) and caption:
         return CubeMember(caption, members)
     last = member
@@ -120,14 +130,10 @@ def _cubevalue(ctx, connection, *members):
 
 @register("CUBEMEMBERPROPERTY", "cube", 3, 3, ("scalar", "range", "scalar"))
 def _cubememberproperty(ctx, connection, member, prop):
-    cache = _cache(ctx, "CUBEMEMBERPROPERTY", connection)
-    if isinstance(cache, ExcelError):
-        return cache
-    members = _members("CUBEMEMBERPROPERTY", cache, member)
-    if isinstance(members, ExcelError):
-        return members
-    if isinstance(prop, ExcelError):
-        return prop
+    got = _member_args(ctx, "CUBEMEMBERPROPERTY", connection, member, prop)
+    if isinstance(got, ExcelError):
+        return got
+    cache, members = got
     if len(members) != 1 or next(iter(members))[0] != "f":
         raise Unanswered("CUBEMEMBERPROPERTY: the member is not one item of the file's "
                          f"OLAP cache: {_tuple_text(cache, members)}")

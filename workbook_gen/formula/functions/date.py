@@ -16,7 +16,7 @@ from workbook_gen.formula.functions import coerce as c
 from workbook_gen.formula.functions.datetext import parse_date_text
 from workbook_gen.formula.functions.registry import register
 from workbook_gen.formula.functions.serials import (  # noqa: F401  (re-exported)
-    from_serial, max_serial, null_date_plus, to_serial, weekday,
+    from_serial, max_serial, moment_serial, null_date_plus, to_serial, weekday,
 )
 from workbook_gen.xlerror import ExcelError
 
@@ -107,8 +107,7 @@ def _today(ctx):
 
 @register("NOW", "date", 0, 0, volatile=True)
 def _now(ctx):
-    now = dt.datetime.now()
-    return to_serial(now.date()) + (now.hour * 3600 + now.minute * 60 + now.second) / 86400.0
+    return moment_serial(dt.datetime.now())
 
 
 def _ymd_date(ymd) -> dt.date:
@@ -118,15 +117,23 @@ def _ymd_date(ymd) -> dt.date:
     return dt.date(y, m, d)
 
 
-def _add_months(v, months, end_of_month: bool):
-    if isinstance(v, bool) or isinstance(months, bool):  # Analysis ToolPak: no booleans
-        return ExcelError.VALUE
+def date_and_number(v, n):
+    """(year, month, day) of a date argument and a number argument, or the first error."""
     ymd = _date(v)
-    k = c.to_number(months)
+    k = c.to_number(n)
     for x in (ymd, k):
         if isinstance(x, ExcelError):
             return x
-    y, m, d = ymd
+    return ymd, k
+
+
+def _add_months(v, months, end_of_month: bool):
+    if isinstance(v, bool) or isinstance(months, bool):  # Analysis ToolPak: no booleans
+        return ExcelError.VALUE
+    got = date_and_number(v, months)
+    if isinstance(got, ExcelError):
+        return got
+    (y, m, d), k = got
     total = y * 12 + (m - 1) + int(k)
     y, m = divmod(total, 12)
     m += 1
@@ -334,22 +341,19 @@ def _weekday(ctx, v, kind=1.0):
     return ExcelError.NUM
 
 
-@register("DATEVALUE", "date", 1, 1)
-def _datevalue(ctx, v):
-    t = c.to_text(v)
-    if isinstance(t, ExcelError):
-        return t
-    x = parse_date_text(t)
-    return x if isinstance(x, ExcelError) else float(math.floor(x))
+def _from_text(name, part):
+    """DATEVALUE (the day of a date read from text) and TIMEVALUE (its time of day)."""
+    def scalar(ctx, v):
+        t = c.to_text(v)
+        if isinstance(t, ExcelError):
+            return t
+        x = parse_date_text(t)
+        return x if isinstance(x, ExcelError) else part(x)
+    register(name, "date", 1, 1)(scalar)
 
 
-@register("TIMEVALUE", "date", 1, 1)
-def _timevalue(ctx, v):
-    t = c.to_text(v)
-    if isinstance(t, ExcelError):
-        return t
-    x = parse_date_text(t)
-    return x if isinstance(x, ExcelError) else x - math.floor(x)
+_from_text("DATEVALUE", lambda x: float(math.floor(x)))
+_from_text("TIMEVALUE", lambda x: x - math.floor(x))
 
 
 def _holidays(h) -> set[int] | ExcelError:

@@ -133,7 +133,10 @@ def _cum_args(rate, nper, pv, start, end, typ):
     return start, end, int(typ)
 
 
-def cumipmt(rate, nper, pv, start, end, typ):
+def _cumulative(rate, nper, pv, start, end, typ, first, later):
+    """CUMIPMT's and CUMPRINC's sum: ``first(pmt, typ)`` for period 1 if the range holds it,
+    then ``later(pmt, balance)`` for each later period, ``balance`` the amount the period's
+    interest is charged on; #NUM! for arguments out of range."""
     got = _cum_args(rate, nper, pv, start, end, typ)
     if got is None:
         return ExcelError.NUM
@@ -141,30 +144,24 @@ def cumipmt(rate, nper, pv, start, end, typ):
     pmt = _pmt(rate, nper, pv, 0.0, typ)
     total = 0.0
     if start == 1:
-        if typ == 0:
-            total = -pv
+        total = first(pmt, typ)
         start += 1
     for i in range(start, end + 1):
-        total += _fv(rate, i - 2, pmt, pv, 1) - pmt if typ else _fv(rate, i - 1, pmt, pv, 0)
-    return total * rate
+        total += later(pmt, _fv(rate, i - 2, pmt, pv, 1) - pmt if typ
+                       else _fv(rate, i - 1, pmt, pv, 0))
+    return total
+
+
+def cumipmt(rate, nper, pv, start, end, typ):
+    total = _cumulative(rate, nper, pv, start, end, typ,
+                        lambda pmt, typ: 0.0 if typ else -pv, lambda pmt, balance: balance)
+    return total if isinstance(total, ExcelError) else total * rate
 
 
 def cumprinc(rate, nper, pv, start, end, typ):
-    got = _cum_args(rate, nper, pv, start, end, typ)
-    if got is None:
-        return ExcelError.NUM
-    start, end, typ = got
-    pmt = _pmt(rate, nper, pv, 0.0, typ)
-    total = 0.0
-    if start == 1:
-        total = pmt + pv * rate if typ == 0 else pmt
-        start += 1
-    for i in range(start, end + 1):
-        if typ:
-            total += pmt - (_fv(rate, i - 2, pmt, pv, 1) - pmt) * rate
-        else:
-            total += pmt - _fv(rate, i - 1, pmt, pv, 0) * rate
-    return total
+    return _cumulative(rate, nper, pv, start, end, typ,
+                       lambda pmt, typ: pmt if typ else pmt + pv * rate,
+                       lambda pmt, balance: pmt - balance * rate)
 
 
 register("CUMIPMT", "finance", 6, 6)(_safe(cumipmt, booleans=False))

@@ -3,6 +3,8 @@ back (10-digit two's complement), DELTA, GESTEP."""
 
 from __future__ import annotations
 
+import operator
+
 from workbook_gen.formula.functions import coerce as c
 from workbook_gen.formula.functions.registry import register
 from workbook_gen.xlerror import ExcelError
@@ -231,23 +233,18 @@ for _s in _BASES:
             _cross(_s, _d)
 
 
-@register("DELTA", "eng", 1, 2)
-def _delta(ctx, a, b=0.0):
-    if isinstance(a, bool) or isinstance(b, bool):
-        return ExcelError.VALUE  # no booleans (formulas test.xlsx ENGINEERING!Y20, Y25)
-    x, y = c.to_number(a), c.to_number(b)
-    for v in (x, y):
-        if isinstance(v, ExcelError):
-            return v
-    return 1.0 if x == y else 0.0
+def _step(name, test):
+    """DELTA (1 where a = b) and GESTEP (1 where a >= b); b is 0 by default."""
+    def scalar(ctx, a, b=0.0):
+        if isinstance(a, bool) or isinstance(b, bool):
+            return ExcelError.VALUE  # no booleans (formulas test.xlsx ENGINEERING!Y20, Y25)
+        x, y = c.to_number(a), c.to_number(b)
+        for v in (x, y):
+            if isinstance(v, ExcelError):
+                return v
+        return 1.0 if test(x, y) else 0.0
+    register(name, "eng", 1, 2)(scalar)
 
 
-@register("GESTEP", "eng", 1, 2)
-def _gestep(ctx, a, b=0.0):
-    if isinstance(a, bool) or isinstance(b, bool):
-        return ExcelError.VALUE  # no booleans (formulas test.xlsx ENGINEERING!Y20, Y25)
-    x, y = c.to_number(a), c.to_number(b)
-    for v in (x, y):
-        if isinstance(v, ExcelError):
-            return v
-    return 1.0 if x >= y else 0.0
+_step("DELTA", operator.eq)
+_step("GESTEP", operator.ge)

@@ -306,22 +306,19 @@ def _ddb(ctx, cost, salvage, life, period, factor=2.0):
     return c.result(dep)
 
 
-@register("EFFECT", "finance", 2, 2)
-def _effect(ctx, nominal, n):
-    xs = _nums(nominal, n)
-    if isinstance(xs, ExcelError):
-        return xs
-    r, k = xs[0], int(xs[1])
-    return ExcelError.NUM if r <= 0 or k < 1 else _safe(lambda: (1 + r / k) ** k - 1)
+def _compounding(name, convert):
+    """EFFECT and NOMINAL: ``convert(r, k)`` of a rate r > 0 compounded k >= 1 times a year."""
+    def scalar(ctx, rate, n):
+        xs = _nums(rate, n)
+        if isinstance(xs, ExcelError):
+            return xs
+        r, k = xs[0], int(xs[1])
+        return ExcelError.NUM if r <= 0 or k < 1 else _safe(lambda: convert(r, k))
+    register(name, "finance", 2, 2)(scalar)
 
 
-@register("NOMINAL", "finance", 2, 2)
-def _nominal(ctx, effect, n):
-    xs = _nums(effect, n)
-    if isinstance(xs, ExcelError):
-        return xs
-    r, k = xs[0], int(xs[1])
-    return ExcelError.NUM if r <= 0 or k < 1 else _safe(lambda: k * ((1 + r) ** (1 / k) - 1))
+_compounding("EFFECT", lambda r, k: (1 + r / k) ** k - 1)
+_compounding("NOMINAL", lambda r, k: k * ((1 + r) ** (1 / k) - 1))
 
 
 @register("RRI", "finance", 3, 3)

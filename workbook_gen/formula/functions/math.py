@@ -14,8 +14,6 @@ from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
 from workbook_gen.xlmath import kernels as k
 
-TRIG_LIMIT = 2.0 ** 27  # Excel's SIN, COS, TAN give #NUM! from here on
-
 
 def power(x: float, y: float) -> float | ExcelError:
     """Excel's ``x^y`` and POWER: 0^0 #NUM!, 0^-n #DIV/0!, (-x)^fraction #NUM!."""
@@ -64,7 +62,7 @@ def _unary_vector(name):
 
 
 def _trig(fn):
-    return lambda x: ExcelError.NUM if abs(x) >= TRIG_LIMIT else fn(x)
+    return lambda x: ExcelError.NUM if abs(x) >= k.TRIG_LIMIT else fn(x)
 
 
 def _domain(fn, lo, hi, open_lo=False):
@@ -223,14 +221,24 @@ def _mround(ctx, x, m):
     return c.result(_multiple(x, m, ROUND_HALF_UP))
 
 
-@register("CEILING", "math", 2, 2)
-def _ceiling(ctx, x, sig):
+def _value_and_significance(x, sig):
+    """CEILING's and FLOOR's arguments as numbers, or the first error; #NUM! for a positive
+    number with a negative significance."""
     x, s = c.to_number(x), c.to_number(sig)
     bad = _numeric(x, s)
     if bad is not None:
         return bad
     if x > 0 and s < 0:
         return ExcelError.NUM
+    return x, s
+
+
+@register("CEILING", "math", 2, 2)
+def _ceiling(ctx, x, sig):
+    args = _value_and_significance(x, sig)
+    if isinstance(args, ExcelError):
+        return args
+    x, s = args
     if s == 0:
         return 0.0
     mode = ROUND_UP if (x < 0 and s < 0) else ROUND_CEILING
@@ -252,12 +260,10 @@ def _ecma_ceiling(ctx, x, sig):
 
 @register("FLOOR", "math", 2, 2)
 def _floor(ctx, x, sig):
-    x, s = c.to_number(x), c.to_number(sig)
-    bad = _numeric(x, s)
-    if bad is not None:
-        return bad
-    if x > 0 and s < 0:
-        return ExcelError.NUM
+    args = _value_and_significance(x, sig)
+    if isinstance(args, ExcelError):
+        return args
+    x, s = args
     if s == 0:
         return ExcelError.DIV0 if x != 0 else 0.0
     return c.result(_multiple(x, s, ROUND_FLOOR if s > 0 else ROUND_DOWN))
@@ -362,22 +368,19 @@ def _lcm(ctx, *args):
     return xs if isinstance(xs, ExcelError) else c.result(float(math.lcm(*xs)))
 
 
-@register("COMBIN", "math", 2, 2)
-def _combin(ctx, n, r):
-    n, r = c.integer(n), c.integer(r)
-    bad = _numeric(n, r)
-    if bad is not None:
-        return bad
-    return ExcelError.NUM if n < 0 or r < 0 or r > n else c.result(float(math.comb(n, r)))
+def _choices(name, count):
+    """COMBIN and PERMUT: ``count(n, r)`` of whole n and r; #NUM! unless 0 <= r <= n."""
+    def scalar(ctx, n, r):
+        n, r = c.integer(n), c.integer(r)
+        bad = _numeric(n, r)
+        if bad is not None:
+            return bad
+        return ExcelError.NUM if n < 0 or r < 0 or r > n else c.result(float(count(n, r)))
+    register(name, "math", 2, 2)(scalar)
 
 
-@register("PERMUT", "math", 2, 2)
-def _permut(ctx, n, r):
-    n, r = c.integer(n), c.integer(r)
-    bad = _numeric(n, r)
-    if bad is not None:
-        return bad
-    return ExcelError.NUM if n < 0 or r < 0 or r > n else c.result(float(math.perm(n, r)))
+_choices("COMBIN", math.comb)
+_choices("PERMUT", math.perm)
 
 
 # -- volatile ------------------------------------------------------------------------------

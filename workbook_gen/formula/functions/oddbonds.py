@@ -54,29 +54,37 @@ def _odd_args(settle, maturity, last, freq, basis, nums):
     return s, m, li, f, b, xs
 
 
-@register("ODDLPRICE", "finance", 7, 8)
-def _oddlprice(ctx, settle, maturity, last, rate, yld, redemption, freq, basis=None):
-    got = _odd_args(settle, maturity, last, freq, basis, (rate, yld, redemption))
+def _last_terms(ctx, settle, maturity, last, rate, x, redemption, freq, basis, x_bad):
+    """ODDLPRICE's and ODDLYIELD's common part: (x, redemption, frequency, coupon, DCS, A,
+    DSC) of an odd last period, or the error; #NUM! for a negative rate, ``x_bad(x)`` (the
+    yield or the price) or a redemption <= 0."""
+    got = _odd_args(settle, maturity, last, freq, basis, (rate, x, redemption))
     if isinstance(got, ExcelError):
         return got
-    s, m, li, f, b, (r, y, red) = got
-    if r < 0 or y < 0 or red <= 0:
+    s, m, li, f, b, (r, x, red) = got
+    if r < 0 or x_bad(x) or red <= 0:
         return ExcelError.NUM
     dcs, acs, dscs = _odd_last(s, m, li, f, b, ctx.dialect == "libreoffice")
-    cpn = 100.0 * r / f
+    return x, red, f, 100.0 * r / f, dcs, acs, dscs
+
+
+@register("ODDLPRICE", "finance", 7, 8)
+def _oddlprice(ctx, settle, maturity, last, rate, yld, redemption, freq, basis=None):
+    got = _last_terms(ctx, settle, maturity, last, rate, yld, redemption, freq, basis,
+                      lambda y: y < 0)
+    if isinstance(got, ExcelError):
+        return got
+    y, red, f, cpn, dcs, acs, dscs = got
     return c.result((red + dcs * cpn) / (1.0 + dscs * y / f) - acs * cpn)
 
 
 @register("ODDLYIELD", "finance", 7, 8)
 def _oddlyield(ctx, settle, maturity, last, rate, pr, redemption, freq, basis=None):
-    got = _odd_args(settle, maturity, last, freq, basis, (rate, pr, redemption))
+    got = _last_terms(ctx, settle, maturity, last, rate, pr, redemption, freq, basis,
+                      lambda p: p <= 0)
     if isinstance(got, ExcelError):
         return got
-    s, m, li, f, b, (r, p, red) = got
-    if r < 0 or p <= 0 or red <= 0:
-        return ExcelError.NUM
-    dcs, acs, dscs = _odd_last(s, m, li, f, b, ctx.dialect == "libreoffice")
-    cpn = 100.0 * r / f
+    p, red, f, cpn, dcs, acs, dscs = got
     paid = p + acs * cpn
     try:
         return c.result((red + dcs * cpn - paid) / paid * f / dscs)
@@ -125,7 +133,10 @@ def oddf_price(s, m, issue, first, f, b, r, y, red) -> float:
     return price - cpn * a_sum
 
 
-def _oddf_args(settle, maturity, issue, first, freq, basis, nums):
+def _oddf_args(settle, maturity, issue, first, freq, basis, nums, x_bad):
+    """ODDFPRICE's and ODDFYIELD's arguments (settlement, maturity, issue, first coupon,
+    frequency, basis, (rate, x, redemption)), or the error; #NUM! for dates out of order, a
+    negative rate, ``x_bad(x)`` (the yield or the price) or a redemption <= 0."""
     got = dc.bond_args(settle, maturity, freq, basis, nums)
     dates = [dc.serial_arg(d) for d in (issue, first)]
     for v in (got, *dates):
@@ -137,17 +148,19 @@ def _oddf_args(settle, maturity, issue, first, freq, basis, nums):
     i, fc = (dc.date_of(math.floor(d)) for d in dates)
     if not i < s < fc <= m:  # maturity >= first_coupon > settlement > issue
         return ExcelError.NUM
+    r, x, red = xs
+    if r < 0 or x_bad(x) or red <= 0:
+        return ExcelError.NUM
     return s, m, i, fc, f, b, xs
 
 
 @register("ODDFPRICE", "finance", 8, 9)
 def _oddfprice(ctx, settle, maturity, issue, first, rate, yld, redemption, freq, basis=None):
-    got = _oddf_args(settle, maturity, issue, first, freq, basis, (rate, yld, redemption))
+    got = _oddf_args(settle, maturity, issue, first, freq, basis, (rate, yld, redemption),
+                     lambda y: y < 0)
     if isinstance(got, ExcelError):
         return got
     s, m, i, fc, f, b, (r, y, red) = got
-    if r < 0 or y < 0 or red <= 0:
-        return ExcelError.NUM
     try:
         return c.result(oddf_price(s, m, i, fc, f, b, r, y, red))
     except (ZeroDivisionError, OverflowError):
@@ -158,12 +171,11 @@ def _oddfprice(ctx, settle, maturity, issue, first, rate, yld, redemption, freq,
 def _oddfyield(ctx, settle, maturity, issue, first, rate, pr, redemption, freq, basis=None):
     """The yield at which ODDFPRICE is the price (Newton's method, bisection as a guard)."""
     from workbook_gen.formula.functions.bonds import _solve
-    got = _oddf_args(settle, maturity, issue, first, freq, basis, (rate, pr, redemption))
+    got = _oddf_args(settle, maturity, issue, first, freq, basis, (rate, pr, redemption),
+                     lambda p: p <= 0)
     if isinstance(got, ExcelError):
         return got
     s, m, i, fc, f, b, (r, p, red) = got
-    if r < 0 or p <= 0 or red <= 0:
-        return ExcelError.NUM
     try:
         y = _solve(lambda y: oddf_price(s, m, i, fc, f, b, r, y, red) - p)
     except (ZeroDivisionError, OverflowError):

@@ -14,8 +14,8 @@ The system of the workbook being evaluated is a context variable that the evalua
 (``with date_system(book.date1904):``), as :mod:`decimal` keeps its context: every
 conversion between serials and dates (DATE, YEAR, WEEKDAY, EDATE, DATEVALUE, the date
 arguments of the day-count and coupon functions, dates read from text, TEXT's date
-formats, TODAY and NOW) goes through this module and so honours it. Outside an
-evaluation the 1900 system applies.
+formats, TODAY and NOW, the audit's reading of the file's save time) goes through this
+module and so honours it. Outside an evaluation the 1900 system applies.
 """
 
 from __future__ import annotations
@@ -28,6 +28,7 @@ import math
 from workbook_gen.xlerror import ExcelError
 
 _EPOCH = dt.date(1899, 12, 30)
+_EPOCH_MOMENT = dt.datetime(1899, 12, 30)
 _EPOCH_1904 = dt.date(1904, 1, 1)
 OFFSET_1904 = 1462  # days from serial 0 of 1904 back to the 1900 system's serial of that day
 MAX_SERIAL_1900 = 2958465  # 9999-12-31 in the 1900 system
@@ -97,3 +98,22 @@ def weekday(n: float) -> int:
 def serial_1900(n: float) -> float:
     """Serial ``n`` of the current system as a serial of the 1900 system."""
     return n + offset()
+
+
+def moment_serial(moment: dt.datetime, date1904: bool | None = None) -> float:
+    """The serial of a moment (naive): its day's serial plus the time of day as the
+    fraction, as NOW gives it; in the system ``date1904`` (None: the current one)."""
+    x = (moment - _EPOCH_MOMENT).total_seconds() / 86400.0
+    if _DATE1904.get() if date1904 is None else date1904:
+        return x - OFFSET_1904
+    return x if x >= 61 else x - 1
+
+
+def moment_of(x: float, date1904: bool | None = None) -> dt.datetime | None:
+    """The moment serial ``x`` stands for, in the system ``date1904`` (None: the current
+    one); None where it is no calendar day (1900-01-00, 1900-02-29, out of range)."""
+    with date_system(_DATE1904.get() if date1904 is None else date1904):
+        ymd = from_serial(x)
+    if isinstance(ymd, ExcelError) or ymd[2] == 0 or ymd == (1900, 2, 29):
+        return None
+    return dt.datetime(*ymd) + dt.timedelta(days=x - math.floor(x))

@@ -6,9 +6,8 @@ from __future__ import annotations
 
 import datetime as dt
 
-from workbook_gen.formula.functions.date import _date, _ymd_date, from_serial, serial_arg, \
+from workbook_gen.formula.functions.date import _ymd_date, date_and_number, from_serial, serial_arg, \
     to_serial
-from workbook_gen.formula.functions import coerce as c
 from workbook_gen.formula.functions.registry import register
 from workbook_gen.formula.functions.serials import serial_1900
 from workbook_gen.xlerror import ExcelError
@@ -18,11 +17,10 @@ from workbook_gen.xlerror import ExcelError
 def _weeknum(ctx, v, kind=1.0):
     if isinstance(v, bool):  # Analysis ToolPak: no booleans (formulas__test DATE & TIME!Y23)
         return ExcelError.VALUE
-    ymd = _date(v)
-    k = c.to_number(kind)
-    for x in (ymd, k):
-        if isinstance(x, ExcelError):
-            return x
+    got = date_and_number(v, kind)
+    if isinstance(got, ExcelError):
+        return got
+    ymd, k = got
     if int(k) == 21:
         return _isoweeknum(ctx, v)
     first = {1: 6, 17: 6, 2: 0, 11: 0, 12: 1, 13: 2, 14: 3, 15: 4, 16: 5}.get(int(k))
