@@ -137,10 +137,10 @@ def _theta_4_off_by_2_deg(source: Path, folder: Path, libreoffice: str) -> Path:
             data = zin.read(item.filename)
             if item.filename == "xl/worksheets/sheet1.xml":  # the Table
                 xml = data.decode()
-                header = openpyxl.load_workbook(source)["Table"]["J1"].value
-                assert header == "theta_4 [deg]", header
+                table = openpyxl.load_workbook(source)["Table"]
+                col = next(c.column_letter for c in table[1] if c.value == "theta_4 [deg]")
                 for row in (13, 14, 15):
-                    xml, n = re.subn(rf'(<c r="J{row}"[^>]*><f>[^<]*)(</f>)',
+                    xml, n = re.subn(rf'(<c r="{col}{row}"[^>]*><f>[^<]*)(</f>)',
                                      lambda m: m.group(1) + "+2" + m.group(2), xml)
                     assert n == 1
                 data = xml.encode()
