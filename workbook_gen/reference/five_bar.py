@@ -177,15 +177,18 @@ def _clearance(p, t1, t2, t3, t4, c_x, c_y) -> dict[str, np.ndarray]:
                 en = (ey * gx - ex * gy) / g
                 beta = (gx * (c_y - by) - gy * (c_x - bx)) / g   # C - B' across D' - B'
                 out[f"en_{case}"], out[f"g_{case}"], out[f"beta_{case}"] = en, g, beta
-                # along D' - B': where the radical line of the moved circles (B', l_2)
-                # and (D', l_3) crosses it, less C's own place; defined where they do not meet
-                out[f"ea_{case}"] = ((g * g + p["l_2"] ** 2 - p["l_3"] ** 2) / (2.0 * g)
-                                     - ((c_x - bx) * gx + (c_y - by) * gy) / g)
+                # along D' - B': C' - C from the solved loop; where the moved circles
+                # (B', l_2) and (D', l_3) do not meet (no C'), where their radical line
+                # crosses D' - B', less C's own place (a difference of lengths: used only
+                # there, it would lose the digits of a tiny r_clear)
+                w_a = ((c_x - bx) * gx + (c_y - by) * gy) / g
+                radical = (g * g + p["l_2"] ** 2 - p["l_3"] ** 2) / (2.0 * g) - w_a
+                ea = np.where(np.isfinite(en), (ex * gx + ey * gy) / g, radical)
+                out[f"ea_{case}"] = ea
                 # C' = C + ea along + en across on the circle (B', l_2):
                 # en^2 + 2 beta en + gamma = 0, gamma = (w_a + ea)^2 + beta^2 - l_2^2
-                ea = out[f"ea_{case}"]
-                w_a = ((c_x - bx) * gx + (c_y - by) * gy) / g
-                out[f"gamma_{case}"] = (w_a + ea) ** 2 - p["l_2"] ** 2 + beta * beta
+                out[f"gamma_{case}"] = np.where(np.isfinite(en), -(en * en + 2.0 * beta * en),
+                                                (w_a + ea) ** 2 - p["l_2"] ** 2 + beta * beta)
     return out
 
 
