@@ -100,10 +100,12 @@ def _power(s: int, along_x: bool, v: tuple[Node, Node]) -> Node:
     return r_clear * (r_clear - 2 * v_i if s > 0 else r_clear + 2 * v_i)
 
 
-def _clearance_pair(end: str, alpha: int) -> tuple[Node, Node, tuple[Node, Node, Node]]:
-    """(ea, en, (g_x, g_y, |g|)) trees of C's displacement when coupler end ``end`` ("B"
-    or "D") moves by delta at ``alpha``.  ea is written inline (it exists even where the
-    moved circles do not meet); en is #NUM! there."""
+def _clearance_pair(end: str, alpha: int) -> tuple[list[Quantity], Node, Node,
+                                                  tuple[Node, Node, Node]]:
+    """(columns, ea, en, (g_x, g_y, |g|)) of C's displacement when coupler end ``end``
+    ("B" or "D") moves by delta at ``alpha``: the columns g, ea, beta and gamma of the
+    case (so that en's formula is short enough to read), ea and |g| as references to
+    them; ea exists even where the moved circles do not meet, en is #NUM! there."""
     cx, cy = _UNIT[alpha]
     s, along_x = cx + cy, cx != 0
     if end == "B":   # B' = B + delta: g = D - B', C - B' = p - delta
@@ -116,16 +118,25 @@ def _clearance_pair(end: str, alpha: int) -> tuple[Node, Node, tuple[Node, Node,
         wx, wy = px, py
         k_1 = None
         along = _power(s, along_x, (qx, qy))
-    g = sqrt(gx ** 2 + gy ** 2)
-    ea = along / (2 * g)
-    beta = (gx * wy - gy * wx) / g
-    gamma = ea ** 2 + 2 * ea * (gx * wx + gy * wy) / g
+    case = f"{end}_{alpha}"
+    g, ea, beta, gamma = (Var(f"{n}_{case}") for n in ("g", "ea", "beta", "gamma"))
+    moved = f"coupler end {end} moved by r_clear at {alpha} deg"
+    gamma_tree = ea ** 2 + 2 * ea * (gx * wx + gy * wy) / g
     if k_1 is not None:
-        gamma = gamma + k_1
+        gamma_tree = gamma_tree + k_1
+    columns = [
+        Q(f"g_{case}", "m", sqrt(gx ** 2 + gy ** 2), f"|D' - B'|, {moved}", output=False),
+        Q(f"ea_{case}", "m", along / (2 * g), f"C's error along D' - B', {moved}",
+          output=False),
+        Q(f"beta_{case}", "m", (gx * wy - gy * wx) / g,
+          f"C - B' across D' - B' (to the left), {moved}", output=False),
+        Q(f"gamma_{case}", "m^2", gamma_tree,
+          f"power of C with respect to the moved circles, {moved}", output=False),
+    ]
     # B, C, D in line (det_BCD made 0, "singular"): beta is rounding, and which of the two
     # C' is meant is not decided by its sign: #DIV/0! in every engine
-    return ea, -gamma / if_(eq(det_BCD, 0), 0, beta + sign(beta) * root(beta ** 2 - gamma)), \
-        (gx, gy, g)
+    return columns, ea, \
+        -gamma / if_(eq(det_BCD, 0), 0, beta + sign(beta) * root(beta ** 2 - gamma)), (gx, gy, g)
 
 
 def _clearance_columns() -> tuple[Quantity, ...]:
@@ -134,7 +145,9 @@ def _clearance_columns() -> tuple[Quantity, ...]:
         moved = ("coupler 2's end B (joint A or B)" if end == "B"
                  else "coupler 3's end D (joint C, D or E)")
         for alpha in ANGLES:
-            along[f"{end}_{alpha}"], en, line[f"{end}_{alpha}"] = _clearance_pair(end, alpha)
+            columns, along[f"{end}_{alpha}"], en, line[f"{end}_{alpha}"] = \
+                _clearance_pair(end, alpha)
+            out += columns
             out.append(Q(f"en_{end}_{alpha}", "m", en,
                          f"C's error normal to D'-B' (to the left) when {moved} moves by "
                          f"r_clear at {alpha} deg; #NUM! where C' does not exist",

@@ -31,6 +31,7 @@ TEMPLATE = Template(
     input=InputSpec("theta_2", "deg", "crank angle"),
     parameters=core.parameters((100.0, 40.0, 120.0, 80.0, 60.0), 30.0, 10.0),
     quantities=core.quantities("open"),
+    derived=core.DERIVED,
     status=core.STATUS,
     checks=core.checks(),
     charts=core.charts(),

@@ -34,11 +34,11 @@ mu = ATAN2(|b.c|, |b x c|).
 
 from __future__ import annotations
 
-from ..expr import (Node, abs_, and_, atan2, cos, degrees, eq, gt, if_, iserror, le, lt, max_,
-                    min_, or_, pi, radians, root, sin, sqrt, wrap)
+from ..expr import (Node, Param, abs_, and_, atan2, cos, degrees, eq, gt, if_, iserror, le, lt,
+                    max_, min_, or_, pi, radians, root, sin, sqrt, wrap)
 from .angles import (cos_deg, cos_half_squared_90, reduced, reduced_input, sin_deg,
                      sin_half_squared_90)
-from .base import (Chart, Check, Figure, Link, ParamSpec, Quantity, only_if, quantity_vars,
+from .base import (Chart, Check, Derived, Figure, Link, ParamSpec, Quantity, only_if, quantity_vars,
                    speed_scale, symbols)
 
 BRANCHES = ("open", "crossed")
@@ -87,20 +87,38 @@ def _pm(a: Node, b: Node, s: int) -> Node:
     return a + b if s > 0 else a - b
 
 
-def _two_diff(a: Node, b: Node) -> tuple[Node, Node]:
-    """a - b as an unevaluated sum (s, e): s = fl(a - b), e its rounding error (Knuth)."""
-    s = a - b
-    z = s - a
-    return s, (a - (s - z)) - (b + z)
+# The three length gaps of h_B's factors, exact to the last bit where tiny (a four-bar at
+# the Grashof boundary): constants of the linkage, so derived values on the Parameters
+# sheet, each formula written once there, and the Table's formulas name them (a Table
+# formula with them inline was 1,420 characters long).
+def _gap_values(name: str, a: Node, b: Node, c: Node, d: Node) -> tuple[Derived, ...]:
+    """G_<name> = (a + b) - (c + d) to full relative accuracy when it is tiny (a four-bar
+    at the Grashof boundary), in three short formulas: the differences of the larger and
+    of the smaller lengths (G_<name>_hi, _lo; nearly opposite there, their sum exact by
+    Sterbenz), then their sum with their rounding errors (Knuth's TwoDiff, from the
+    cells: where a spreadsheet makes a difference within 15 digits of 0 exactly 0, the
+    error term restores it)."""
+    big, small = (max_(a, b), max_(c, d)), (min_(a, b), min_(c, d))
+    hi, lo = Param(f"G_{name}_hi"), Param(f"G_{name}_lo")
+
+    def error(s: Node, x: Node, y: Node) -> Node:   # x - y - s, s = fl(x - y)
+        z = s - x
+        return (x - (s - z)) - (y + z)
+    a, b, c, d = (v.name for v in (a, b, c, d))
+    what = f"({a} + {b}) - ({c} + {d})"
+    return (Derived(f"G_{name}_hi", "mm", big[0] - big[1],
+                    f"the larger of {a}, {b} less the larger of {c}, {d}"),
+            Derived(f"G_{name}_lo", "mm", small[0] - small[1],
+                    f"the smaller of {a}, {b} less the smaller of {c}, {d}"),
+            Derived(f"G_{name}", "mm", (hi + lo) + (error(hi, *big) + error(lo, *small)),
+                    f"{what}, exact where tiny (G_{name}_hi + G_{name}_lo and their "
+                    f"rounding errors)"))
 
 
-def _gap(a: Node, b: Node, c: Node, d: Node) -> Node:
-    """(a + b) - (c + d) to full relative accuracy when it is tiny (a four-bar at the
-    Grashof boundary): (MAX(a,b) - MAX(c,d)) + (MIN(a,b) - MIN(c,d)), the two differences
-    nearly opposite (their sum exact, Sterbenz) plus their rounding errors."""
-    x, ex = _two_diff(max_(a, b), max_(c, d))
-    y, ey = _two_diff(min_(a, b), min_(c, d))
-    return (x + y) + (ex + ey)
+G_far, G_near, G_cross = Param("G_far"), Param("G_near"), Param("G_cross")
+GAPS = (_gap_values("far", l_AB, l_O2B, l_O1O2, l_O1A)
+        + _gap_values("near", l_O1O2, l_O2B, l_AB, l_O1A)
+        + _gap_values("cross", l_O1O2, l_AB, l_O2B, l_O1A))
 
 
 def _signed(a: Node, s: int) -> Node:
@@ -161,11 +179,11 @@ def quantities(branch: str) -> tuple[Quantity, ...]:
     # change point and the toggles (d^2 = g^2 + a^2 - 2 g a cos theta_2):
     # p^2 - d^2 = (p - g - a)(p + g + a) + 4 g a cos^2(theta_2/2),
     # d^2 - q^2 = (g - a - q)(g - a + q) + 4 g a sin^2(theta_2/2),
-    # the sums of lengths differenced in sorted pairs (_gap).
+    # the sums of lengths differenced in sorted pairs (_gap_values: G_far, G_near, G_cross).
     ga4 = 4 * l_O1O2 * l_O1A
-    far = (_gap(l_AB, l_O2B, l_O1O2, l_O1A) * (p + l_O1O2 + l_O1A)
+    far = (G_far * (p + l_O1O2 + l_O1A)
            + ga4 * cos_half_squared_90(theta_2r))
-    near = (_gap(l_O1O2, l_O2B, l_AB, l_O1A) * _gap(l_O1O2, l_AB, l_O2B, l_O1A)
+    near = (G_near * G_cross
             + ga4 * sin_half_squared_90(theta_2r))
     crank_far = abs_((l_O1O2 + l_O1A) ** 2 - d_AO2 ** 2)    # 4 g a cos^2(theta_2/2)
     crank_near = abs_(d_AO2 ** 2 - (l_O1O2 - l_O1A) ** 2)   # 4 g a sin^2(theta_2/2)
@@ -304,12 +322,13 @@ def _triangle_angle(r: Node) -> Node:
     return atan2((g - l4) * (g + l4) + r * r, four_area)
 
 
+_LINKS = (l_O1O2, l_O1A, l_AB, l_O2B)
+_TOTAL = l_O1O2 + l_O1A + l_AB + l_O2B
+
+
 def _grashof() -> tuple[Node, Node, Node]:
     """(shortest link s, (s + l) - (p + q), the rounding allowed on it)."""
-    links = (l_O1O2, l_O1A, l_AB, l_O2B)
-    total = l_O1O2 + l_O1A + l_AB + l_O2B
-    s, longest = min_(*links), max_(*links)
-    return s, 2 * (s + longest) - total, 1e-12 * total
+    return min_(*_LINKS), Param("grashof_excess"), 1e-12 * _TOTAL
 
 
 def crank_rocker() -> Node:
@@ -335,8 +354,8 @@ def grashof_class() -> Node:
 def figures(branch: str) -> tuple[Figure, ...]:
     """Grashof class, the crank's toggle angles (rocker extremes) and the time ratio."""
     s = 1 if branch == "open" else -1
-    extended = _triangle_angle(l_AB + l_O1A)   # crank and coupler in line
-    folded = _triangle_angle(l_AB - l_O1A)     # crank folded over the coupler
+    extended = Param("toggle_ext")   # crank and coupler in line
+    folded = Param("toggle_fold")    # crank folded over the coupler
     spread = abs_(folded - extended)
     side = "above" if s > 0 else "below"
     rocks = crank_rocker()
@@ -387,3 +406,15 @@ def why_not(p) -> str:
             f"the loop at any crank angle of the sweep (crank l_O1A = {p['l_O1A']:g}, ground "
             f"l_O1O2 = {p['l_O1O2']:g})")
 
+
+# Constants of the linkage the Table's and the Summary's formulas name (derived values on
+# the Parameters sheet, each formula written once there): the length gaps of h_B, the
+# Grashof excess and the crank-rocker's toggle angles.
+GRASHOF = (Derived("grashof_excess", "mm", 2 * (min_(*_LINKS) + max_(*_LINKS)) - _TOTAL,
+                   "(s + l) - (p + q), shortest s and longest l: <= 0 for a Grashof linkage, "
+                   "0 at a change point"),)
+TOGGLES = (Derived("toggle_ext", "rad", _triangle_angle(l_AB + l_O1A),
+                   "angle at O1 from O1O2 to O1B with crank and coupler extended in line"),
+           Derived("toggle_fold", "rad", _triangle_angle(l_AB - l_O1A),
+                   "angle at O1 from O1O2 to O1B with the crank folded over the coupler"))
+DERIVED = GAPS + GRASHOF + TOGGLES

@@ -75,6 +75,7 @@ TEMPLATE = Template(
     input=InputSpec("theta_2", "deg", "crank angle"),
     parameters=PARAMETERS,
     quantities=quantities("open"),
+    derived=core.GAPS + core.GRASHOF,  # the Grashof class is its only figure
     status=core.STATUS,
     checks=CHECKS,
     charts=(

@@ -163,7 +163,7 @@ def _displaced(p, joint: str, alpha: int, t1, t2, t3, t4):
     return ex, ey, b, d
 
 
-def _clearance(p, t1, t2, t3, t4) -> dict[str, np.ndarray]:
+def _clearance(p, t1, t2, t3, t4, c_x, c_y) -> dict[str, np.ndarray]:
     out = {}
     for joint in JOINTS:
         for alpha in ANGLES:
@@ -171,8 +171,24 @@ def _clearance(p, t1, t2, t3, t4) -> dict[str, np.ndarray]:
             out[f"dC_{joint}_{alpha}"] = np.hypot(ex, ey)
             out[f"dx_C_{joint}_{alpha}"], out[f"dy_C_{joint}_{alpha}"] = ex, ey
             if joint in "AE":   # coupler end B or D moved by +delta: C's error normal to D' - B'
+                case = f"{'B' if joint == 'A' else 'D'}_{alpha}"
                 gx, gy = dx - bx, dy - by
-                out[f"en_{'B' if joint == 'A' else 'D'}_{alpha}"] = (ey * gx - ex * gy) / np.hypot(gx, gy)
+                g = np.hypot(gx, gy)
+                en = (ey * gx - ex * gy) / g
+                beta = (gx * (c_y - by) - gy * (c_x - bx)) / g   # C - B' across D' - B'
+                out[f"en_{case}"], out[f"g_{case}"], out[f"beta_{case}"] = en, g, beta
+                # along D' - B': C' - C from the solved loop; where the moved circles
+                # (B', l_2) and (D', l_3) do not meet (no C'), where their radical line
+                # crosses D' - B', less C's own place (a difference of lengths: used only
+                # there, it would lose the digits of a tiny r_clear)
+                w_a = ((c_x - bx) * gx + (c_y - by) * gy) / g
+                radical = (g * g + p["l_2"] ** 2 - p["l_3"] ** 2) / (2.0 * g) - w_a
+                ea = np.where(np.isfinite(en), (ex * gx + ey * gy) / g, radical)
+                out[f"ea_{case}"] = ea
+                # C' = C + ea along + en across on the circle (B', l_2):
+                # en^2 + 2 beta en + gamma = 0, gamma = (w_a + ea)^2 + beta^2 - l_2^2
+                out[f"gamma_{case}"] = np.where(np.isfinite(en), -(en * en + 2.0 * beta * en),
+                                                (w_a + ea) ** 2 - p["l_2"] ** 2 + beta * beta)
     return out
 
 
@@ -222,5 +238,5 @@ def solve(p: Mapping[str, float], phi_deg: np.ndarray,
         out["cross_BCD"] = out["det_BCD"]
     out["theta_1"], out["theta_4"] = theta_1, theta_4
     out |= _sensitivity(p, t1, t2, t3, t4)
-    out |= _clearance(p, t1, t2, t3, t4)
+    out |= _clearance(p, t1, t2, t3, t4, c_x, c_y)
     return out

@@ -12,6 +12,7 @@ from .table import cached_values
 from .layout import (ABOUT, LINE_HEIGHT, PARAMETERS, add_sheet, excel_text, print_wide,
                      wrapped_lines)
 
+_DESCRIPTION_WIDTH = 60  # characters: the Parameters sheet's descriptions wrap within it
 _VALUE_WIDTH = 100  # characters: the About sheet's values wrap within it
 
 
@@ -22,7 +23,7 @@ def write_parameters(workbook, formats, result: Evaluated) -> None:
     sheet.set_column(0, 0, 12)
     sheet.set_column(1, 1, 20)
     sheet.set_column(2, 2, 8)
-    sheet.set_column(3, 3, 60)
+    sheet.set_column(3, 3, _DESCRIPTION_WIDTH)
     sheet.freeze_panes(1, 0)
     print_wide(sheet, 0)
     row = 0
@@ -37,7 +38,12 @@ def write_parameters(workbook, formats, result: Evaluated) -> None:
         sheet.write_formula(row, 1, excel_text(item.expr), None,
                             cached_values(xm.array(np.array([result.params[item.name]])))[0])
         sheet.write_string(row, 2, item.unit)
-        sheet.write_string(row, 3, f"{item.description} (computed from the parameters above)")
+        # wrapped within the column: a longer line would widen the printed page
+        text = f"{item.description} (computed from the parameters above)"
+        sheet.write_string(row, 3, text, formats["wrap"])
+        lines = wrapped_lines(text, _DESCRIPTION_WIDTH)
+        if lines > 1:
+            sheet.set_row(row, LINE_HEIGHT * lines)
         workbook.define_name(item.name, f"={PARAMETERS}!$B${row + 1}")
 
 
