@@ -182,7 +182,7 @@ def _check_parquet(folder: Path) -> pd.DataFrame:
         column, want = frame[name], expected[name].tolist()
         if name == "variant":
             assert column.dtype == np.int64 and column.tolist() == [int(w) for w in want]
-        elif name == "rows_not_assembled":
+        elif name in ("rows_not_assembled", "rows_flagged"):
             assert [("" if pd.isna(v) else str(int(v))) for v in column] == want
         elif column.dtype == np.float64:
             assert [("" if math.isnan(v) else repr(v)) for v in column] == want, name

@@ -103,3 +103,20 @@ def test_the_batch_summary_follows_the_same_rules(tmp_path):
             book = Path(tmp_path) / "slider_crank-batch" / row["file"]
             summary = _summary(book)
             assert row["v_C_max"] == summary["v_C"][1], rod
+
+
+def test_batch_summary_counts_the_flagged_rows_like_the_workbook(tmp_path):
+    """SPEC 9.1: the batch summary follows the Summary's rules and says how many rows its
+    extremes left out: rows_flagged (not converged, a dead centre...) beside
+    rows_not_assembled, equal to the workbook's own count of flagged rows."""
+    import openpyxl
+    from workbook_gen.batching import batch
+    frame = batch("templates/five_bar.toml", vary={"iterations": [2, 8]},
+                  sets={"method": "newton"}, out=str(tmp_path))
+    folder = frame.attrs["folder"]
+    for _, row in frame.iterrows():
+        table = openpyxl.load_workbook(f"{folder}/{row['file']}", data_only=True)["Table"]
+        status = [r[-1] for r in table.iter_rows(min_row=2, values_only=True)]
+        flagged = sum(s not in ("ok", "cannot assemble") for s in status)
+        assert row["rows_flagged"] == flagged
+    assert list(frame["rows_flagged"]) == [37, 0]   # 2 Newton steps converge nowhere

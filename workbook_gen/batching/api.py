@@ -30,6 +30,7 @@ from ..version import VERSION
 from . import runners
 from .folder import Folder, Resumed, digest
 from .job import JobSpec, run_chunk
+from .rows import ROW_COUNTS
 from .summary import SummaryWriter
 from .summary_only import SummaryJob, block_size, summary_rows
 from .table import Table
@@ -233,8 +234,9 @@ def _parquet_frame(path: Path, table: Table):
     frame = pd.read_parquet(path)
     frame.columns = table.columns    # the names without the headers' units
     frame["variant"] = frame["variant"].astype(str)
-    if "rows_not_assembled" in frame:
-        frame["rows_not_assembled"] = frame["rows_not_assembled"].astype("Int64")
+    for name in ROW_COUNTS:
+        if name in frame:
+            frame[name] = frame[name].astype("Int64")
     frame.attrs["units"] = dict(table.units)
     return frame
 

@@ -5,7 +5,7 @@ million variants never holds its table in memory.
 Columns, their names (with units) and order are summary.csv's.  Types: ``variant``
 int64 (text where a design file names the variants), ``file``, ``status``, ``audit``
 text, the varied parameters and every figure float64 (NaN: no number), a varied
-option text (true/false too) or int64, ``rows_not_assembled`` int64 (null for a
+option text (true/false too) or int64, ``rows_flagged``, ``rows_not_assembled`` int64 (null for a
 refused variant).  A template figure that may be a text (``n/a: needs ...``, a
 Grashof class) is float64 while every variant has a number or none, text when every
 one is a text or none, and text for all when it is a mix (numbers as summary.csv
@@ -28,6 +28,7 @@ from typing import Iterable, Iterator, Mapping, Sequence
 import numpy as np
 
 from .blocktext import number_texts
+from .rows import ROW_COUNTS
 
 ROW_GROUP = 1 << 14      # rows per row group (a block of variants is ~1,000)
 _TEXT = ("file", "status", "audit")
@@ -54,8 +55,7 @@ class ParquetSink:
         self.path, self.columns = Path(path), list(columns)
         texts = set(texts)
         self.texts = [name for name in columns if name in texts]
-        always, integers = set(texts_always) | set(_TEXT), set(integers) | {
-            "rows_not_assembled"}
+        always, integers = set(texts_always) | set(_TEXT), set(integers) | set(ROW_COUNTS)
         fields = []
         for name, head in zip(self.columns, headers):
             if name == "variant":

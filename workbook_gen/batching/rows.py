@@ -17,10 +17,14 @@ import numpy as np
 from .. import xlmath as xm
 from ..expr import Bin, Call, Neg, Node, Param, Var
 from ..expr.numeric import compile_numpy
-from ..extremes import ok_extremes
+from ..extremes import OK, ok_extremes
 from ..model import Model
 
 CANNOT_ASSEMBLE = "cannot assemble"
+#: The summary's counts of a variant's rows left out of its extremes: flagged (a dead
+#: centre, a toggle, not converged: the workbook's Summary counts them too) and those
+#: that cannot be assembled.
+ROW_COUNTS = ("rows_flagged", "rows_not_assembled")
 _PARAM = "\x00param:"  # Var names for parameters: no quantity can be named so
 
 
@@ -70,7 +74,7 @@ def value_columns(model: Model) -> list[str]:
     names = []
     for q in model.outputs():
         names += [f"{q.name}_min", f"{q.name}_min_at", f"{q.name}_max", f"{q.name}_max_at"]
-    return names + figure_columns(model) + ["rows_not_assembled"]
+    return names + figure_columns(model) + list(ROW_COUNTS)
 
 
 def column_units(model: Model, varied: Sequence[str]) -> dict[str, str]:
@@ -134,8 +138,9 @@ def summarise(model: Model, inputs: np.ndarray, columns: Mapping[str, xm.XArray]
         lo, hi = extremes[span.quantity]
         table[snake(span.label)] = hi - lo
     table.update(figures)
-    missing = (np.asarray(status, dtype=object).reshape(variants, len(inputs))
-               == CANNOT_ASSEMBLE).sum(axis=1)
+    texts = np.asarray(status, dtype=object).reshape(variants, len(inputs))
+    missing = (texts == CANNOT_ASSEMBLE).sum(axis=1)
+    table["rows_flagged"] = ((texts != CANNOT_ASSEMBLE) & (texts != OK)).sum(axis=1).tolist()
     table["rows_not_assembled"] = missing
     table["rows_not_assembled"] = missing.tolist()
     out = {name: (table[name] if arrays else table[name].tolist())

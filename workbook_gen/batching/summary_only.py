@@ -24,7 +24,8 @@ from ..scene import MAGNITUDE, Scene, parse_scene
 from .broadcast import Plan
 from .job import JobSpec, refused_reason, unassembled_reason, variant_scene
 from .blocktext import TEXT_COLUMNS, block_texts, has_value, value_kind
-from .rows import figure_values, status_texts, summarise, text_figures, value_columns
+from .rows import (ROW_COUNTS, figure_values, status_texts, summarise, text_figures,
+                   value_columns)
 from .summary import BlockText
 from .specs import shown
 from .variants import Variant
@@ -94,7 +95,7 @@ def _block(base: Scene, plan: Plan, spec: JobSpec, variants: Sequence[Variant]
             refused[i] = f"refused: {unassembled_reason(base, point)}"
     for i, status in refused.items():
         for name in names:
-            out[name][i] = None if name == "rows_not_assembled" else math.nan
+            out[name][i] = None if name in ROW_COUNTS else math.nan
         out["status"][i] = status
     out["file"] = [""] * size
     out["audit"] = [""] * size

@@ -27,7 +27,7 @@ from typing import Iterable, Mapping, Sequence
 
 from ..model import Model
 from .blocktext import TEXT_COLUMNS, value_kind
-from .rows import column_units, header, text_figures, value_columns
+from .rows import ROW_COUNTS, column_units, header, text_figures, value_columns
 from .specs import shown
 from .variants import Design, Variant
 
@@ -174,12 +174,13 @@ class Table:
             kind = self.kind(name)
             if kind == "text":
                 out[name] = ["" if v is None else str(v) for v in values]
-            elif kind == "number" and name != "rows_not_assembled":
+            elif kind == "number" and name not in ROW_COUNTS:
                 out[name] = np.array(values, dtype=float)  # None -> NaN
             else:
                 out[name] = values
         frame = pd.DataFrame(out, columns=self.columns)
         frame.attrs["units"] = dict(self.units)
-        if "rows_not_assembled" in frame:
-            frame["rows_not_assembled"] = frame["rows_not_assembled"].astype("Int64")
+        for name in ROW_COUNTS:
+            if name in frame:
+                frame[name] = frame[name].astype("Int64")
         return frame
