@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from ..errors import FormulaSyntaxError
 from ..formula import ast
 from ..formula.parser import parse_name
+from ..formula.printer import to_relative
 from ..xlerror import ExcelError
 
 Key = tuple[str, int, int]
@@ -63,7 +64,7 @@ class Grid:
         self.array = set(inputs.array_cells) | set(getattr(inputs, "array_master", ()))
         self.sheets = {s.lower(): s for s in inputs.book.sheet_names}
         self.runs = [r for r in runs if (r.sheet, r.first, r.col) in self.formulas]
-        self.key_of_run = [ast.to_relative(run.node, run.first, run.col) for run in self.runs]
+        self.key_of_run = [to_relative(run.node, run.first, run.col) for run in self.runs]
         by_column: dict[tuple[str, int], list[tuple[int, int]]] = {}
         for i, run in enumerate(self.runs):
             by_column.setdefault((run.sheet, run.col), []).append((run.first, i))

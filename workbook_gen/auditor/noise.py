@@ -34,7 +34,7 @@ from ..cellref import row_col
 from ..errors import WorkbookGenError
 from ..evaluator.store import floats_where, type_mask
 from ..formula import ast, parse
-from ..formula.ast import to_relative
+from ..formula.printer import to_relative
 from ..cellref import column_letters
 
 _NUMBER_TYPES = frozenset({int, float, np.float64})

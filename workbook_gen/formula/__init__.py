@@ -8,13 +8,15 @@
 
 from workbook_gen.formula.ast import (
     Binary, Bool, CellRef, ErrorLit, Func, Missing, Name, Node, Number, Paren, Percent,
-    RangeRef, String, Unary, shift, to_relative, walk,
+    RangeRef, String, Unary, shift, walk,
 )
 from workbook_gen.formula.functions import (
     LIBREOFFICE_DIFFERENCES, SUPPORTED, Difference, libreoffice_result,
 )
+from workbook_gen.formula import arrays as _arrays  # noqa: F401  (registers array evaluation)
 from workbook_gen.formula.parser import parse
-from workbook_gen.formula.printer import column_letters, quote_sheet, render, render_formula
+from workbook_gen.formula.printer import (column_letters, quote_sheet, render, render_formula,
+                                         to_relative)
 from workbook_gen.formula.scalar import DictResolver, Resolver, evaluate, unsupported_functions
 from workbook_gen.formula.tokenizer import Token, Tokenizer, is_cell_ref, tokenize
 from workbook_gen.formula.values import Range, Value

@@ -15,7 +15,7 @@ from workbook_gen.formula import arraysfast, ast
 from workbook_gen.formula import functions as fx
 from workbook_gen.formula.functions import lambdas
 from workbook_gen.formula import values as xv
-from workbook_gen.formula.scalar import Evaluator
+from workbook_gen.formula.scalar import Evaluator, use_array_evaluator
 from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
 
@@ -247,3 +247,6 @@ def _within(value: Range, full: tuple[int, int], i: int, j: int) -> bool:
     i = 0 if full[0] == 1 else i
     j = 0 if full[1] == 1 else j
     return i < full[0] and j < full[1] and (i >= rows or j >= cols)
+
+
+use_array_evaluator(ArrayEvaluator)

@@ -4,7 +4,7 @@ Nodes are frozen dataclasses, so a tree is hashable and can be shared. Cell
 coordinates are 1-based (``A1`` is ``col=1, row=1``). Explicit parentheses are
 kept as :class:`Paren` nodes so that printing gives back the text exactly.
 
-* :func:`to_relative` gives a formula's R1C1 text seen from one cell: formulas of a
+* :func:`r1c1` and the printer's ``to_relative`` give a formula's R1C1 text seen from one cell: formulas of a
   column that differ only by row have the same key and can be compiled once.
 * :func:`shift` moves the relative references of a tree, as Excel does when it
   expands a shared formula or a formula is copied down.
@@ -253,18 +253,3 @@ def r1c1(ref: CellRef, base_row: int, base_col: int) -> str:
         offset = value - base
         return letter if offset == 0 else f"{letter}[{offset}]"
     return part("R", ref.row, ref.row_abs, base_row) + part("C", ref.col, ref.col_abs, base_col)
-
-
-def to_relative(node: Node, base_row: int, base_col: int) -> str:
-    """A hashable key: the formula in R1C1 notation as seen from (base_row, base_col).
-
-    ``=B2*2`` in C2 and ``=B3*2`` in C3 both give ``RC[-1]*2``; absolute references
-    keep their coordinates (``$A$1`` gives ``R1C1``).
-    """
-    from workbook_gen.formula.printer import render_with
-
-    def ref_text(ref):
-        if isinstance(ref, CellRef):
-            return r1c1(ref, base_row, base_col)
-        return r1c1(ref.first, base_row, base_col) + ":" + r1c1(ref.last, base_row, base_col)
-    return render_with(node, ref_text)

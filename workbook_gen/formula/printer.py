@@ -141,3 +141,16 @@ def render_with(node: ast.Node, ref_text) -> str:
             return n.table + n.spec
         raise TypeError(f"not a formula node: {n!r}")
     return go(node)
+
+
+def to_relative(node: ast.Node, base_row: int, base_col: int) -> str:
+    """A hashable key: the formula in R1C1 notation as seen from (base_row, base_col).
+
+    ``=B2*2`` in C2 and ``=B3*2`` in C3 both give ``RC[-1]*2``; absolute references
+    keep their coordinates (``$A$1`` gives ``R1C1``).
+    """
+    def ref_text(ref):
+        if isinstance(ref, ast.CellRef):
+            return ast.r1c1(ref, base_row, base_col)
+        return ast.r1c1(ref.first, base_row, base_col) + ":" + ast.r1c1(ref.last, base_row, base_col)
+    return render_with(node, ref_text)

@@ -28,6 +28,18 @@ _COMPARISONS = {
 }
 
 
+
+# The evaluator of array formulas (formula/arrays.py's ArrayEvaluator, a subclass of
+# Evaluator below), for the functions that take array expressions without array entry
+# (SUMPRODUCT(A1:A3*B1:B3)): arrays.py registers it when imported (the package imports
+# it), so that this module needs nothing of the one built on it.
+_ARRAY_EVALUATOR: list = []
+
+
+def use_array_evaluator(cls) -> None:
+    """Register the array-formula evaluator (called once, by formula/arrays.py)."""
+    _ARRAY_EVALUATOR[:] = [cls]
+
 class Resolver(Protocol):
     """What the evaluator needs from a workbook. Coordinates are 1-based."""
 
@@ -260,9 +272,8 @@ class Evaluator:
         if entry.lazy:
             args = [lambda a=a: self.arg(a) for a in node.args]
         elif node.name in ARRAY_ARGUMENTS:  # SUMPRODUCT(A1:A3*B1:B3) needs no Ctrl+Shift+Enter
-            from workbook_gen.formula.arrays import ArrayEvaluator
-            inner = ArrayEvaluator(self.resolver, self.dialect, self.on_unsupported,
-                                   self.ctx.cell)
+            inner = _ARRAY_EVALUATOR[0](self.resolver, self.dialect, self.on_unsupported,
+                                        self.ctx.cell)
             args = [inner.arg(a) for a in node.args]
         else:
             args = [self.arg(a) for a in node.args]

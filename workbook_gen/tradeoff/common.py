@@ -74,7 +74,7 @@ class Cost:
 def cost(scene: Scene) -> Cost:
     """Generate the scene's workbook into a temporary folder and audit it, timed (wall and
     process time)."""
-    from .. import audit
+    from ..auditor import audit
     from ..workbook import write_workbook
     with tempfile.TemporaryDirectory(prefix="workbook-gen-tradeoff-") as tmp:
         cpu, t0 = time.process_time(), time.perf_counter()

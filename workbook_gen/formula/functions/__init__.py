@@ -27,6 +27,7 @@ from workbook_gen.formula.functions.dialect import (
     LIBREOFFICE_DIFFERENCES, Difference, dialect_of, libreoffice_error, libreoffice_result,
     numeric_deviation,
 )
+from workbook_gen.formula.functions.calling import call
 from workbook_gen.formula.functions.math import power
 from workbook_gen.formula.functions.registry import (
     REGISTRY, Context, Function, RowDependent, Unanswered, register,
@@ -45,16 +46,3 @@ __all__ = ["REGISTRY", "SUPPORTED", "VOLATILE", "LAZY", "Context", "Function", "
            "register",
            "call", "power", "LIBREOFFICE_DIFFERENCES", "Difference", "dialect_of", "libreoffice_result",
            "ExcelError"]
-
-
-def call(name: str, args: list, ctx: Context | str | None = None):
-    """Apply the registered function ``name`` to evaluated arguments (thunks for a lazy
-    function). ``ctx`` is a :class:`Context` or a dialect name."""
-    if not isinstance(ctx, Context):
-        ctx = Context(dialect=ctx or "excel")
-    if ctx.dialect == "libreoffice":
-        deviation = numeric_deviation(name, args)
-        if deviation is not None:
-            return deviation
-        return libreoffice_error(name, _registry.call(name, args, ctx), args)
-    return _registry.call(name, args, ctx)

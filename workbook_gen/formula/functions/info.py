@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from workbook_gen.formula.functions import coerce as c
+from workbook_gen.formula.functions.callables import Closure, Function
 from workbook_gen.formula.functions.registry import ARRAY_LIFTED, register
 from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
@@ -121,7 +122,6 @@ def _type(ctx, v):
     v = c.scalar_of(v)
     if isinstance(v, ExcelError):
         return 16.0
-    from workbook_gen.formula.functions.lambdas import Closure, Function
     if isinstance(v, (Closure, Function)):  # a LAMBDA, or a function as a value: 128
         return 128.0                        # (Mac Excel 16: TYPE(_xleta.SUM), INFORMATION!S24)
     if isinstance(v, bool):

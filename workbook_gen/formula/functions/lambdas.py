@@ -17,45 +17,13 @@ applies it to the arguments evaluated where the call is written.
 from __future__ import annotations
 
 from workbook_gen.formula import ast
+from workbook_gen.formula.functions.callables import Closure, Function
 from workbook_gen.formula.functions.registry import register
 from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
 
 SPECIAL = frozenset({"LAMBDA", "LET"})
 MAX_CALLS = 100_000  # elements a LAMBDA is applied to in one call (MAKEARRAY(1e6, 1e6, ...))
-
-
-class Closure:
-    """A LAMBDA's parameters and body, with the names bound where it was written."""
-
-    def __init__(self, params: list[str], body: ast.Node, evaluator, env: dict):
-        self.params, self.body, self.evaluator, self.env = params, body, evaluator, env
-
-    def __call__(self, *values):
-        if len(values) != len(self.params):
-            return ExcelError.VALUE
-        ev = self.evaluator
-        saved = getattr(ev, "bound", None)
-        ev.bound = {**self.env, **dict(zip(self.params, values))}
-        try:
-            result = ev.arg(self.body)
-        finally:
-            ev.bound = saved
-        return result
-
-
-class Function:
-    """A function named where a LAMBDA is expected (``BYROW(A1:C2, SUM)``, saved as
-    ``_xleta.SUM``): called with the values as its arguments."""
-
-    def __init__(self, name: str, evaluator):
-        self.name, self.evaluator = name, evaluator
-
-    def __call__(self, *values):
-        from workbook_gen.formula import functions as fx
-        if self.name not in fx.REGISTRY or fx.REGISTRY[self.name].lazy:
-            return ExcelError.NAME if self.name not in fx.REGISTRY else ExcelError.VALUE
-        return fx.call(self.name, list(values), self.evaluator.ctx)
 
 
 def bound(evaluator, node: ast.Name):
