@@ -479,7 +479,7 @@ def compare(formulas: list[str], theirs: dict, ours: dict, parts=None):
 def _parts(inputs, result):
     """``parts(formula)``: the errors that the formula's calls, operators and cells
     evaluate to with our LibreOffice dialect."""
-    from workbook_gen.auditor import _Resolver
+    from workbook_gen.auditor.dialects import _Resolver
     from workbook_gen.formula import ast, parse
     from workbook_gen.formula.scalar import evaluate as evaluate_scalar
     from workbook_gen.xlerror import ExcelError
