@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import io
 import re
 import threading
@@ -120,13 +121,14 @@ def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
     first, last = FIRST_ROW - 1, layout.last_row - 1
     index = {name: i for i, name in enumerate(model.names)}
     template = model.template
-    columns = [result.inputs] + [result.columns[name] for name in model.names[1:]]
-
+    @functools.cache
     def cache(i: int) -> str:
+        """Column i's <c:numCache>, formatted once per workbook (the charts share the
+        input column and some outputs)."""
         if i == 0:
-            return _num_cache(np.asarray(result.inputs, dtype=float),
-                              np.zeros(len(result.inputs), dtype=bool))
-        column = columns[i]
+            values = np.asarray(result.inputs, dtype=float)
+            return _num_cache(values, np.zeros(len(values), dtype=bool))
+        column = result.columns[model.names[i]]
         return _num_cache(np.asarray(column.val, dtype=float), column.err != 0)
 
     for n, spec in enumerate(model.charts):
