@@ -109,7 +109,7 @@ def verdict(cached, value) -> str:
 
 def cells_runner(path: str) -> dict:
     """The counted cells: [sheet, row, col, cell name, cached value]; and the others."""
-    from workbook_gen.auditor import _cell_name
+    from workbook_gen.cellref import cell_name
     from workbook_gen.auditor.inputs import read_inputs
     inputs = read_inputs(path)
     cells, volatile, no_value = [], 0, 0
@@ -119,7 +119,7 @@ def cells_runner(path: str) -> dict:
         elif VOLATILE.search(inputs.text_of(key)):
             volatile += 1
         else:
-            cells.append([key[0], key[1], key[2], _cell_name(key), encode(cached)])
+            cells.append([key[0], key[1], key[2], cell_name(key), encode(cached)])
     return {"cells": cells, "volatile": volatile, "no_value": no_value,
             "date1904": bool(inputs.book.date1904)}
 

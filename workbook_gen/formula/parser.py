@@ -45,7 +45,10 @@ def parse_name(text: str) -> ast.Node:
     """The AST of a defined name's text (the leading ``=`` is optional).  A name may
     refer to several areas joined by a top-level comma, the union operator there
     (``_xlnm.Print_Titles``: ``Table!$A:$A,Table!$1:$1``), which a cell's formula writes
-    in parentheses: that reading is tried where the plain one fails on the comma."""
+    in parentheses: that reading is tried where the plain one fails on the comma.  The
+    comma is Excel's union reference operator (Microsoft, "Calculation operators and
+    precedence in Excel": ``, (comma)  Union operator, which combines multiple references
+    into one reference``)."""
     text = str(text).lstrip("=")
     try:
         return parse(text)
