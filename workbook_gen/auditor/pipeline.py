@@ -30,6 +30,7 @@ from .compare import ColumnStats, compare, compare_numbers
 from .findings import find as find_findings
 from .inputs import AuditInputs, read_inputs
 from .mechanics import check_mechanics, noise_trees
+from .recomputed import Recomputed
 from .report import AuditReport, EngineResult, Mismatch
 from .saved import last_saved
 from .sources import Stale, arrays_once, rectangles, settle
@@ -160,7 +161,6 @@ def _audit(path, engine, vectorize, progress, max_cells=None) -> AuditReport:
         raise
     timings["evaluate_all"] = time.perf_counter() - t
 
-    values, constants = evaluation.values, inputs.constants
     local = aside.result()
     timings["evaluate_all"] = time.perf_counter() - t
     # "parse": cutting the columns into runs equal in R1C1 form (the formula text analysis);
@@ -170,11 +170,7 @@ def _audit(path, engine, vectorize, progress, max_cells=None) -> AuditReport:
     timings["evaluate"] = sum(p.get(k, 0.0) for p in phases for k in ("graph", "vector", "scalar"))
     step("evaluate")
 
-    def value_of(sheet: str, row: int, col: int):
-        key = (sheet, row, col)
-        return values[key] if key in values else constants.get(key)
-    value_of.clip = lambda sheet, *rect: evaluation.store.clip(evaluation.store.sheet(sheet),
-                                                               *rect)
+    value_of = Recomputed(evaluation, inputs.constants)
 
     # the reference model's check and the findings on the other core while this one
     # compares (their times their own, spent alongside); is_formula would make the
@@ -183,7 +179,7 @@ def _audit(path, engine, vectorize, progress, max_cells=None) -> AuditReport:
                         lambda k: k in inputs.formulas or k in inputs.broken
                         or k in inputs.array_master)
     aside = Forked(_beside_compare, inputs, evaluation.runs, value_of,
-                   evaluation.store.column_values, trees)
+                   evaluation.column_values, trees)
     try:
         absent = absent_values(inputs.cached)
         without = bool(absent) and len(absent) == len(inputs.cached)  # none has a value
@@ -275,19 +271,17 @@ def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, t
     if aggregates:
         fast_all &= ~np.fromiter(map(aggregates.__contains__, keys), bool, len(keys))
     done = np.zeros(len(keys), bool)
-    store = evaluation.store
     for sheet, col, idx in groups:
         stats = columns[(sheet, col)] = ColumnStats(sheet, column_letters(col))
         fast = idx[fast_all[idx]]
         if len(fast):
-            column = store.cols[(sheet, col)]
-            rows = all_rows[fast]
             cached = np.array(pick(cached_values, fast), float)
-            plain = ~column.irr[rows] & (column.err[rows] == 0)
+            plain, recomputed, scale = evaluation.numbers(sheet, col, all_rows[fast])
             if not plain.all():
-                fast, rows, cached = fast[plain], rows[plain], cached[plain]
+                fast, cached = fast[plain], cached[plain]
+                recomputed, scale = recomputed[plain], scale[plain]
             done[fast] = True
-            agree, diff, rel = compare_numbers(cached, column.val[rows], column.scale[rows])
+            agree, diff, rel = compare_numbers(cached, recomputed, scale)
             stats.add_many(lambda i: inputs.ref(keys[fast[i]]), agree, rel)
             if agree.any():
                 max_abs = max(max_abs, float(diff[agree].max()))
@@ -295,7 +289,7 @@ def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, t
             for i in np.flatnonzero(~agree):
                 k = keys[fast[i]]
                 mismatches.append(Mismatch(_cell_name(k), inputs.text_of(k), inputs.cached[k],
-                                           float(column.val[rows[i]]), float(diff[i]), key=k))
+                                           float(recomputed[i]), float(diff[i]), key=k))
         for key in pick(keys, idx[~done[idx]]):
             cached = inputs.cached[key]
             source = local if key in local.values else evaluation

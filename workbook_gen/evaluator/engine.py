@@ -41,7 +41,6 @@ import logging
 import re
 import time
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
 from operator import itemgetter
 
 import numpy as np
@@ -49,6 +48,7 @@ import numpy as np
 from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.evaluator import calls, cycles, graph, volatile as vol, whatif
 from workbook_gen.evaluator.book import BookInfo, resolve, resolve_fixed, without_missing_sheets
+from workbook_gen.evaluator.evaluation import Cell, CellMap, Evaluation
 from workbook_gen.evaluator.external import ExternalBooks
 from workbook_gen.evaluator.relnames import NameInliner
 from workbook_gen.evaluator.taint import Taint
@@ -66,7 +66,6 @@ from workbook_gen.xlerror import ExcelError
 
 log = logging.getLogger(__name__)
 
-Cell = tuple[str, int, int]
 VOLATILE = fx.VOLATILE | {"NOW", "TODAY", "RAND", "RANDBETWEEN", "RANDARRAY", "OFFSET",
                           "INDIRECT"}
 # volatile and not reproducible: the cached value is from another moment or another draw
@@ -75,66 +74,6 @@ CYCLE_VALUE = ExcelError.REF
 SYNTAX_VALUE = ExcelError.NAME
 EXTERNAL_VALUE = ExcelError.REF
 _EXTERNAL = re.compile(r"\[[^\]]*\][^!]*!")
-
-
-@dataclass
-class GroupStats:
-    vector_groups: int = 0    # runs evaluated as arrays
-    vector_cells: int = 0     # formula cells in those runs
-    scalar_cells: int = 0     # formula cells evaluated one by one
-
-
-class CellMap(Mapping):
-    """Read-only {(sheet, row, col): value} over the formula cells, backed by the store."""
-
-    def __init__(self, keys: Mapping, getter):
-        self._keys, self._get = keys, getter
-
-    def __getitem__(self, key):
-        if key not in self._keys:
-            raise KeyError(key)
-        return self._get(*key)
-
-    def __contains__(self, key):  # without reading the value (Mapping's would)
-        return key in self._keys
-
-    @property
-    def keyset(self):
-        """The keys, for membership tests without a Python call each."""
-        return self._keys
-
-    def __iter__(self):
-        return iter(self._keys)
-
-    def __len__(self):
-        return len(self._keys)
-
-
-@dataclass
-class Evaluation:
-    values: Mapping[Cell, object]
-    operands_scale: Mapping[Cell, float]
-    cycles: list[list[Cell]] = field(default_factory=list)
-    unsupported: dict[Cell, list[str]] = field(default_factory=dict)
-    # cells among ``unsupported`` whose evaluation took no branch calling one, or that
-    # call only unknown names (``unknown``) and cache #NAME? (the value of an unknown
-    # name; an add-in's or a macro's function would give another): recomputed
-    avoided: set[Cell] = field(default_factory=set)
-    unknown: dict[Cell, str] = field(default_factory=dict)  # calling only names Excel
-    # lacks: the reason they are not checked
-    syntax_errors: dict[Cell, str] = field(default_factory=dict)
-    volatile: dict[Cell, list[str]] = field(default_factory=dict)
-    external: list[Cell] = field(default_factory=list)
-    # every cell that cannot be recomputed or reads one: (sheet, row, col) -> reason
-    not_checked: dict[Cell, str] = field(default_factory=dict)
-    bad_names: dict[str, str] = field(default_factory=dict)  # name -> why it does not parse
-    # cells calling TODAY/NOW/RAND/RANDBETWEEN checked against the function's contract
-    # (agreeing or not); those it could not settle are in not_checked
-    contract: dict[Cell, vol.Outcome] = field(default_factory=dict)
-    groups: GroupStats = field(default_factory=GroupStats)
-    seconds: dict[str, float] = field(default_factory=dict)  # grouping, graph, vector, scalar
-    store: Store | None = None  # the values column by column, for array-wise comparison
-    runs: list = field(default_factory=list)  # (sheet, col, first, last, tree) of every formula
 
 
 def _floats_quiet(fn):

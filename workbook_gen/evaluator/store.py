@@ -22,6 +22,7 @@ from workbook_gen.evaluator.external import ExternalBooks
 from workbook_gen.evaluator.keys import column_groups, pick
 from workbook_gen.formula import ast
 from workbook_gen.formula.parser import parse_name
+from workbook_gen.formula.resolver import Resolver
 from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
 
@@ -258,6 +259,14 @@ class Store:
             return Num(c.val[first:last + 1], c.err[first:last + 1])
         return Obj(_python_values(c, first, last))
 
+    def numbers(self, sheet: str, col: int, rows: np.ndarray
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Rows ``rows`` of a column holding values: (whether each is a number, neither
+        an error nor text, a boolean or nothing; the values, NaN where no number; the
+        operand scales)."""
+        c = self.cols[(sheet, col)]
+        return ~c.irr[rows] & (c.err[rows] == 0), c.val[rows], c.scale[rows]
+
     def column_values(self, sheet: str, col: int, r1: int, r2: int) -> list:
         """The values of rows ``r1..r2`` of a column, as Python values."""
         c = self.cols.get((sheet, col))
@@ -439,8 +448,9 @@ class Names:
         return None
 
 
-class SheetResolver:
-    """The scalar evaluator's view of the store from cells of one sheet."""
+class SheetResolver(Resolver):
+    """The scalar evaluator's view of the store from cells of one sheet: every
+    :class:`~workbook_gen.formula.resolver.Resolver` method answered from the store."""
 
     MAX_NAME_DEPTH = 16
 
