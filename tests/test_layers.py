@@ -177,10 +177,21 @@ def _private_uses(path: Path, modules: dict[str, Path], top: Path = ROOT.parent
                 if alias.name in modules:
                     aliases[alias.asname or alias.name] = alias.name
     for node in ast.walk(tree):
-        if (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name)
-                and node.value.id in aliases and _private(node.attr)):
-            found.append((package, aliases[node.value.id], node.attr))
+        if isinstance(node, ast.Attribute) and _private(node.attr):
+            module = aliases.get(_dotted_name(node.value))
+            if module is not None:
+                found.append((package, module, node.attr))
     return found
+
+
+def _dotted_name(node: ast.AST) -> str | None:
+    """``a.b.c`` of a chain of attributes on a name, else None."""
+    if isinstance(node, ast.Name):
+        return node.id
+    if isinstance(node, ast.Attribute):
+        base = _dotted_name(node.value)
+        return None if base is None else f"{base}.{node.attr}"
+    return None
 
 
 def _private_imports() -> tuple[list[str], list[str]]:
@@ -209,11 +220,13 @@ def test_the_private_name_finder_finds_one(tmp_path):
     (root / "a" / "m.py").write_text(
         "from workbook_gen.b.inner import _hidden, shown\n"
         "from ..b import inner\nfrom . import n\nfrom .n import _mine\n"
-        "x = inner._other + n._same\n")
+        "import workbook_gen.b.inner\n"
+        "x = inner._other + n._same + workbook_gen.b.inner._dotted\n")
     (root / "a" / "n.py").write_text("")
     modules = {_dotted(p, tmp_path)[0]: p for p in root.rglob("*.py")}
     uses = _private_uses(root / "a" / "m.py", modules, tmp_path)
     assert sorted(uses) == [("workbook_gen.a", "workbook_gen.a.n", "_mine"),
                             ("workbook_gen.a", "workbook_gen.a.n", "_same"),
+                            ("workbook_gen.a", "workbook_gen.b.inner", "_dotted"),
                             ("workbook_gen.a", "workbook_gen.b.inner", "_hidden"),
                             ("workbook_gen.a", "workbook_gen.b.inner", "_other")]
