@@ -1,5 +1,5 @@
-"""The function registry: SPEC 12's list is there, every vectorised form equals its scalar
-form on random inputs, the column evaluator equals the cell-by-cell one on the new
+"""The function registry: the list of docs/workbook.md, Every cell, is there, every vectorised form
+equals its scalar form on random inputs, the column evaluator equals the cell-by-cell one on the new
 functions, and the corpus's use of unsupported functions can only shrink."""
 
 from __future__ import annotations

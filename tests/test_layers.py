@@ -11,7 +11,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent / "workbook_gen"
 
 #: Lowest first; a unit (a top-level module or package) imports only from its own layer
-#: or below (docs/ARCHITECTURE.md, "Layers").
+#: or below (docs/ARCHITECTURE.md, The four pipelines: "Layers, lowest first").
 LAYERS = [
     {"xlerror", "errors", "cellref", "version", "progress", "terminate", "forked", "files",
      "names"},

@@ -149,10 +149,10 @@ def test_cli_json_and_workbook_with_log_charts(tmp_path, capsys):
 
 
 def test_tradeoff_measures_the_ok_rows_only_as_the_summary_does():
-    """SPEC 9.1: the tradeoff follows the Summary's rule.  A slider-crank rod 1e-12 longer
-    than its tangent length has flagged rows whose rates keep 8 digits (alpha_2 1.6e-3 of
-    its magnitude off 50 digits); they must not set the float64 error of the table, and
-    the ok rows agree with the 50-digit trees to the last digits."""
+    """docs/tradeoff.md, The command: the tradeoff follows the Summary's rule.  A slider-crank rod
+    1e-12 longer than its tangent length has flagged rows whose rates keep 8 digits (alpha_2 1.6e-3
+    of its magnitude off 50 digits); they must not set the float64 error of the table, and the ok
+    rows agree with the 50-digit trees to the last digits."""
     from workbook_gen.tradeoff.common import studied
     scene = load_scene("templates/slider_crank.toml",
                        overrides={"l_AB": 40.0, "e": 10.0, "l_BC": 10.0 * (1 + 1e-12)})

@@ -1,5 +1,5 @@
 """Extremes of a Table column over its ok rows, and where they occur: the one rule of the
-workbook's Summary and the batch summary (SPEC 9.1: a flagged row, a toggle, a dead
+workbook's Summary and the batch summary (docs/workbook.md, Summary: a flagged row, a toggle, a dead
 centre, a row not converged or one that cannot be assembled, never sets an extreme).
 
 A row counts when its status is ``ok`` and the column holds a number there.  The

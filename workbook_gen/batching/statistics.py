@@ -1,6 +1,6 @@
-"""The Statistics sheet of a random study's summary.xlsx (SPEC 11.1): for every output
-extreme, span and numeric figure, its spread over the ok variants and each varied
-parameter's effect on it, with a Sensitivity chart of the effects.
+"""The Statistics sheet of a random study's summary.xlsx (docs/batch.md, summary.xlsx): for every
+output extreme, span and numeric figure, its spread over the ok variants and each varied parameter's
+effect on it, with a Sensitivity chart of the effects.
 
 Every statistic is a live formula over the Variants sheet that Excel and LibreOffice
 both compute, an array formula filtering the ok variants (``IF(status="ok", column)``:

@@ -1,4 +1,4 @@
-"""The summary table: one row per variant, the columns SPEC section 11 lists.
+"""The summary table: one row per variant, the columns of docs/batch.md, summary.csv.
 
 ``variant``, ``file``, ``status``, the varied parameters and options (an option
 that takes texts or true/false is a text column), then for each output

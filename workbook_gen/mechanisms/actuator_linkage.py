@@ -1,4 +1,4 @@
-"""Actuator linkage: a lever driven by a hydraulic cylinder (SPEC 7.5).
+"""Actuator linkage: a lever driven by a hydraulic cylinder (docs/mechanisms.md, actuator_linkage).
 
 Lever 2 turns about the fixed pivot A = (x_A, y_A); the cylinder 3 about the
 fixed pivot B = (x_B, y_B); the piston rod 4 is pinned to the lever at

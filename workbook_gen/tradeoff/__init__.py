@@ -1,4 +1,4 @@
-"""Speed against accuracy (SPEC section 8): ``workbook-gen tradeoff SCENE``.
+"""Speed against accuracy (docs/tradeoff.md, The command): ``workbook-gen tradeoff SCENE``.
 
     from workbook_gen.tradeoff import measure, write_tradeoff_workbook, format_table
     result = measure(load_scene("templates/sewing_machine.toml"))

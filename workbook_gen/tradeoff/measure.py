@@ -1,4 +1,4 @@
-"""Speed against accuracy on one scene (SPEC section 8): every dimension, in order.
+"""Speed against accuracy on one scene (docs/tradeoff.md, The command): every dimension, in order.
 
     result = measure(load_scene("templates/sewing_machine.toml"))
     result.rows       # Row per measured setting: dimension, setting, max_error, seconds ...

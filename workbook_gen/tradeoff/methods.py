@@ -44,7 +44,7 @@ def _audit_note(spent) -> str:
 
 def _flagged(result) -> str:
     """How many assembled rows the workbook flags (not converged, singular): they set no
-    Summary extreme (SPEC 9.1)."""
+    Summary extreme (docs/workbook.md, Summary)."""
     flagged = int(np.sum(result.assembled & ~ok_rows(result.status)))
     return f"{flagged} rows flagged" if flagged else ""
 
