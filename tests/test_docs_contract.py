@@ -304,3 +304,58 @@ def test_every_summary_column_kind_is_documented(summaries):
             if kind not in text:
                 missing.add(f"{kind} ({scene.mechanism})")
     assert not missing, "docs/batch.md lacks: " + ", ".join(sorted(missing))
+
+
+# -- the docs' examples -----------------------------------------------------------------
+
+#: The scenes behind docs/scene.md's error examples, by the file name the doc shows.
+BAD_SCENES = {
+    "e1.toml": 'name = "x"\nmechanism = "four_bar"\ncolour = 1\n',
+    "e2.toml": 'name = "x"\nmechanism = "four_bar"\n[parameters]\nl_AB = -3\n',
+    "e3.toml": 'name = "x"\nmechanism = "four_bar"\n[sweep]\nstep = 0\n',
+    "e9.toml": 'name = "x"\nmechanism = "four_bar"\n[sweep]\nstart = 0\nstop = 10\nstep = 10\n',
+    "e6.toml": 'name = "x"\nmechanism = "four_bar"\n[masses]\ncrank = { m = 1, u = 2 }\n',
+    "e8.toml": 'name = "x"\nmechanism = "four_bar"\n[options]\nbalance = true\n',
+}
+
+
+def test_scene_examples_load_and_errors_read_as_documented():
+    from workbook_gen.errors import SceneError
+    from workbook_gen.scene import parse_scene
+    text = _doc_text("scene.md")
+    blocks = re.findall(r"```toml\n(.*?)```", text, re.S)
+    assert len(blocks) == 2
+    first = parse_scene(blocks[0], "first.toml")
+    assert first.outputs == ("theta_3", "theta_4", "omega_4", "mu")
+    masses = parse_scene('name = "m"\nmechanism = "four_bar"\n' + blocks[1], "m.toml")
+    assert set(masses.masses) == {"crank", "coupler", "rocker"}
+    shown = dict(re.findall(r"^workbook-gen: error: (e\d+\.toml): (.*)$", text, re.M))
+    assert set(shown) == set(BAD_SCENES)
+    for name, scene in BAD_SCENES.items():
+        with pytest.raises(SceneError) as caught:
+            parse_scene(scene, name)
+        assert str(caught.value) == f"{name}: {shown[name]}"
+
+
+def test_command_line_errors_read_as_documented(tmp_path, monkeypatch, capsys):
+    """The one-line refusals docs/audit.md and docs/batch.md show are what the commands
+    print (exit 2)."""
+    from workbook_gen.cli import main
+    from workbook_gen.scene import load_scene
+    from workbook_gen.workbook import write_workbook
+    scene = str(ROOT / "templates" / "four_bar.toml")
+    write_workbook(load_scene(scene), tmp_path)
+    (tmp_path / "bad.xlsx").write_text("hi\n")
+    monkeypatch.chdir(tmp_path)
+    cases = [
+        (["audit", "bad.xlsx"], "audit.md"),
+        (["audit", "four_bar.xlsx", "--max-cells", "1000"], "audit.md"),
+        (["batch", scene, "--vary", "l_AB=10:5:1"], "batch.md"),
+        (["batch", scene, "--vary", "l_AB=normal:120:2", "--vary", "l_O2B=70,80",
+          "--samples", "5"], "batch.md"),
+    ]
+    for argv, doc in cases:
+        assert main(argv) == 2, argv
+        said = capsys.readouterr().err.strip()
+        assert said.startswith("workbook-gen: error: ") and said in _doc_text(doc), said
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.xlsx", "four_bar.xlsx"]
