@@ -47,7 +47,7 @@ PARAMETERS = (
     ParamSpec("l_5", 1.6, "m", "ground AE: E = (l_5, 0)", positive=True),
     ParamSpec("x_0", 0.8, "m", "centre of C's circular path, x"),
     ParamSpec("y_0", 1.6, "m", "centre of C's circular path, y"),
-    ParamSpec("R_path", 0.3, "m", "radius of C's path (the SPEC's R, not a legal Excel name)",
+    ParamSpec("R_path", 0.3, "m", "radius of C's path (the paper's R, not a legal Excel name)",
               positive=True),
     ParamSpec("r_clear", 1e-5, "m", "radial clearance of one joint at a time", positive=True),
 )

@@ -114,6 +114,10 @@ def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
     sheet.set_paper(A4)
     sheet.set_print_scale(_PRINT_SCALE)
     pages = -(-len(result.model.charts) // (_COLUMNS * _CHART_ROWS_PER_PAGE))
+    if not pages:  # no output asked for is charted: no print area (rows 1..0 are no range)
+        sheet.write_string(0, 0, "No chart: none of the scene's outputs is plotted by the "
+                                 "template's charts.")
+        return
     sheet.set_h_pagebreaks([p * _CHART_ROWS_PER_PAGE * _ROWS_PER_CHART for p in range(1, pages)])
     sheet.print_area(0, 0, pages * _CHART_ROWS_PER_PAGE * _ROWS_PER_CHART - 1,
                      _COLUMNS * _COLS_PER_CHART - 1)
