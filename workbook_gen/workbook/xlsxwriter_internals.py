@@ -46,7 +46,9 @@ The names, and why:
   ``row_data_filename``, ``row_data_fh_closed`` and XMLwriter's ``_xml_start_tag``,
   ``_xml_end_tag``, ``_xml_empty_tag``.
 - The summary's Variants rows (batching/summary.py): ``reserve_rows`` and
-  ``discard_row_data`` over the state above; ``Workbook.filename`` (its stream).
+  ``discard_row_data`` over the state above; Workbook ``filename`` (its stream).
+- Workbook ``in_memory``, set by workbook/package.py's Book after ``__init__`` (which
+  turns constant_memory off with it): parts packaged in memory, rows written as they go.
 - Series caches (workbook and batching charts): add_series' undocumented options
   ``values_data``, ``categories_data``, ``name_data``.
 """
