@@ -12,7 +12,8 @@ import numpy as np
 from ..cellref import a1
 from ..tabulate import Evaluated
 from .layout import A4, CHARTS, FIRST_ROW, TABLE, TableLayout, add_sheet
-from .xlsxwriter_internals import assemble_xml, assembly, replace_assembly, write_xml
+from .xlsxwriter_internals import (assemble_xml, assembly, replace_assembly, reuse_chart,
+                                   write_xml)
 
 _COLUMNS = 2
 _ROWS_PER_CHART = 20
@@ -85,13 +86,9 @@ def _kept_chart(workbook, n: int, key: str, caches: dict[str, str]):
     this workbook's series ``caches``, or None."""
     kept = getattr(_KEPT, "charts", None)
     chart = None if kept is None else kept.get((n, key))
-    if chart is None or chart.date_1904 != workbook.date_1904 \
-            or chart.remove_timezone != workbook.remove_timezone:
+    if chart is None or not reuse_chart(workbook, chart):
         return None
-    chart.already_inserted = False
-    chart.formula_data = [None] * len(chart.formula_data)
     assembly(chart).keywords["caches"] = caches
-    workbook.charts.append(chart)
     return chart
 
 

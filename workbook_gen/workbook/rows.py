@@ -46,7 +46,7 @@ class Column:
 
 @lru_cache(maxsize=None)
 def _column_name(col: int) -> str:
-    """"A", "B", ... of a 0-based column index."""
+    """The letters of a 0-based column index (XlsxWriter's numbering): 0 -> A."""
     return column_letters(col + 1)
 
 

@@ -10,6 +10,14 @@ against the installed libraries and fails naming the one that went or changed, a
 that no other module uses an underscore name of either library.  XlsxWriter is pinned to
 the tested range in pyproject.toml.
 
+Undocumented attributes without an underscore are listed (and tested) here too, but are
+still read where they are used: the worksheet state in workbook/rows.py's ``Sheet`` (a
+subclass reading its own state), the drawing fields in workbook/package.py, Chart ``id``
+in workbook/charts.py, ZipFile ``fp``, ``filelist``, ``NameToInfo``, ``start_dir`` and
+ZipInfo ``FileHeader`` in batching/sheetzip.py, Workbook ``filename`` in
+batching/summary.py, the series-cache options in batching/charts.py and
+batching/statistics.py.
+
 The names, and why:
 
 - Packaging: XlsxWriter zips at zlib's default level with no option.  ``ZippedWorkbook``
@@ -28,9 +36,11 @@ The names, and why:
   ``_assemble_xml_file`` replaced per object (``replace_assembly``, ``assembly``), the
   class's run into a string (``assemble_xml``: the part's ``fh``, ``internal_fh``) and the
   kept text written with ``_xml_close`` (``write_xml``); ``Workbook._prepare_drawings``
-  (the hook ``drawings_prepared``), Workbook ``drawings``, ``charts``, ``date_1904``,
-  ``remove_timezone``, Drawing ``drawings``, ``embedded``, ``orientation``, Chart ``id``,
-  ``formula_data``, ``already_inserted`` (a chart object re-used by the next workbook).
+  (the hook ``drawings_prepared``), Workbook ``drawings``, Drawing ``drawings``,
+  ``embedded``, ``orientation`` (what a drawing's XML is made of), Chart ``id``; a chart
+  object re-used by the next workbook (``reuse_chart``): Workbook ``charts``,
+  ``date_1904``, ``remove_timezone``, Chart ``formula_data``, ``already_inserted``,
+  ``date_1904``, ``remove_timezone``.
 - Rows written whole (workbook/rows.py): ``CellStringTuple``, ``CellFormulaTuple``,
   ``CellNumberTuple``, ``CellBlankTuple`` (the cells of the held row), ``_preserve_whitespace``
   and XMLwriter's ``_escape_control_characters`` (a string cell's XML), ``re_dynamic_function``
@@ -49,7 +59,7 @@ The names, and why:
   ``discard_row_data`` over the state above; Workbook ``filename`` (its stream).
 - Workbook ``in_memory``, set by workbook/package.py's Book after ``__init__`` (which
   turns constant_memory off with it): parts packaged in memory, rows written as they go.
-- Series caches (workbook and batching charts): add_series' undocumented options
+- Series caches (batching/charts.py, statistics.py): add_series' undocumented options
   ``values_data``, ``categories_data``, ``name_data``.
 """
 
@@ -258,6 +268,19 @@ def replace_assembly(part, assemble) -> None:
 def assembly(part):
     """What the part assembles its XML with (a ``replace_assembly`` partial)."""
     return part._assemble_xml_file
+
+
+def reuse_chart(workbook, chart) -> bool:
+    """Add a chart made for an earlier workbook (of the same date system) to ``workbook``
+    as ``add_chart`` adds one: not inserted yet, its ranges' data not gathered (its id is
+    set when packaged).  False, and nothing done, if the date systems differ."""
+    if (chart.date_1904 != workbook.date_1904
+            or chart.remove_timezone != workbook.remove_timezone):
+        return False
+    chart.already_inserted = False
+    chart.formula_data = [None] * len(chart.formula_data)
+    workbook.charts.append(chart)
+    return True
 
 
 # -- the package --------------------------------------------------------------------
