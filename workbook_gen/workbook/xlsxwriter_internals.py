@@ -81,9 +81,11 @@ from xlsxwriter.worksheet import re_dynamic_function as DYNAMIC_FUNCTION
 from xlsxwriter.xmlwriter import XMLwriter
 from zipfile import stringCentralDir, stringEndArchive, structCentralDir, structEndArchive
 
-__all__ = ["CellBlankTuple", "CellFormulaTuple", "CellNumberTuple", "CellStringTuple",
-           "DYNAMIC_FUNCTION", "preserve_whitespace", "escape_control_characters",
-           "stringCentralDir", "stringEndArchive", "structCentralDir", "structEndArchive"]
+# XlsxWriter's and zipfile's own objects, imported here for the other modules (the rest
+# of this module's public names are its own)
+REEXPORTED = ("CellBlankTuple", "CellFormulaTuple", "CellNumberTuple", "CellStringTuple",
+              "DYNAMIC_FUNCTION", "preserve_whitespace", "escape_control_characters",
+              "stringCentralDir", "stringEndArchive", "structCentralDir", "structEndArchive")
 
 
 @dataclass(frozen=True)
