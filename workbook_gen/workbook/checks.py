@@ -11,8 +11,8 @@ from __future__ import annotations
 from functools import lru_cache
 
 import numpy as np
-from xlsxwriter.utility import xl_col_to_name
 
+from ..cellref import column_letters
 from .. import xlmath as xm
 from ..tabulate import Evaluated
 from ..expr import Node, Var, eq, if_
@@ -172,7 +172,7 @@ def write_checks(workbook, formats, result: Evaluated, layout: TableLayout,
     terms, trees = plan(result.model)
     cells = {c.name: _cells(out[f"\x00check {i}"], ok) for i, c in enumerate(checks)}
     flag_col = len(checks) + 1
-    local = tuple((t.name, xl_col_to_name(flag_col + 2 + i)) for i, t in enumerate(terms))
+    local = tuple((t.name, column_letters(flag_col + 3 + i)) for i, t in enumerate(terms))
     maxima = {name: _max_abs(*found) for name, found in cells.items()}
     spec = result.scene.template.input
 
@@ -187,7 +187,7 @@ def write_checks(workbook, formats, result: Evaluated, layout: TableLayout,
     if checks:
         errors = [m for m in maxima.values() if isinstance(m, str)]
         verdict = errors[0] if errors else _verdict(max(maxima.values()))
-        sheet.write_formula(1, 1, f'=IF(MAX(B4:{xl_col_to_name(len(checks))}4)<=check_tol,'
+        sheet.write_formula(1, 1, f'=IF(MAX(B4:{column_letters(len(checks) + 1)}4)<=check_tol,'
                                   '"PASS","FAIL")', formats["label"], verdict)
     sheet.freeze_panes(CHECK_FIRST_ROW - 1, 1)
     # printed: the input, the residuals and the two flags; not the terms
@@ -207,7 +207,7 @@ def write_checks(workbook, formats, result: Evaluated, layout: TableLayout,
         wrapped_lines(h, w) for h, w in zip(heads, printed_widths)))
     # constant_memory: each row is written whole, top to bottom
     first, last = CHECK_FIRST_ROW, CHECK_FIRST_ROW + result.rows - 1
-    named = [(c, xl_col_to_name(c), check) for c, check in enumerate(checks, start=1)]
+    named = [(c, column_letters(c + 1), check) for c, check in enumerate(checks, start=1)]
     for c, col, check in named:
         sheet.write_string(2, c, check.description, formats["wrap"])
     for i, text in enumerate(term_texts, start=flag_col + 2):

@@ -18,7 +18,7 @@ NONE_OK = ExcelError.NA.value
 from .table import cached_values
 from .layout import (CHECK_FIRST_ROW, CHECKS, FIRST_ROW, LINE_HEIGHT, STATUS, SUMMARY,
                      TableLayout, add_sheet, excel_text, print_wide, wrapped_lines)
-from xlsxwriter.utility import xl_col_to_name
+from ..cellref import column_letters
 
 
 def _extremes(column: xm.XArray, inputs: np.ndarray, status: np.ndarray):
@@ -142,7 +142,7 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
         sheet.write_formula(row, 2, excel_text(figure.expr), None, cached)
         _describe(sheet, formats, row, figure.description)
         row += 1
-    flags = xl_col_to_name(len(result.model.checks) + 1)
+    flags = column_letters(len(result.model.checks) + 2)
     last = CHECK_FIRST_ROW + result.rows - 1
     sheet.write_string(row, 0, "rows")
     sheet.write_number(row, 2, result.rows)
@@ -159,7 +159,7 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
                         int(np.sum(result.status == "cannot assemble")))
     _describe(sheet, formats, row, "these rows hold #NUM! in the Table")
     row += 1
-    flagged = xl_col_to_name(len(result.model.checks) + 2)
+    flagged = column_letters(len(result.model.checks) + 3)
     texts = sorted({t for t in result.status if t not in ("ok", "cannot assemble")})
     counts = ", ".join(f"{t}: {int(np.sum(result.status == t))}" for t in texts)
     sheet.write_string(row, 0, "rows flagged singular or not converged")
