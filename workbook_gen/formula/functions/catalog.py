@@ -1,8 +1,9 @@
 """The function library describing itself: ``docs/functions.md``, generated from the registry.
 
-One row per registered name: its family and module, how many arguments it takes and of
-which kind, whether the column evaluator has a vectorised form, whether it is volatile,
-where LibreOffice's dialect differs, and a test file that calls it.  Made by
+One row per registered name: its family (the package that registers it) and module, how
+many arguments it takes and of which kind, whether the column evaluator has a vectorised
+form, whether it is volatile, where LibreOffice's dialect differs, and a test file that
+calls it.  Made by
 ``python scripts/functions_doc.py``; ``tests/test_functions_doc.py`` checks that the
 file is what the registry says.
 """
@@ -66,7 +67,7 @@ def markdown(root: Path) -> str:
              "|---|---|---|---|---|---|---|---|---|"]
     for name in sorted(REGISTRY):
         f = REGISTRY[name]
-        module = f.fn.__module__.rsplit(".", 1)[-1]
+        module = f.module.partition(".")[2]  # the family's module that registers it
         lines.append(" | ".join([
             f"| `{name}`", f.family, module, _arity(f), ", ".join(f.kinds) or "-",
             "yes" if f.vector is not None else "", "yes" if f.volatile else "",
