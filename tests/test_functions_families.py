@@ -78,15 +78,16 @@ def test_excel_categories_land_in_their_family():
     """A few functions of each family, by Microsoft's "Excel functions (by category)"."""
     expected = {
         "math": ["SUM", "SUMX2MY2", "ROMAN", "BASE", "COT", "ACOTH", "SEQUENCE", "SUBTOTAL",
-                 "AGGREGATE", "MMULT", "RANDARRAY", "MULTINOMIAL"],
+                 "AGGREGATE", "MMULT", "RANDARRAY", "MULTINOMIAL", "SUMIF", "SUMIFS",
+                 "SUMPRODUCT"],
         "statistical": ["AVERAGE", "STDEV", "NORM.DIST", "FREQUENCY", "LINEST", "T.TEST",
-                        "BINOM.DIST", "PERMUTATIONA"],
+                        "BINOM.DIST", "PERMUTATIONA", "COUNTIFS", "MAXIFS"],
         "engineering": ["CONVERT", "DEC2BIN", "BITAND", "ERF", "DELTA", "BESSELJ", "IMSUM"],
         "financial": ["PMT", "PRICE", "ODDFPRICE", "VDB"],
         "date": ["DATE", "WEEKNUM", "WORKDAY.INTL"],
-        "text": ["LEN", "LENB", "REGEXTEST", "TEXTSPLIT", "ARRAYTOTEXT"],
+        "text": ["LEN", "LENB", "REGEXTEST", "TEXTSPLIT", "ARRAYTOTEXT", "T"],
         "logical": ["IF", "LAMBDA", "LET"],
-        "lookup": ["VLOOKUP", "XLOOKUP", "OFFSET", "VSTACK", "FILTER", "RTD"],
+        "lookup": ["VLOOKUP", "XLOOKUP", "OFFSET", "VSTACK", "FILTER", "RTD", "HYPERLINK"],
         "information": ["ISNUMBER", "SHEET", "SHEETS"],
         "database": ["DSUM", "DGET"],
         "cube": ["CUBEVALUE"],
@@ -94,3 +95,18 @@ def test_excel_categories_land_in_their_family():
     wrong = {n: REGISTRY[n].family for fam, names in expected.items() for n in names
              if REGISTRY[n].family != fam}
     assert wrong == {}
+
+
+def test_no_module_imports_a_private_name_from_another_package():
+    """Helpers shared across families are public (arrayargs, criteria, numeric, round_digits);
+    a family's private helpers stay inside its package."""
+    found = []
+    for path in FOLDER.rglob("*.py"):
+        package = ".".join(path.relative_to(FOLDER.parent.parent.parent).with_suffix("").parts[:-1])
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.module and not node.level:
+                private = [a.name for a in node.names
+                           if a.name.startswith("_") and not a.name.startswith("__")]
+                if private and node.module.rpartition(".")[0] != package:
+                    found.append((path.relative_to(FOLDER).as_posix(), node.module, private))
+    assert found == []

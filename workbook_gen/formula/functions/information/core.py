@@ -1,4 +1,4 @@
-"""Information functions: IS* tests, NA, N, T, TYPE, ERROR.TYPE."""
+"""Information functions: IS* tests, NA, N, TYPE, ERROR.TYPE (T is in :mod:`..text.core`)."""
 
 from __future__ import annotations
 
@@ -91,28 +91,6 @@ def _n(ctx, v):
     if isinstance(v, bool):
         return float(v)
     return float(v) if c.is_number(v) else 0.0
-
-
-@register("T", 1, 1, "range")
-def _t(ctx, v):
-    """A reference gives its first cell, not the implicit intersection (POI
-    FormulaEvalTestData: T(J1351:J1353) in row 1352 is "" from the empty J1351)."""
-    if isinstance(v, Range) and ctx.dialect == "libreoffice":
-        v = ctx.scalar(v)  # LibreOffice 7.4 intersects (#VALUE! outside the range)
-    elif isinstance(v, Range):
-        v = v.rows[0][0] if v.rows and v.rows[0] else None
-    return v if isinstance(v, (str, ExcelError)) else ""
-
-
-_NOT_GIVEN = object()
-
-
-@register("HYPERLINK", 1, 2)
-def _hyperlink(ctx, link, friendly=_NOT_GIVEN):
-    """The text the cell shows: the friendly name, else the link; an empty cell shows 0
-    (Excel, ironcalc link_test.xlsx: HYPERLINK("https://"&E21,E21) with E21 empty)."""
-    shown = link if friendly is _NOT_GIVEN else friendly
-    return 0.0 if shown is None else shown
 
 
 @register("TYPE", 1, 1, "range")

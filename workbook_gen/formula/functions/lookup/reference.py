@@ -1,7 +1,7 @@
-"""References themselves: ROW, COLUMN, ROWS, COLUMNS, AREAS, OFFSET and INDIRECT (volatile,
-and evaluated), ADDRESS, TRANSPOSE, FORMULATEXT (SHEET and SHEETS, Excel's information
-functions, are in :mod:`..information.sheets`). A reference argument is a Range with
-``.ref``."""
+"""References themselves: ROW, COLUMN, ROWS, COLUMNS, AREAS, OFFSET and INDIRECT (volatile, and
+evaluated), ADDRESS, TRANSPOSE, FORMULATEXT, HYPERLINK (SHEET and SHEETS, Excel's
+information functions, are in :mod:`..information.sheets`). A reference argument is a Range
+with ``.ref``."""
 
 from __future__ import annotations
 
@@ -215,3 +215,16 @@ def _formulatext(ctx, v):
     if array:
         text = "{" + text + "}"
     return text if len(text) <= MAX_FORMULA else ExcelError.NA
+
+
+# -- HYPERLINK -----------------------------------------------------------------------------
+
+_NOT_GIVEN = object()
+
+
+@register("HYPERLINK", 1, 2)
+def _hyperlink(ctx, link, friendly=_NOT_GIVEN):
+    """The text the cell shows: the friendly name, else the link; an empty cell shows 0
+    (Excel, ironcalc link_test.xlsx: HYPERLINK("https://"&E21,E21) with E21 empty)."""
+    shown = link if friendly is _NOT_GIVEN else friendly
+    return 0.0 if shown is None else shown

@@ -173,7 +173,9 @@ def _decimal(x: float) -> Decimal:
     return Decimal(f"{x:.15g}") if math.isfinite(x) else Decimal(0)
 
 
-def _round(x: float, digits: float, mode) -> float:
+def round_digits(x: float, digits: float, mode) -> float:
+    """``x`` to ``digits`` places (negative: tens, hundreds...) by decimal's rounding
+    ``mode``: ROUND, ROUNDUP, ROUNDDOWN, TRUNC; and TEXT, FIXED and the number formats."""
     d = int(max(min(digits, 400.0), -400.0))
     if d > 15 or x == 0:
         return x
@@ -188,7 +190,7 @@ def _rounder(name, mode):
     def scalar(ctx, x, digits=0.0):
         x, d = c.to_number(x), c.to_number(digits)
         bad = _numeric(x, d)
-        return bad if bad is not None else c.result(_round(x, d, mode))
+        return bad if bad is not None else c.result(round_digits(x, d, mode))
     register(name, 1 if name == "TRUNC" else 2, 2)(scalar)
 
 

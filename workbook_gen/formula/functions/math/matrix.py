@@ -1,5 +1,5 @@
 """Matrices and paired sums: MMULT, MINVERSE, MDETERM, MUNIT, SUMX2MY2,
-SUMX2PY2, SUMXMY2. Matrix arguments must hold numbers only (else #VALUE!); results that
+SUMX2PY2, SUMXMY2, SUMPRODUCT. Matrix arguments must hold numbers only (else #VALUE!); results that
 are arrays are returned as array Ranges (spread over an array formula's cells, or their
 first item where one value is wanted)."""
 
@@ -109,3 +109,31 @@ def _paired(fn):
 register("SUMX2MY2", 2, 2, "range")(_paired(lambda x, y: x * x - y * y))
 register("SUMX2PY2", 2, 2, "range")(_paired(lambda x, y: x * x + y * y))
 register("SUMXMY2", 2, 2, "range")(_paired(lambda x, y: (x - y) ** 2))
+
+
+@register("SUMPRODUCT", 1, -1, "range")
+def _sumproduct(ctx, *args):
+    areas = [c.as_area(a) for a in args]
+    shape = areas[0].shape
+    if any(a.shape != shape for a in areas):  # Excel: an error in the arrays first (Mac
+        # Excel's 'MATH & TRIG'!AE75:AF75: the first array's #NUM!, #REF!); LibreOffice
+        # (7.4, measured): #VALUE!
+        if ctx is not None and ctx.dialect == "libreoffice":
+            return ExcelError.VALUE
+        return next((v for a in areas for v in a.flat() if isinstance(v, ExcelError)),
+                    ExcelError.VALUE)
+    columns = [list(a.flat()) for a in areas]
+    lo = ctx.dialect == "libreoffice"  # a boolean is a number there
+    if shape == (1, 1) and not lo and any(isinstance(v, (str, bool)) for (v,) in columns):
+        # single values multiply as direct arguments: text is #VALUE!, not the zero of a
+        # non-numeric array entry (POI FormulaEvalTestData.xlsx J1328: SUMPRODUCT(G1330:G1330,
+        # I1330:I1330) over "4" and 2)
+        return c.first_error([v for (v,) in columns]) or ExcelError.VALUE
+    total = []
+    for row in zip(*columns):
+        err = c.first_error(row)
+        if err is not None:
+            return err
+        total.append(math.prod(float(v) if c.is_number(v) or (lo and isinstance(v, bool))
+                               else 0.0 for v in row))
+    return c.result(fsum(total))

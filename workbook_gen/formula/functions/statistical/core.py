@@ -1,5 +1,6 @@
-"""Statistics: MIN, MAX, AVERAGE(A), COUNT(A/BLANK), the *IF(S) family with criteria,
-SUMPRODUCT, MEDIAN, MODE, STDEV/VAR (sample and population), LARGE, SMALL, RANK."""
+"""Statistics: MIN, MAX, AVERAGE(A), COUNT(A/BLANK), AVERAGEIF(S), COUNTIF(S), MAXIFS,
+MINIFS (criteria in :mod:`..criteria`), MEDIAN, MODE, STDEV/VAR (sample and population),
+LARGE, SMALL, RANK."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ import statistics
 import numpy as np
 
 from workbook_gen.formula.functions import coerce as c
+from workbook_gen.formula.functions.criteria import ifs, ifs_pairs, matches, picked
 from workbook_gen.formula.functions.math.core import fsum
 from workbook_gen.formula.functions.registry import ARRAY_LIFTED, register
 from workbook_gen.formula.values import Range
@@ -148,106 +150,9 @@ def _countblank(ctx, a):
 
 # -- conditional aggregates ------------------------------------------------------------
 
-def _criterion_value(ctx, crit):
-    """A criteria range is implicitly intersected with the formula's row or column; no
-    shared cell is #VALUE!, a criterion that matches the cells holding #VALUE! (POI
-    FormulaEvalTestData.xlsx: SUMIF(AA7:AA13,C10:D10,C7) in row 1324 is C9, 1.1)."""
-    if not isinstance(crit, Range):
-        return crit
-    return ctx.scalar(crit) if ctx is not None else ExcelError.VALUE
-
-
-_OPS = ("<=", ">=", "<>", "=", "<", ">")
-
-
-def _lo_number(v):
-    """A criterion as LibreOffice's, which has no boolean type: TRUE, "TRUE" are 1."""
-    if isinstance(v, bool):
-        return float(v)
-    if isinstance(v, str):
-        op = next((o for o in _OPS if v.startswith(o)), "")
-        body = v[len(op):].upper()
-        if body in ("TRUE", "FALSE"):
-            return float(body == "TRUE") if not op else op + ("1" if body == "TRUE" else "0")
-    return v
-
-
-def _lo_values(crit, values):
-    """LibreOffice 7.4 (measured: COUNTIF over {TRUE,1,"1"}) sees a boolean cell as its
-    number except under a plain text criterion (" 1" counts 1 and "1", not TRUE)."""
-    if isinstance(crit, str) and not crit.startswith(_OPS):
-        return values
-    return [float(v) if isinstance(v, bool) else v for v in values]
-
-
-def _matches(pairs, ctx=None) -> list[bool] | ExcelError:
-    """Per cell of the first range, whether every (range, criterion) pair holds."""
-    shape = None
-    mask = None
-    for rng, crit in pairs:
-        area = c.as_area(rng)
-        if shape is None:
-            shape = area.shape
-        elif area.shape != shape:
-            return ExcelError.VALUE
-        crit = _criterion_value(ctx, crit)
-        values = area.flat()
-        if ctx is not None and ctx.dialect == "libreoffice":  # no boolean type: TRUE is 1
-            if isinstance(crit, ExcelError):  # an error criterion is the result (measured,
-                return crit                   # tests/differential.py)
-            crit = _lo_number(crit)
-            values = _lo_values(crit, values)
-        pred = c.criterion(crit)
-        if isinstance(pred, ExcelError):
-            return pred
-        hits = [pred(v) for v in values]
-        mask = hits if mask is None else [a and b for a, b in zip(mask, hits)]
-    return mask
-
-
-def _resized(area: Range, shape, ctx) -> list:
-    """SUMIF's sum range takes the criteria range's shape from its top-left cell."""
-    if area.shape == shape or area.ref is None:
-        return list(area.flat())
-    ref = area.ref
-    from workbook_gen.formula.values import Ref
-    grown = ctx.read(Ref(ref.sheet, ref.row1, ref.col1, ref.row1 + shape[0] - 1,
-                         ref.col1 + shape[1] - 1))
-    return list(area.flat()) if isinstance(grown, ExcelError) else list(grown.flat())
-
-
-def _picked(ctx, target, pairs):
-    mask = _matches(pairs, ctx)
-    if isinstance(mask, ExcelError):
-        return mask
-    area = c.as_area(target)
-    values = _resized(area, c.as_area(pairs[0][0]).shape, ctx)
-    out = []
-    for v, hit in zip(values, mask):
-        if not hit:
-            continue
-        if isinstance(v, ExcelError):
-            return v
-        if c.is_number(v) or (ctx.dialect == "libreoffice" and isinstance(v, bool)):
-            out.append(float(v))
-    return out
-
-
-def _ifs_pairs(args):
-    if len(args) % 2:
-        return ExcelError.VALUE
-    return [(args[i], args[i + 1]) for i in range(0, len(args), 2)]
-
-
-@register("SUMIF", 2, 3, "range")
-def _sumif(ctx, rng, crit, target=None):
-    xs = _picked(ctx, rng if target is None else target, [(rng, crit)])
-    return xs if isinstance(xs, ExcelError) else c.result(fsum(xs))
-
-
 @register("AVERAGEIF", 2, 3, "range")
 def _averageif(ctx, rng, crit, target=None):
-    xs = _picked(ctx, rng if target is None else target, [(rng, crit)])
+    xs = picked(ctx, rng if target is None else target, [(rng, crit)])
     if isinstance(xs, ExcelError):
         return xs
     return c.result(fsum(xs) / len(xs)) if xs else ExcelError.DIV0
@@ -255,72 +160,29 @@ def _averageif(ctx, rng, crit, target=None):
 
 @register("COUNTIF", 2, 2, "range")
 def _countif(ctx, rng, crit):
-    mask = _matches([(rng, crit)], ctx)
+    mask = matches([(rng, crit)], ctx)
     return mask if isinstance(mask, ExcelError) else float(sum(mask))
 
 
 @register("COUNTIFS", 2, -1, "range")
 def _countifs(ctx, *args):
-    pairs = _ifs_pairs(args)
+    pairs = ifs_pairs(args)
     if isinstance(pairs, ExcelError):
         return pairs
-    mask = _matches(pairs, ctx)
+    mask = matches(pairs, ctx)
     return mask if isinstance(mask, ExcelError) else float(sum(mask))
-
-
-def _xifs(name, fn, empty):
-    def scalar(ctx, target, *args):
-        pairs = _ifs_pairs(args)
-        if isinstance(pairs, ExcelError):
-            return pairs
-        if c.as_area(target).shape != c.as_area(pairs[0][0]).shape:
-            return ExcelError.VALUE
-        xs = _picked(ctx, target, pairs)
-        if isinstance(xs, ExcelError):
-            return xs
-        return c.result(fn(xs)) if xs else empty
-    register(name, 3, -1, "range")(scalar)
 
 
 # an array of criteria in an array formula gives one result per criterion (formulas__test
 # STATISTICAL!AH24:AW24 {=COUNTIF(F24:J24,{"*ao","","TRUE",TRUE,"*a?"})} = {0,1,1,1,0})
-ARRAY_LIFTED.update({"SUMIF": (1).__eq__, "AVERAGEIF": (1).__eq__, "COUNTIF": (1).__eq__,
+ARRAY_LIFTED.update({"AVERAGEIF": (1).__eq__, "COUNTIF": (1).__eq__,
                      "COUNTIFS": lambda i: i % 2 == 1})
 ARRAY_LIFTED.update({name: (lambda i: i >= 2 and i % 2 == 0)
-                     for name in ("SUMIFS", "AVERAGEIFS", "MAXIFS", "MINIFS")})
+                     for name in ("AVERAGEIFS", "MAXIFS", "MINIFS")})
 
-_xifs("SUMIFS", fsum, 0.0)
-_xifs("AVERAGEIFS", lambda xs: fsum(xs) / len(xs), ExcelError.DIV0)
-_xifs("MAXIFS", max, 0.0)
-_xifs("MINIFS", min, 0.0)
-
-
-@register("SUMPRODUCT", 1, -1, "range")
-def _sumproduct(ctx, *args):
-    areas = [c.as_area(a) for a in args]
-    shape = areas[0].shape
-    if any(a.shape != shape for a in areas):  # Excel: an error in the arrays first (Mac
-        # Excel's 'MATH & TRIG'!AE75:AF75: the first array's #NUM!, #REF!); LibreOffice
-        # (7.4, measured): #VALUE!
-        if ctx is not None and ctx.dialect == "libreoffice":
-            return ExcelError.VALUE
-        return next((v for a in areas for v in a.flat() if isinstance(v, ExcelError)),
-                    ExcelError.VALUE)
-    columns = [list(a.flat()) for a in areas]
-    lo = ctx.dialect == "libreoffice"  # a boolean is a number there
-    if shape == (1, 1) and not lo and any(isinstance(v, (str, bool)) for (v,) in columns):
-        # single values multiply as direct arguments: text is #VALUE!, not the zero of a
-        # non-numeric array entry (POI FormulaEvalTestData.xlsx J1328: SUMPRODUCT(G1330:G1330,
-        # I1330:I1330) over "4" and 2)
-        return c.first_error([v for (v,) in columns]) or ExcelError.VALUE
-    total = []
-    for row in zip(*columns):
-        err = c.first_error(row)
-        if err is not None:
-            return err
-        total.append(math.prod(float(v) if c.is_number(v) or (lo and isinstance(v, bool))
-                               else 0.0 for v in row))
-    return c.result(fsum(total))
+register("AVERAGEIFS", 3, -1, "range")(ifs(lambda xs: fsum(xs) / len(xs), ExcelError.DIV0))
+register("MAXIFS", 3, -1, "range")(ifs(max, 0.0))
+register("MINIFS", 3, -1, "range")(ifs(min, 0.0))
 
 
 def _kth(ctx, area, kth, largest: bool):

@@ -1,6 +1,6 @@
 """Text: LEN, LEFT, RIGHT, MID, UPPER, LOWER, PROPER, TRIM, CONCATENATE, CONCAT, TEXTJOIN,
 TEXT (common formats), VALUE, FIND, SEARCH, SUBSTITUTE, REPLACE, REPT, EXACT, CHAR, CODE,
-FIXED, DOLLAR-free number formatting."""
+FIXED, DOLLAR-free number formatting, T."""
 
 from __future__ import annotations
 
@@ -258,9 +258,9 @@ def _value(ctx, v):
 # -- TEXT and FIXED ----------------------------------------------------------------------
 
 def _round_half_up(x: float, d: int) -> float:
-    from workbook_gen.formula.functions.math.core import _round
+    from workbook_gen.formula.functions.math.core import round_digits
     from decimal import ROUND_HALF_UP
-    return _round(x, d, ROUND_HALF_UP)
+    return round_digits(x, d, ROUND_HALF_UP)
 
 
 def _group(digits: str) -> str:
@@ -377,3 +377,14 @@ def _dollar(ctx, v, decimals=2.0):
             return y
     body = format_number(abs(x), max(d, 0), True)
     return f"(${body})" if x < 0 and not math.isclose(x, 0) else f"${body}"
+
+
+@register("T", 1, 1, "range")
+def _t(ctx, v):
+    """A reference gives its first cell, not the implicit intersection (POI
+    FormulaEvalTestData: T(J1351:J1353) in row 1352 is "" from the empty J1351)."""
+    if isinstance(v, Range) and ctx.dialect == "libreoffice":
+        v = ctx.scalar(v)  # LibreOffice 7.4 intersects (#VALUE! outside the range)
+    elif isinstance(v, Range):
+        v = v.rows[0][0] if v.rows and v.rows[0] else None
+    return v if isinstance(v, (str, ExcelError)) else ""
