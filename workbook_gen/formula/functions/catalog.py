@@ -11,11 +11,13 @@ file is what the registry says.
 from __future__ import annotations
 
 import re
+from collections import Counter
 from pathlib import Path
 
 from workbook_gen.formula.functions import REGISTRY
 from workbook_gen.formula.functions.dialect import (LIBREOFFICE_DIFFERENCES, LIBREOFFICE_ERRORS,
                                                     NUMERIC_DEVIATIONS)
+from workbook_gen.formula.functions.registry import FAMILIES
 
 HEADER = """# Worksheet functions the audit recomputes
 
@@ -61,7 +63,10 @@ def _tests(root: Path) -> dict[str, str]:
 
 def markdown(root: Path) -> str:
     tests = _tests(root)
-    lines = [HEADER, f"{len(REGISTRY)} functions.\n",
+    counts = Counter(f.family for f in REGISTRY.values())
+    families = ", ".join(f"{family} {counts[family]}" for family in FAMILIES)
+    lines = [HEADER, f"{len(REGISTRY)} functions. By family (each a package of "
+             f"`workbook_gen/formula/functions/`, after Excel's categories): {families}.\n",
              "| function | family | module | arguments | kinds | vectorised | volatile "
              "| LibreOffice | test |",
              "|---|---|---|---|---|---|---|---|---|"]

@@ -19,15 +19,12 @@ def _criterion_value(ctx, crit):
     return ctx.scalar(crit) if ctx is not None else ExcelError.VALUE
 
 
-_OPS = ("<=", ">=", "<>", "=", "<", ">")
-
-
 def _lo_number(v):
     """A criterion as LibreOffice's, which has no boolean type: TRUE, "TRUE" are 1."""
     if isinstance(v, bool):
         return float(v)
     if isinstance(v, str):
-        op = next((o for o in _OPS if v.startswith(o)), "")
+        op = next((o for o in c.CRITERION_OPERATORS if v.startswith(o)), "")
         body = v[len(op):].upper()
         if body in ("TRUE", "FALSE"):
             return float(body == "TRUE") if not op else op + ("1" if body == "TRUE" else "0")
@@ -37,7 +34,7 @@ def _lo_number(v):
 def _lo_values(crit, values):
     """LibreOffice 7.4 (measured: COUNTIF over {TRUE,1,"1"}) sees a boolean cell as its
     number except under a plain text criterion (" 1" counts 1 and "1", not TRUE)."""
-    if isinstance(crit, str) and not crit.startswith(_OPS):
+    if isinstance(crit, str) and not crit.startswith(c.CRITERION_OPERATORS):
         return values
     return [float(v) if isinstance(v, bool) else v for v in values]
 

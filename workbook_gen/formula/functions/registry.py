@@ -1,4 +1,6 @@
-"""The table of worksheet functions: one :class:`Function` entry per name.
+"""The table of worksheet functions: one :class:`Function` entry per name, with its family:
+the package of :mod:`workbook_gen.formula.functions` whose module registers it
+(:data:`FAMILIES`, after Excel's categories; :func:`family_of`).
 
 An entry says how many arguments the function takes, what kind each is, and gives the
 scalar form (and, where the column evaluator has one, the vectorised form):

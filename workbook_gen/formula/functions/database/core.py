@@ -17,15 +17,13 @@ from workbook_gen.formula.functions.math.core import fsum
 from workbook_gen.formula.functions.registry import register
 from workbook_gen.xlerror import ExcelError
 
-_OPS = ("<=", ">=", "<>", "=", "<", ">")
-
 
 def _label(v) -> str:
     return "" if v is None else str(c.to_text(v)).strip().upper()
 
 
 def _condition(v):
-    if isinstance(v, str) and not v.startswith(_OPS):
+    if isinstance(v, str) and not v.startswith(c.CRITERION_OPERATORS):
         if isinstance(c.text_to_number(v), float) or v.upper() in ("TRUE", "FALSE"):
             return c.criterion(v)
         return c.criterion(v + "*")

@@ -2,7 +2,7 @@
 SECOND, TODAY/NOW (volatile), EDATE, EOMONTH, YEARFRAC, WEEKDAY (WEEKNUM and ISOWEEKNUM in
 :mod:`.weeks`), DAYS, DAYS360, DATEDIF, DATEVALUE, TIMEVALUE, NETWORKDAYS, WORKDAY.
 
-Serial numbers and calendar dates convert in :mod:`.serials` (the 1900 system, with its 29
+Serial numbers and calendar dates convert in :mod:`..serials` (the 1900 system, with its 29
 February 1900 that never was, or the 1904 system of a workbook saved with ``date1904``).
 """
 

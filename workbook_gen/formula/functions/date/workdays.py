@@ -4,7 +4,7 @@ The weekend is a code (1 = Saturday and Sunday ... 7 = Friday and Saturday, 11 =
 only ... 17 = Saturday only) or seven characters of 0/1 from Monday to Sunday, 1 meaning
 a day off (another code is #NUM!; other text #VALUE!; "1111111" is #VALUE! for
 WORKDAY.INTL, which could never end, and counts no day in NETWORKDAYS.INTL). Serial numbers count weekdays
-continuously (serial 1 is a Sunday, as in Excel; :mod:`.serials`)."""
+continuously (serial 1 is a Sunday, as in Excel; :mod:`..serials`)."""
 
 from __future__ import annotations
 
