@@ -79,9 +79,9 @@ def test_excel_categories_land_in_their_family():
     expected = {
         "math": ["SUM", "SUMX2MY2", "ROMAN", "BASE", "COT", "ACOTH", "SEQUENCE", "SUBTOTAL",
                  "AGGREGATE", "MMULT", "RANDARRAY", "MULTINOMIAL", "SUMIF", "SUMIFS",
-                 "SUMPRODUCT"],
+                 "SUMPRODUCT", "COMBIN"],
         "statistical": ["AVERAGE", "STDEV", "NORM.DIST", "FREQUENCY", "LINEST", "T.TEST",
-                        "BINOM.DIST", "PERMUTATIONA", "COUNTIFS", "MAXIFS"],
+                        "BINOM.DIST", "PERMUT", "PERMUTATIONA", "COUNTIFS", "MAXIFS"],
         "engineering": ["CONVERT", "DEC2BIN", "BITAND", "ERF", "DELTA", "BESSELJ", "IMSUM"],
         "financial": ["PMT", "PRICE", "ODDFPRICE", "VDB"],
         "date": ["DATE", "WEEKNUM", "WORKDAY.INTL"],

@@ -1,6 +1,7 @@
 """Numeric arguments for the functions computed by mpmath: each argument converted to a
 number (or the first error returned), the computation at :data:`DPS` digits, the result a
-safe float. Shared by the statistical, engineering, math and financial families."""
+safe float; and COMBIN's and PERMUT's whole-number pair. Shared by the statistical,
+engineering, math and financial families."""
 
 from __future__ import annotations
 
@@ -65,3 +66,14 @@ def with_flag(fn, dialect: bool = False):
                 return ExcelError.NUM
         return r if isinstance(r, ExcelError) else c.result(float(r))
     return wrapped
+
+
+def choices(count):
+    """COMBIN and PERMUT: ``count(n, r)`` of whole n and r; #NUM! unless 0 <= r <= n."""
+    def scalar(ctx, n, r):
+        n, r = c.integer(n), c.integer(r)
+        bad = c.first_error((n, r))
+        if bad is not None:
+            return bad
+        return ExcelError.NUM if n < 0 or r < 0 or r > n else c.result(float(count(n, r)))
+    return scalar

@@ -9,6 +9,7 @@ from decimal import (
 )
 
 from workbook_gen.formula.functions import coerce as c
+from workbook_gen.formula.functions.numeric import choices
 from workbook_gen.formula.functions.registry import register
 from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
@@ -370,19 +371,7 @@ def _lcm(ctx, *args):
     return xs if isinstance(xs, ExcelError) else c.result(float(math.lcm(*xs)))
 
 
-def _choices(name, count):
-    """COMBIN and PERMUT: ``count(n, r)`` of whole n and r; #NUM! unless 0 <= r <= n."""
-    def scalar(ctx, n, r):
-        n, r = c.integer(n), c.integer(r)
-        bad = _numeric(n, r)
-        if bad is not None:
-            return bad
-        return ExcelError.NUM if n < 0 or r < 0 or r > n else c.result(float(count(n, r)))
-    register(name, 2, 2)(scalar)
-
-
-_choices("COMBIN", math.comb)
-_choices("PERMUT", math.perm)
+register("COMBIN", 2, 2)(choices(math.comb))  # PERMUT is statistical (statistical/testing)
 
 
 # -- volatile ------------------------------------------------------------------------------

@@ -1,5 +1,5 @@
 """Descriptive statistics and hypothesis tests: GEOMEAN, HARMEAN, SKEW(.P), KURT, TRIMMEAN,
-PERCENTRANK(.INC/.EXC), MODE.MULT, PROB, PERMUTATIONA, CHISQ.TEST, F.TEST, T.TEST,
+PERCENTRANK(.INC/.EXC), MODE.MULT, PROB, PERMUT, PERMUTATIONA, CHISQ.TEST, F.TEST, T.TEST,
 Z.TEST (and their legacy names). Ranges keep their numbers only (Excel's rule for
 statistical functions); the p-values come from :mod:`.distributions`."""
 
@@ -10,7 +10,7 @@ import math
 import mpmath
 
 from workbook_gen.formula.functions import coerce as c
-from workbook_gen.formula.functions.numeric import DPS, args_of
+from workbook_gen.formula.functions.numeric import DPS, args_of, choices
 from workbook_gen.formula.functions.statistical.distributions import f_cdf, t_cdf
 from workbook_gen.formula.functions.math.core import fsum
 from workbook_gen.formula.functions.registry import register
@@ -162,6 +162,9 @@ def _mode_mult(ctx, *args):
     if top < 2:
         return ExcelError.NA
     return Range.array_of([[x] for x, k in counts.items() if k == top])
+
+
+register("PERMUT", 2, 2)(choices(math.perm))
 
 
 @register("PERMUTATIONA", 2, 2)
