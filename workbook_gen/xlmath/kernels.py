@@ -20,7 +20,7 @@ from workbook_gen.xlerror import ExcelError
 NUM = ExcelError.NUM.code
 DIV0 = ExcelError.DIV0.code
 TRIG_LIMIT = 2.0 ** 27  # SIN, COS, TAN give #NUM! from here on (scalar ones too:
-#                       formula/functions/math.py reads it)
+#                       formula/functions/math/core.py reads it)
 
 
 def _safe(fn):
