@@ -11,7 +11,7 @@ from decimal import (
 from workbook_gen.formula.functions import coerce as c
 from workbook_gen.formula.functions.registry import register
 from workbook_gen.formula.values import Range
-from workbook_gen.xlerror import ExcelError
+from workbook_gen.xlerror import TRIG_LIMIT, ExcelError
 from workbook_gen.xlmath import kernels as k
 
 
@@ -62,7 +62,7 @@ def _unary_vector(name):
 
 
 def _trig(fn):
-    return lambda x: ExcelError.NUM if abs(x) >= k.TRIG_LIMIT else fn(x)
+    return lambda x: ExcelError.NUM if abs(x) >= TRIG_LIMIT else fn(x)
 
 
 def _domain(fn, lo, hi, open_lo=False):
