@@ -18,7 +18,7 @@ LAYERS = [
     {"xlmath"},
     {"expr", "formula"},
     {"mechanisms", "xlsx", "evaluator", "engines"},
-    {"scene", "model", "reference"},
+    {"scene", "pruning", "reference"},
     {"tabulate", "extremes"},
     {"workbook"},
     {"auditor"},

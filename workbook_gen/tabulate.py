@@ -10,7 +10,7 @@ import numpy as np
 from . import xlmath as xm
 from .errors import CannotAssembleError
 from .expr.numeric import compiled, compiled_set
-from .model import Model, select
+from .pruning import Model, select
 from .scene import Scene
 
 if TYPE_CHECKING:

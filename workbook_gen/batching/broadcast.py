@@ -25,7 +25,7 @@ from ..expr import Bin, Call, Neg, Node, Num, Param, Text, Var
 from ..expr import fastnum
 from ..expr.numeric import Compiled, compile_numpy
 from ..expr.tree import children
-from ..model import select
+from ..pruning import select
 from ..scene import Scene
 
 _HIDDEN = "\x00"  # prefix of names no quantity can have

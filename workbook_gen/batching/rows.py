@@ -18,7 +18,7 @@ from .. import xlmath as xm
 from ..expr import Bin, Call, Neg, Node, Param, Var
 from ..expr.numeric import compile_numpy
 from ..extremes import OK, ok_extremes
-from ..model import Model
+from ..pruning import Model
 
 CANNOT_ASSEMBLE = "cannot assemble"
 #: The summary's counts of a variant's rows left out of its extremes: flagged (a dead

@@ -16,7 +16,7 @@ from ..extremes import ok_rows
 from ..tabulate import Evaluated
 from ..scene import Scene
 
-#: progress(label): called once per finished unit of work.
+#: progress(label): called once per finished step of work (``progress_steps`` in all).
 Progress = Callable[[str], None]
 
 #: Columns left out of the extremes and precision studies: their table values are

@@ -78,7 +78,7 @@ def measure_steps(scene: Scene, extremes: dict[str, Extremes],
     return rows, runs
 
 
-def derivative_units(scene: Scene) -> int:
+def derivative_progress_steps(scene: Scene) -> int:
     return len(step_settings(scene)) if chains_for(scene.template, scene.outputs)[1] else 0
 
 

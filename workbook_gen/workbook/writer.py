@@ -10,7 +10,7 @@ from typing import Callable
 
 from ..tabulate import Evaluated, evaluate
 from ..errors import SceneError
-from ..model import select
+from ..pruning import select
 from ..xlsx.limits import MAX_CELLS
 from ..files import refuse_existing, write_bytes_atomically
 from ..scene import Scene
