@@ -19,7 +19,7 @@ LAYERS = [
     {"expr", "formula"},
     {"mechanisms", "xlsx", "evaluator", "engines"},
     {"scene", "pruning", "reference"},
-    {"tabulate", "extremes"},
+    {"tabulate"},
     {"workbook"},
     {"auditor"},
     {"batching", "tradeoff"},

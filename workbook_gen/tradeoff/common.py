@@ -12,7 +12,7 @@ from typing import Callable
 import mpmath
 import numpy as np
 
-from ..extremes import ok_rows
+from ..tabulate.extremes import ok_rows
 from ..tabulate import Evaluated
 from ..scene import Scene
 

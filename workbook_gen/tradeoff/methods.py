@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..extremes import ok_rows
+from ..tabulate.extremes import ok_rows
 from ..tabulate import evaluate
 from ..mechanisms import get_template
 from ..scene import Scene
