@@ -250,7 +250,8 @@ def _disagreements(report: AuditReport, verbose: bool) -> list[str]:
                  if m.area and first != last else "")
         at = f"at {m.at}: " if m.at else ""
         lines.append(f"    {m.cell}{where}: ={m.formula}")
-        lines.append(f"      {at}cached {show_value(m.cached)}, recomputed {show_value(m.recomputed)}"
+        lines.append(f"      {at}cached {show_value(m.cached)}, "
+                     f"recomputed {show_value(m.recomputed)}"
                      + (f"; {len(m.followers)} cell{'s' * (len(m.followers) > 1)} "
                         f"follow{'s' * (len(m.followers) == 1)} from it: "
                         f"{_names(m.followers)}" if m.followers else ""))
@@ -263,7 +264,8 @@ def _disagreements(report: AuditReport, verbose: bool) -> list[str]:
         for m in follow[:limit]:
             why = f", because of {_names(m.sources, 3)}" if m.sources else ""
             lines.append(f"    {m.cell}: ={_cut(m.formula)}")
-            lines.append(f"      shows {show_value(m.cached)}, would show {show_value(m.recomputed)}{why}")
+            lines.append(f"      shows {show_value(m.cached)}, "
+                         f"would show {show_value(m.recomputed)}{why}")
     return lines
 
 
@@ -327,14 +329,15 @@ def format_report(report: AuditReport, verbose: bool = False) -> str:
         lines += [f"  {e.engine}: {e.cells} cells recalculated in {e.seconds:.1f} s, "
                   f"{len(e.mismatches)} disagree with the recomputed values"]
         for m in e.mismatches[:MAX_LISTED if verbose else WORST]:
-            lines.append(f"    {m.cell}: ={_cut(m.formula)}: {e.engine} {_cut(show_value(m.cached))}, "
-                         f"ours {_cut(show_value(m.recomputed))}")
+            lines.append(f"    {m.cell}: ={_cut(m.formula)}: {e.engine} "
+                         f"{_cut(show_value(m.cached))}, ours {_cut(show_value(m.recomputed))}")
         if e.differences:
             lines.append(f"  {len(e.differences)} cells differ where LibreOffice's own semantics "
                          "differ from Excel's (its difference, not the file's; not failed):")
             for m in e.differences[:MAX_LISTED if verbose else 3]:
                 lines.append(f"    {m.cell}: ={_cut(m.formula)}: LibreOffice "
-                             f"{_cut(show_value(m.cached))}, Excel {_cut(show_value(m.recomputed))}")
+                             f"{_cut(show_value(m.cached))}, "
+                             f"Excel {_cut(show_value(m.recomputed))}")
     if report.warnings:
         lines.append(f"  the audit warned {sum(report.warnings.values())} times (its own "
                      "problem, not the file's): " + "; ".join(

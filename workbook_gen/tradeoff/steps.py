@@ -2,11 +2,11 @@
 
 Step: the extremes of each output read off the table (its largest and smallest
 cached value over the ok rows, ``tabulate.extremes``, as the Summary shows them)
-against the true extremes of the 50-digit formula, relative to the output's magnitude.  Derivative: finite differences of the tabulated
-positions against the analytic velocity and acceleration columns (``rates``),
-the analytic columns themselves against the 50-digit reference, and the cost
-of a workbook that holds the positions only (plus the difference columns it
-would need).
+against the true extremes of the 50-digit formula, relative to the output's magnitude.
+Derivative: finite differences of the tabulated positions against the analytic
+velocity and acceleration columns (``rates``), the analytic columns themselves
+against the 50-digit reference, and the cost of a workbook that holds the positions
+only (plus the difference columns it would need).
 """
 
 from __future__ import annotations
