@@ -19,7 +19,7 @@ from workbook_gen import audit
 from workbook_gen.tabulate import compute, derived_values, evaluate
 from workbook_gen.engines.libreoffice import recalculated_values_many
 from workbook_gen.expr.numeric import compile_numpy
-from workbook_gen.model import select
+from workbook_gen.pruning import select
 from workbook_gen.reference import parallel_4dof as ref
 from workbook_gen.reference import solve
 from workbook_gen.scene import load_scene

@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from typing import Iterable, Mapping, Sequence
 
-from ..model import Model
+from ..pruning import Model
 from .blocktext import TEXT_COLUMNS, value_kind
 from .rows import ROW_COUNTS, column_units, header, text_figures, value_columns
 from .specs import shown

@@ -48,6 +48,7 @@ from dataclasses import replace
 from typing import Mapping
 
 from ..expr import Node, Num, abs_, atan2, cos, eq, if_, iserror, le, lt, min_, pi, root, sin, sqrt
+from ..xlerror import TRIG_LIMIT  # Excel's SIN and COS give #NUM! from there
 from .actuator_halving import halving_quantities, lever_point
 from .base import (Chart, Check, Figure, InputSpec, Link, OptionSpec, ParamSpec, Quantity, Span,
                    Template, quantity_vars, symbols)
@@ -173,7 +174,6 @@ def _checks() -> tuple[Check, ...]:
 
 
 _ZERO = Num(0.0)  # fixed pivots: no acceleration
-TRIG_LIMIT = 2.0 ** 27  # Excel's SIN and COS of an argument this large are #NUM!
 
 CHARTS = (
     Chart("Lever angle", "s_BC", ("phi_2",), "phi_2 [rad]"),

@@ -1,7 +1,7 @@
 """What a mechanism template is: parameters, quantities as trees, checks, charts.
 
 A template is data.  It knows nothing of xlsx: the workbook writer reads the
-trees and prints them; ``model.py`` prunes them to what a scene asks for.
+trees and prints them; ``pruning.py`` prunes them to what a scene asks for.
 """
 
 from __future__ import annotations

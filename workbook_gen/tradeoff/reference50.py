@@ -18,7 +18,7 @@ import mpmath
 import numpy as np
 
 from ..expr.precise import compile_mpmath
-from ..model import needed, select
+from ..pruning import needed, select
 from ..scene import Scene
 
 DPS = 50

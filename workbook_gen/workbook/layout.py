@@ -7,13 +7,13 @@ from functools import cached_property, lru_cache
 
 from ..cellref import column_letters, quoted_sheet
 from ..tabulate import Evaluated
+from ..tabulate.table import STATUS
 from ..expr import Node
 from ..expr.excel import ROW, Piece, Row, RowTemplate, row_template, to_excel
 from .rows import Sheet
 
 TABLE, PARAMETERS, CHECKS, SUMMARY, CHARTS, ABOUT = (
     "Table", "Parameters", "Checks", "Summary", "Charts", "About")
-STATUS = "status"  # the Table's last column
 FIRST_ROW = 2  # first data row of the Table (1-based); row 1 holds the headers
 CHECK_FIRST_ROW = 8  # first data row of the Checks sheet
 # A Checks row refers to the Table row this many rows up.

@@ -12,7 +12,7 @@ from workbook_gen.formula.functions import coerce as c
 from workbook_gen.formula.functions.numeric import choices
 from workbook_gen.formula.functions.registry import register
 from workbook_gen.formula.values import Range
-from workbook_gen.xlerror import ExcelError
+from workbook_gen.xlerror import TRIG_LIMIT, ExcelError
 from workbook_gen.xlmath import kernels as k
 
 
@@ -63,7 +63,7 @@ def _unary_vector(name):
 
 
 def _trig(fn):
-    return lambda x: ExcelError.NUM if abs(x) >= k.TRIG_LIMIT else fn(x)
+    return lambda x: ExcelError.NUM if abs(x) >= TRIG_LIMIT else fn(x)
 
 
 def _domain(fn, lo, hi, open_lo=False):

@@ -1,4 +1,4 @@
-"""Model only what a scene requires: prune a template to the requested outputs.
+"""Prune a template to what a scene requires: the requested outputs and what they need.
 
 The columns are the requested quantities and everything their trees refer to,
 transitively (read off the trees with ``variables``), in the template's order,
