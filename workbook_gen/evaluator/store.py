@@ -98,6 +98,7 @@ class Store:
         self.array_formulas: Mapping[tuple[str, int, int], tuple] = {}  # (text, (r2, c2))
         self._subtotals: dict[str, list[tuple[int, int]]] | None = None
         self.unparsed: Mapping[tuple[str, int, int], str] = {}  # formulas not handed over
+        self.unreadable: set[str] = set()  # sheets listed without their part (lower case)
         self._array_cells: set[tuple[str, int, int]] | None = None
 
     def subtotal_cells(self, sheet: str) -> list[tuple[int, int]]:
