@@ -85,15 +85,18 @@ def same(got, cached) -> bool:
 
 
 def assert_spill(formula: str, ref: str, sheet: str, res: DictResolver) -> None:
+    """The array formula's area as Excel fills it: the result where it reaches, a single
+    row or column repeated, #N/A beyond; an empty cell spills as 0."""
     cached = cached_rows(sheet, ref)
     got = recomputed(formula, res)
-    if len(cached) == 1 and len(cached[0]) == 1:  # a one-cell area: the top-left value
-        got = [[got[0][0]]]
-    elif len(got) == 1 and len(got[0]) == 1:  # one value over an array area: repeated
-        got = [[got[0][0]] * len(cached[0]) for _ in cached]
-    got = [[0.0 if v is None else v for v in row] for row in got]  # an empty cell spills 0
-    assert len(got) == len(cached) and all(len(g) == len(c) for g, c in zip(got, cached)), \
-        (formula, got, cached)
-    for g_row, c_row in zip(got, cached):
-        for g, c in zip(g_row, c_row):
-            assert same(g, c), (formula, got, cached)
+    if len(cached) > 1 or len(cached[0]) > 1:  # (a one-cell area shows the top-left value)
+        assert len(got) <= len(cached) and len(got[0]) <= len(cached[0]), (formula, got)
+
+    def at(i, j):
+        gi = i if i < len(got) else 0 if len(got) == 1 else None
+        gj = j if j < len(got[0]) else 0 if len(got[0]) == 1 else None
+        v = ExcelError.NA if gi is None or gj is None else got[gi][gj]
+        return 0.0 if v is None else v
+    for i, c_row in enumerate(cached):
+        for j, c in enumerate(c_row):
+            assert same(at(i, j), c), (formula, got, cached)
