@@ -6,9 +6,9 @@ in blocks of a million (ล้าน between blocks), each block by its digits a
 10 to 100,000 (สิบ ร้อย พัน หมื่น แสน), with Thai's two irregular tens: 10 is สิบ alone and
 20 ยี่สิบ, and a final 1 after a ten is เอ็ด (11 สิบเอ็ด, 21 ยี่สิบเอ็ด; 101 หนึ่งร้อยหนึ่ง).
 Then บาท, and the satang read the same way with สตางค์, or ถ้วน ("exactly") when there are
-none; no baht and some satang is the satang alone; zero is ศูนย์บาทถ้วน; a negative number starts with
-ลบ ("minus", even where it rounds to zero, as the ports of BAHTTEXT to LibreOffice
-and Calligra do). What Microsoft Excel cached in formulas__test.xlsx (TEXT!R6:AW6: 0, 157, 65,
+none; no baht and some satang is the satang alone; zero is ศูนย์บาทถ้วน; a negative number
+starts with ลบ ("minus", even where it rounds to zero, as the ports of BAHTTEXT to
+LibreOffice and Calligra do). What Microsoft Excel cached in formulas__test.xlsx (TEXT!R6:AW6: 0, 157, 65,
 65.8, -1, an empty cell, TRUE, text, errors) agrees."""
 
 from __future__ import annotations
