@@ -145,3 +145,16 @@ def test_pivotby_percentof_relative_to(rel):
             if (r, c) in cell:
                 whole = (col[c], row[r], grand, row[r], col[c])[rel]
                 assert value == pytest.approx(cell[(r, c)] / whole)
+
+
+def test_what_is_not_computed_is_said_so():
+    """field_headers 2 (generated names the pages do not give) is Unanswered: the cell is
+    "not checked"; a vector of functions is refused before evaluation."""
+    from workbook_gen.formula import parse as parse_formula
+    from workbook_gen.formula.functions.registry import REGISTRY, Unanswered
+    with pytest.raises(Unanswered):
+        ev('GROUPBY({"a";"b"},{1;2},_xleta.SUM,2)')
+    node = parse_formula("GROUPBY(A1:A3,B1:B3,HSTACK(_xleta.SUM,_xleta.MAX))")
+    assert not REGISTRY["GROUPBY"].accepts(node.args)
+    node = parse_formula("PIVOTBY(A1:A3,C1:C3,B1:B3,LAMBDA(x,SUM(x)))")
+    assert REGISTRY["PIVOTBY"].accepts(node.args)
