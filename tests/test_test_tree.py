@@ -246,6 +246,7 @@ NOT_YET: set[str] = {
 # test files at the top of tests/ that test the project as a whole, not one module
 PROJECT_WIDE = {
     "test_test_tree.py": "this file: every module's tests can be found from its path",
+    "test_fixture_workbooks.py": "every Excel-saved corpus workbook, cell by cell",
 }
 
 
