@@ -51,10 +51,12 @@ def _tests(root: Path) -> dict[str, str]:
     """name -> the first test file (sorted) whose text calls it as NAME( ."""
     found: dict[str, str] = {}
     call = re.compile(r"(?<![\w.])(?:_xlfn\.|_xlws\.)?([A-Z][A-Z0-9.]*)\(")
-    paths = sorted((root / "tests").glob("*.py"), key=lambda p: (not p.name.startswith("test_"), p.name))
+    tests = root / "tests"   # tests/<package>/test_<module>.py: named by that path
+    paths = sorted(tests.rglob("*.py"), key=lambda p: (not p.name.startswith("test_"),
+                                                       p.relative_to(tests).as_posix()))
     for path in paths:
         for name in set(call.findall(path.read_text(errors="replace"))):
-            found.setdefault(name, path.name)
+            found.setdefault(name, path.relative_to(tests).as_posix())
     return found
 
 

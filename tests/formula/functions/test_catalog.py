@@ -9,7 +9,7 @@ from pathlib import Path
 from workbook_gen.formula.functions import REGISTRY
 from workbook_gen.formula.functions.catalog import markdown
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[3]
 
 
 def test_functions_doc_is_current():

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import pytest
 
-from test_xlsx_reader import MAIN, _package
+from tests.xlsx.test_reader import MAIN, _package
 from workbook_gen.auditor.inputs import read_inputs
 from workbook_gen.errors import WorkbookReadError
 from workbook_gen.xlsx import read_workbook, scan, sheetdata

@@ -16,7 +16,7 @@ import pytest
 
 from workbook_gen import batch
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SEWING = str(ROOT / "templates" / "sewing_machine.toml")
 VARY = ["l_BC=20,95,105", "l_AB=-1,30,32"]
 # Enough variants that a worker can be killed while many are still to do.

@@ -21,7 +21,7 @@ from extremes_common import assert_sound, near
 from workbook_gen import audit, load_scene, write_workbook
 from workbook_gen.errors import SceneError
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 ERRORS = {"#DIV/0!", "#NUM!", "#VALUE!", "#N/A", "#REF!", "#NAME?", "#NULL!"}
 RATES = ("omega_3", "omega_4", "alpha_3", "alpha_4", "vx_C", "vy_C", "ax_C", "ay_C")
 
@@ -275,7 +275,7 @@ def test_no_summary_error_while_a_row_is_ok_and_no_huge_flagged_rate(books, name
 
 @pytest.mark.parametrize("name", BOOKS)
 def test_libreoffice_recalculates_the_same_values(books, libreoffice_values, name):
-    from test_libreoffice_recalc import compare_with_libreoffice
+    from tests.engines.test_libreoffice_recalc import compare_with_libreoffice
     cells, worst = compare_with_libreoffice(books[name], libreoffice_values[name])
     assert cells > 100 and worst <= 1e-12
 

@@ -13,7 +13,7 @@ from workbook_gen import audit, load_scene, write_workbook
 from workbook_gen.auditor.mechanics import REFERENCE_TOLERANCE, _check_column
 from workbook_gen.errors import SceneError
 
-TEMPLATES = Path(__file__).resolve().parent.parent / "templates"
+TEMPLATES = Path(__file__).resolve().parents[2] / "templates"
 
 EXTREMES = [
     # (scene, parameter overrides): the repros first

@@ -18,7 +18,7 @@ from workbook_gen.batching import summary_only
 from workbook_gen.batching.variants import from_design, from_specs
 from workbook_gen.errors import SceneError
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SEWING = str(ROOT / "templates" / "sewing_machine.toml")
 FOUR_BAR = str(ROOT / "templates" / "four_bar.toml")
 PARAMS = ["l_AB", "l_BC", "l_BE", "beta_E", "x_F", "y_F", "l_FG", "omega_1"]

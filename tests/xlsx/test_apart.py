@@ -9,7 +9,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-CASES = Path(__file__).with_name("apart_cases.py")
+CASES = Path(__file__).resolve().parents[1] / "apart_cases.py"
 
 
 def test_forked_reading_in_a_process_without_threads():

@@ -30,7 +30,7 @@ import openpyxl
 import pytest
 
 from extremes_common import assert_sound
-from test_libreoffice_recalc import compare_with_libreoffice
+from tests.engines.test_libreoffice_recalc import compare_with_libreoffice
 from workbook_gen import audit
 from workbook_gen.engines.libreoffice import recalculated_values_many
 from workbook_gen.tabulate import evaluate

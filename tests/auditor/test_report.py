@@ -21,7 +21,7 @@ from workbook_gen.auditor.report import format_report
 from workbook_gen.engines.libreoffice import find_soffice, recalculated_values
 
 CORPUS = Path("/work/shared/corpus/xlsx")
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 NS = "{http://schemas.openxmlformats.org/spreadsheetml/2006/main}"
 SHEET_PART = re.compile(r"xl/(?:worksheets|macrosheets)/[^/]+\.xml$")
 

@@ -29,7 +29,7 @@ from workbook_gen.batching.folder import digest
 from workbook_gen.batching.summary import VARIANTS
 from workbook_gen.batching.variants import ColumnVariants, from_specs
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SEWING = str(ROOT / "templates" / "sewing_machine.toml")
 # refused (l_AB <= 0), partial, and "n/a: needs l_BC >= l_AB" in the exact needle
 # stroke where the rod is shorter than the crank: a figure column of numbers and texts

@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from test_libreoffice_recalc import compare_with_libreoffice
+from tests.engines.test_libreoffice_recalc import compare_with_libreoffice
 from workbook_cells import as_float, table_columns
 from workbook_gen import audit
 from workbook_gen.reference import solve

@@ -203,6 +203,6 @@ def test_audit_is_clean(generate, scenes, branch):
 ])
 def test_libreoffice_agrees_with_every_cached_value(libreoffice, generate, scenes, branch,
                                                     overrides):
-    from test_libreoffice_recalc import compare_with_libreoffice
+    from tests.engines.test_libreoffice_recalc import compare_with_libreoffice
     cells, worst = compare_with_libreoffice(generate(scenes(branch), overrides=overrides))
     assert cells > 100 and math.isfinite(worst)

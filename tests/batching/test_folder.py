@@ -22,7 +22,7 @@ import pytest
 
 from workbook_gen import cli
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SEWING = str(ROOT / "templates" / "sewing_machine.toml")
 SMALL = ["--vary", "l_BC=95,100,105", "--step", "30"]
 # Enough variants (22, 36 rows each) that a run is killed with most of them to do.

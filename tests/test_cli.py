@@ -15,7 +15,7 @@ from pathlib import Path
 import openpyxl
 import pytest
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[1]
 FOUR_BAR = str(ROOT / "templates" / "four_bar.toml")
 # sysfs: no user, root included, can create a file there (EACCES, or EROFS where /sys
 # is mounted read-only), unlike a chmod 555 folder, which root writes into

@@ -13,7 +13,7 @@ import pytest
 from workbook_gen.tabulate import compute
 from workbook_gen.scene import load_scene
 
-SCENE = Path(__file__).resolve().parent.parent / "templates" / "five_bar.toml"
+SCENE = Path(__file__).resolve().parents[2] / "templates" / "five_bar.toml"
 JOINTS, ANGLES = "ABCDE", (0, 90, 180, 270)
 mp.mp.dps = 50
 

@@ -11,7 +11,7 @@ import pytest
 from workbook_gen import audit, load_scene, write_workbook
 from workbook_gen.auditor.mechanics import TURN, _apart
 
-ROOT = __import__("pathlib").Path(__file__).resolve().parent.parent
+ROOT = __import__("pathlib").Path(__file__).resolve().parents[2]
 
 CASES = [
     ("sewing_machine", {}, -540.0, 0.0),

@@ -19,7 +19,7 @@ from scipy import stats
 from workbook_gen import audit, batch
 from workbook_gen.engines.libreoffice import read_formula_values, recalculated_values_many
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SEWING = str(ROOT / "templates" / "sewing_machine.toml")
 # 120 samples: 112 ok, 7 partial (l_BC < l_AB: some rows cannot assemble), 1 refused
 # (l_AB <= 0): the statistics must leave the last 8 out.

@@ -23,7 +23,7 @@ from workbook_gen.errors import SceneError
 
 import mp_reference
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 FOUR_BAR = str(ROOT / "templates" / "four_bar.toml")
 BALANCED = str(ROOT / "templates" / "four_bar_balanced.toml")
 FIVE_BAR = str(ROOT / "templates" / "five_bar.toml")

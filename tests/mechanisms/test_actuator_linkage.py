@@ -10,7 +10,7 @@ import numpy as np
 import openpyxl
 import pytest
 
-from test_libreoffice_recalc import compare_with_libreoffice
+from tests.engines.test_libreoffice_recalc import compare_with_libreoffice
 from workbook_cells import as_float, column_error, table_columns
 from workbook_gen.errors import SceneError
 from workbook_gen.reference import solve

@@ -19,9 +19,9 @@ import pytest
 
 from workbook_gen import audit, batch, load_scene, write_workbook
 from workbook_gen.engines.libreoffice import recalculated_values
-from test_libreoffice_recalc import compare_with_libreoffice
+from tests.engines.test_libreoffice_recalc import compare_with_libreoffice
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 # (template, overrides): each with at least one flagged row among ok rows
 FLAGGED = [
     ("sewing_machine", {"l_BC": 32.0}),     # rod = crank: dead centres

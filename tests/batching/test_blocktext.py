@@ -20,7 +20,7 @@ from workbook_gen import batch, cli
 from workbook_gen.batching import api, blocktext, summary_only
 from workbook_gen.batching.table import Table
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SEWING = str(ROOT / "templates" / "sewing_machine.toml")
 TRICKY = [0.0, -0.0, 0.1, 1e-05, 0.0001, 1e16, 1e15, 123456789012345.6, 5e-324,
           -1.7976931348623157e308, 2.0 ** -1074 * 3, 95.01, 1 / 3, -197.16118968844148,

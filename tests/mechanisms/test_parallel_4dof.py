@@ -13,7 +13,7 @@ import numpy as np
 import openpyxl
 import pytest
 
-from test_libreoffice_recalc import compare_with_libreoffice
+from tests.engines.test_libreoffice_recalc import compare_with_libreoffice
 from workbook_cells import as_float, column_error, table_columns
 from workbook_gen import audit
 from workbook_gen.tabulate import compute, derived_values, evaluate

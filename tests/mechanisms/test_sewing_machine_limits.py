@@ -31,13 +31,13 @@ import pytest
 from extremes_common import assert_sound
 from openpyxl.utils import get_column_letter
 
-from test_libreoffice_recalc import TOLERANCE, _magnitudes, _tied_extreme
+from tests.engines.test_libreoffice_recalc import TOLERANCE, _magnitudes, _tied_extreme
 from workbook_gen import audit, load_scene, write_workbook
 from workbook_gen.engines.libreoffice import read_formula_values, recalculated_values_many
 from workbook_gen.tabulate import evaluate
 from workbook_gen.xlerror import ExcelError
 
-ROOT = Path(__file__).resolve().parents[1] / "templates"
+ROOT = Path(__file__).resolve().parents[2] / "templates"
 SEWING_RATES = ("v_C", "a_C", "v_FE", "a_FE", "omega_5", "alpha_5")
 LEVER_RATES = ("v_FE", "a_FE", "omega_5", "alpha_5", "vx_G", "ay_G")  # the needle's are sound
 LEVER = ("theta_5", "x_G", "y_G", "omega_5", "alpha_5", "v_FE")

@@ -59,7 +59,7 @@ def test_five_bar_newton_at_exact_angles():
 
 
 def test_change_point_workbook_counts_flagged_rows_and_audits(tmp_path, libreoffice):
-    from test_libreoffice_recalc import compare_with_libreoffice
+    from tests.engines.test_libreoffice_recalc import compare_with_libreoffice
     from workbook_gen import audit
     from workbook_gen.scene import parse_scene
     from workbook_gen.workbook import write_workbook

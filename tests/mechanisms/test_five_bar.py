@@ -16,7 +16,7 @@ from workbook_gen import audit, write_workbook
 from workbook_gen.errors import SceneError
 from workbook_gen.reference import solve
 from workbook_gen.scene import load_scene
-from test_libreoffice_recalc import compare_with_libreoffice
+from tests.engines.test_libreoffice_recalc import compare_with_libreoffice
 from workbook_cells import as_float, table_columns
 
 SCENE = "templates/five_bar.toml"

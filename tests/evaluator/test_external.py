@@ -25,7 +25,7 @@ from workbook_gen.formula.parser import parse
 from workbook_gen.formula.tokenizer import tokenize
 from workbook_gen.xlsx import read_workbook
 
-from test_xlsx_reader import MAIN, PKG, REL, _package
+from tests.xlsx.test_reader import MAIN, PKG, REL, _package
 
 CORPUS = Path("/work/shared/corpus/xlsx")
 CONNECTION = CORPUS / "openxmlsdk__Connection.xlsx"
