@@ -126,6 +126,9 @@ NOT_YET: set[str] = {
 PROJECT_WIDE = {
     "test_test_tree.py": "this file: every module's tests can be found from its path",
     "test_fixture_workbooks.py": "every Excel-saved corpus workbook, cell by cell",
+    "test_architecture.py": "docs/ARCHITECTURE.md's map against the package",
+    "test_layers.py": "the import layers of the whole package, no cycles",
+    "test_readme_figures.py": "the README's measured figures, from scripts/readme_figures.py",
 }
 
 
@@ -182,6 +185,40 @@ def test_exemptions_are_real_and_hold_no_logic():
         defined = [n.name for n in tree.body
                    if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))]
         assert not defined, f"{module} defines {defined}: it needs a test file of its own"
+
+
+def _module_of(test: Path) -> str | None:
+    """The module a test file is found from: tests/<pkg>/test_<mod>[_<topic>].py names
+    workbook_gen/<pkg>/<mod>.py (or the package's __init__ by its name); None if none."""
+    folder = PACKAGE.joinpath(*test.relative_to(TESTS).parent.parts)
+    if not (folder / "__init__.py").is_file():
+        return None
+    stem = test.stem[len("test_"):]
+    candidates = [p.stem for p in folder.glob("*.py") if p.stem != "__init__"]
+    candidates.append("workbook_gen" if folder == PACKAGE else folder.name)
+    hits = [c for c in candidates if stem == c or stem.startswith(c + "_")]
+    if not hits:
+        return None
+    best = max(hits, key=len)
+    module = folder / (best + ".py") if best in candidates[:-1] else folder / "__init__.py"
+    return module.relative_to(PACKAGE).as_posix()
+
+
+def test_every_test_file_names_its_module():
+    """The other way round: each test file sits in a folder mirroring a package and
+    starts with the name of one of its modules (or is one of PROJECT_WIDE)."""
+    strays = []
+    for test in sorted(TESTS.rglob("test_*.py")):
+        if test.parent == TESTS and test.name in PROJECT_WIDE:
+            continue
+        if _module_of(test) is None:
+            strays.append(test.relative_to(TESTS).as_posix())
+    for stray in strays:
+        print(f"stray: tests/{stray} names no module of its folder")
+    assert not strays, strays
+    assert _module_of(TESTS / "formula/functions/test_registry_edges.py") == \
+        "formula/functions/registry.py"
+    assert _module_of(TESTS / "reference/test_reference_workbooks.py") == "reference/__init__.py"
 
 
 def test_no_module_is_both_exempt_and_awaited():
