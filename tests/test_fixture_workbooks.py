@@ -4,12 +4,12 @@ the value Excel cached, or is listed below as data (file, cell, why).
 
 The files are used where they are (/work/shared/corpus/xlsx, never copied: their
 licences include GPL) and audited once per session by the ``corpus_audits`` fixture
-(tests/corpus_audits.py), shared with tests/test_audit_corpus.py. "Excel-saved" is what
+(tests/corpus_audits.py), shared with tests/auditor/test_pipeline_corpus.py. "Excel-saved" is what
 the file's own docProps/app.xml says: its ``<Application>`` is Microsoft Excel (Windows,
 Macintosh or Online); files saved by LibreOffice, openpyxl or others are audited there
-under another dialect and counted by test_audit_corpus.py only.
+under another dialect and counted by auditor/test_pipeline_corpus.py only.
 
-A ratchet, as test_audit_corpus.py: a listed cell that agrees again must leave the list,
+A ratchet, as auditor/test_pipeline_corpus.py: a listed cell that agrees again must leave the list,
 and the cells a file leaves unchecked may only become fewer.
 """
 

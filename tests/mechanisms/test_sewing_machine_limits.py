@@ -241,7 +241,7 @@ def _unit(header: object) -> str:
 
 
 def _agree_with_libreoffice(path: Path, theirs: dict) -> int:
-    """tests/test_libreoffice_recalc.py's comparison (every formula cell within 1e-12 of
+    """tests/engines/test_libreoffice_recalc.py's comparison (every formula cell within 1e-12 of
     its column's magnitude, errors and text equal, tied Summary extremes accepted) with
     three allowances that only rows at a limit need: in a Table row that is not ok both
     engines may show different errors (a formula meeting #NUM! and #DIV/0! shows the one

@@ -123,7 +123,7 @@ def _tied_positions(path) -> dict[str, set[float]]:
 @pytest.mark.parametrize("options", [{}, {"overrides": {"l_O1A": 30.0}, "step": 5.0}])
 def test_libreoffice_agrees_with_every_cached_value(libreoffice, generate, options,
                                                     monkeypatch):
-    """As tests/test_libreoffice_recalc.py, with tied Summary positions accepted when
+    """As tests/engines/test_libreoffice_recalc.py, with tied Summary positions accepted when
     LibreOffice names another of the tied inputs."""
     import test_libreoffice_recalc as recalc
     path = generate(SCENE, **options)

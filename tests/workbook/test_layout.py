@@ -1,5 +1,5 @@
 """Printing (issue 12 item 11, issue 22 item 17): the Table and the Checks landscape on A4
-at a fixed 80 %, header row and input column repeated (tests/test_printing_wide.py has
+at a fixed 80 %, header row and input column repeated (tests/workbook/test_layout_wide.py has
 more); the Charts two rows of two per page with page breaks between them.  The settings are read from the XML; one LibreOffice run
 exports two workbooks to PDF and poppler's pdftotext splits the pages."""
 

@@ -1,7 +1,7 @@
 """Excel's rules where LibreOffice's differ, on the cells of the corpus's
 formulas__test.xlsx (saved by Mac Excel 16): each cell below must be recomputed and agree
 with Excel's cached value. (The LibreOffice side of each rule is in
-test_functions_libreoffice.py, against LibreOffice itself.)"""
+formula/functions/test_registry_libreoffice.py, against LibreOffice itself.)"""
 
 from __future__ import annotations
 

@@ -48,10 +48,10 @@ MATH = [
     "GCD(24,36)", "LCM(4,6)", "COMBIN(8,2)", "PERMUT(100,3)", "SINH(1)", "COSH(1)", "TANH(0.5)",
     "ASINH(1)", "ACOSH(1)", "ATANH(0.5)", "ATANH(1)", "SQRTPI(2)", "FACTDOUBLE(7)",
     f"SUM({NUM})", f"SUM({MIX})", 'SUM(1,"2",TRUE)', "MOD(-7,3)", "POWER(2,0.5)",
-    # Excel's rules for these are tested on Mac Excel's cells (test_excel_mac_cells.py)
+    # Excel's rules for these are tested on Mac Excel's cells (test_dialect_excel_mac.py)
     "FACTDOUBLE(-1)", "FACTDOUBLE(-1.1)", "FACTDOUBLE(TRUE)", "MROUND(TRUE,0)", "SQRTPI(TRUE)",
     'ARABIC("XIV")', 'ARABIC("IM")', 'ARABIC("MCMXCIV")',
-    # an omitted argument (Excel's #VALUE!: test_functions_edges.py), an overflow
+    # an omitted argument (Excel's #VALUE!: test_registry_edges.py), an overflow
     "MMULT(,)", "MMULT({2},)", "MMULT({1e300,1e300},{1e300;-1e300})",
 ]
 LOGICAL = [
@@ -77,7 +77,7 @@ LOOKUP = [
     "ADDRESS(2,3)", "ADDRESS(2,3,4)", 'ADDRESS(1,1,1,TRUE,"My Sheet")', 'ADDRESS(1,3,4,TRUE,"")', "ADDRESS(5,28,2)",
     # unions and intersections: LibreOffice gives #VALUE! for the size of a union (Excel
     # #REF!) and for an intersection with a union (Excel intersects each area); the Excel
-    # side is tested on Mac Excel's cells (test_excel_mac_cells.py, LOOKUP!S15, CORE!E7)
+    # side is tested on Mac Excel's cells (test_dialect_excel_mac.py, LOOKUP!S15, CORE!E7)
     "AREAS((Data!A1,Data!A3:A4))", "AREAS(Data!A1:B2)", "AREAS((Data!A1:B2 Data!B1:C2 Data!B2:C3))",
     "SUM(Data!A1:A3 Data!A2:C5 Data!A3:A9)", "COLUMNS((Data!A1:B1,Data!C1:D1))",
     "ROWS((Data!A1:B2,Data!C1:C4))", "SUM((Data!A1:A2,Data!A5:A6) Data!A1:A5)",
@@ -91,13 +91,13 @@ STATS = [
     f'COUNTIF({MIX},"=")', f'COUNTIF({MIX},"<>")', f'COUNTIF({MIX},TRUE)', f'COUNTIF({MIX},"TRUE")',
     f'COUNTIF({MIX},"<>1")', f'COUNTIF({MIX},"3")', f'COUNTIF({MIX},3)', f'COUNTIF({WRD},"p?ar")',
     f'COUNTIF({WRD},"x~*y")', f'COUNTIF({WRD},"<>*an*")', f'SUMIF({MIX},"<>1",{NUM})',
-    # Excel's rules on Mac Excel's cells (test_functions_edges.py): a probability of 1,
+    # Excel's rules on Mac Excel's cells (test_registry_edges.py): a probability of 1,
     # areas of one size and two shapes
     "BETAINV(1,3,2)", "BETAINV(0,3,2)", "CHITEST({10,0.1;10,3.2},{0.7;0.7;0.7;0.7})",
     "CHITEST({1,2,3},{1,2})",
     # arrays of different sizes, one with an error; PROB's upper limit an empty cell
     "SUMPRODUCT(Data!$D$1:$D$2,Data!$A$1:$A$3)", "PROB({1,2,3},{0.2,0.3,0.5},1,Data!$K$1)",
-    # Excel's Z.TEST rules are tested on Mac Excel's cells (test_excel_mac_cells.py)
+    # Excel's Z.TEST rules are tested on Mac Excel's cells (test_dialect_excel_mac.py)
     "ZTEST({3.2,0.7},2,0)", "ZTEST({4},0,2)", "ZTEST({3.2,0.7},1/0,NA())",
     "HYPGEOM.DIST(0,0,0,0,FALSE)", "HYPGEOM.DIST(0,2,3,3,TRUE)", "HYPGEOM.DIST(0,2,3,3,FALSE)",
     "HYPGEOM.DIST(3,3,2,30,TRUE)", "HYPGEOM.DIST(5,3,2,30,TRUE)",
@@ -151,7 +151,7 @@ TEXT = [
     "N(TRUE)", 'NUMBERVALUE("1.234,5",",",".")',
 ]
 INFO = [
-    # an empty friendly name shows 0 (Excel's cached value in test_functions_edges.py)
+    # an empty friendly name shows 0 (Excel's cached value in test_registry_edges.py)
     'HYPERLINK("https://"&Data!C4,Data!C4)', 'HYPERLINK("x",)', 'HYPERLINK("x",Data!A1)',
     "ISNUMBER(Data!A1)", "ISNUMBER(Data!C3)", "ISTEXT(Data!C3)", "ISBLANK(Data!C4)",
     "ISBLANK(Data!C3)", "ISNA(Data!D1)", "ISNA(Data!D2)", "ISERR(Data!D1)", "ISERR(Data!D2)",
@@ -169,7 +169,7 @@ DATE = [
     "YEARFRAC(43101,43466,1)", "YEARFRAC(36526,45000,1)", "WEEKDAY(43891)", "WEEKDAY(43891,2)",
     "WEEKDAY(43891,3)", "WEEKNUM(43891)", "WEEKNUM(43891,2)", "ISOWEEKNUM(43891)",
     "DAYS(44196,43831)", "DAYS360(43831,44196)", "DAYS360(43890,44255)",
-    # serial 0, fractions, 1900's February: Excel's cached values in test_functions_edges.py
+    # serial 0, fractions, 1900's February: Excel's cached values in test_registry_edges.py
     "DAYS360(0,1)", "DAYS360(0,10)", "DAYS360(1,0.00625)", "DAYS360(45992.000001,46000.999999)",
     "DAYS360(59,61)", "DAYS360(60,61)",
     'DATEDIF(43831,44620,"Y")', 'DATEDIF(43831,44620,"M")', 'DATEDIF(43831,44620,"D")',
@@ -188,17 +188,17 @@ FINANCE = [
     "IPMT(0.1,3,3,8000)", "XNPV(0.09,Data!$I$1:$I$5,Data!$J$1:$J$5)",
     "XIRR(Data!$I$1:$I$5,Data!$J$1:$J$5)", "SLN(30000,7500,10)", "DDB(2400,300,10,1)",
     # a text pair and an empty pair left out, a boolean taken as 1 (Excel: #VALUE!, on Mac
-    # Excel's cells in test_excel_mac_cells.py), the values' error first, IRR's error
+    # Excel's cells in test_dialect_excel_mac.py), the values' error first, IRR's error
     "XIRR(Data!$I$1:$I$7,Data!$J$1:$J$7)", "XNPV(0.09,Data!$I$1:$I$7,Data!$J$1:$J$7)",
     "XIRR(Data!$I$1:$I$8,Data!$J$1:$J$8)", "XIRR({-10,#N/A,1},{3,#REF!,7})",
     "IRR(Data!$D$1:$D$2)",
     "DDB(2400,300,10,2)", "EFFECT(0.0525,4)", "NOMINAL(0.053543,4)",
-    # a rate below -1 (Excel's cached values in test_functions_edges.py; at -1 Excel's #NUM!
+    # a rate below -1 (Excel's cached values in test_registry_edges.py; at -1 Excel's #NUM!
     # is LibreOffice's -0), a negative growth to a fractional power
     "PMT(-3,5,100,300,1)", "PMT(-3,5,100)", "PMT(-1,1,-100)", "PMT(-2,2.5,100)",
     # PMT - IPMT cancelling to 1E-09 of its terms (Excel's exact digits: test_functions_edges)
     "PPMT(1,3,33,10000,1)", "PPMT(0.1/12,5,24,2000,100,1)", "PPMT(0.2,4,4,-300,10,1)",
-    # a rate of 0 or less (Excel's #NUM!: test_functions_edges.py)
+    # a rate of 0 or less (Excel's #NUM!: test_registry_edges.py)
     "XNPV(-0.1,{-10,1,5},{1,99,55})", "XNPV(0,{-10,1,5},{1,99,55})", "XNPV(-1,{-10,1,5},{1,99,55})",
 ]
 ENG = [
@@ -212,7 +212,7 @@ ENG = [
     'HEX2DEC("FFFFFFFF5B")', 'BIN2DEC("1100100")', 'BIN2DEC("1111111111")', 'OCT2DEC("54")',
     'OCT2DEC("7777777533")', 'HEX2BIN("F",8)', 'BIN2HEX("11111011",4)', 'HEX2OCT("F",3)',
     'OCT2BIN("3",3)', "DELTA(5,5)", "DELTA(5,4)", "GESTEP(5,4)", "GESTEP(-4,-5)",
-    # a tiny real argument (Excel's cached values in test_functions_edges.py)
+    # a tiny real argument (Excel's cached values in test_registry_edges.py)
     'IMREAL(IMCOT("1E-16"))', 'IMREAL(IMCSC("1E-18"))', 'IMREAL(IMCOT("0.5"))',
     'IMAGINARY(IMCSC("1E-16"))',
 ]

@@ -4,7 +4,8 @@ that converts serial numbers and dates.
 References: ECMA-376 Part 4's date representation (DATEVALUE examples for both systems);
 a 1904 workbook recalculated by LibreOffice headless and audited (the auditor must read
 ``date1904`` from the file: in the 1900 system every one of these formulas gives another
-value); NPOI's DateFormatTests.xlsx, saved by Excel in the 1904 system (tests/test_numfmt.py).
+value); NPOI's DateFormatTests.xlsx, saved by Excel in the 1904 system
+(tests/formula/functions/numfmt/test_numfmt.py).
 """
 
 from __future__ import annotations

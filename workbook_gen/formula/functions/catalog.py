@@ -3,7 +3,7 @@
 One row per registered name: its family and module, how many arguments it takes and of
 which kind, whether the column evaluator has a vectorised form, whether it is volatile,
 where LibreOffice's dialect differs, and a test file that calls it.  Made by
-``python scripts/functions_doc.py``; ``tests/test_functions_doc.py`` checks that the
+``python scripts/functions_doc.py``; ``tests/formula/functions/test_catalog.py`` checks that the
 file is what the registry says.
 """
 
@@ -19,7 +19,7 @@ from workbook_gen.formula.functions.dialect import (LIBREOFFICE_DIFFERENCES, LIB
 HEADER = """# Worksheet functions the audit recomputes
 
 Generated from the registry (`workbook_gen/formula/functions/`) by
-`python scripts/functions_doc.py`; `tests/test_functions_doc.py` checks it is current.
+`python scripts/functions_doc.py`; `tests/formula/functions/test_catalog.py` checks it is current.
 Kinds: `scalar` (one value; a larger reference is implicitly intersected), `range` (a
 range or array taken whole), `ref` (the reference itself: ROW, OFFSET), `lazy` (evaluated
 only if needed: IF, CHOOSE); the last kind repeats for further arguments. "vectorised":
