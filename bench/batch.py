@@ -1,4 +1,4 @@
-"""Batch speed, as ratios within one run (SPEC 11, issue 9):
+"""Batch speed, as ratios within one run (docs/batch.md; issue 9):
 
 1. 1,000 sewing-machine variants at 10 deg with ``--jobs 2`` against a loop of
    ``write_workbook`` in one process;

@@ -2,7 +2,7 @@
 
 Figures, in one process: reading the formulas with openpyxl (reported apart), the
 vectorised evaluation (whole call, and its phases), the scalar cell-by-cell
-evaluation, and plain numpy evaluating the closed form (``compute.evaluate``), which is
+evaluation, and plain numpy evaluating the closed form (``tabulate.evaluate``), which is
 the peer: ratios are against it. Best of REPEAT runs (the scalar path runs once).
 
     python bench/evaluator.py [--step 0.1] [--repeat 3] [--no-scalar]

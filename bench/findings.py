@@ -1,8 +1,9 @@
 """Count the audit's findings per kind on the real-world corpus (false-alarm survey).
 
 For every workbook of ../shared/corpus/xlsx: formula cells, the findings of each kind
-(SPEC 12) and the seconds the findings took; then the totals. A file the audit refuses is
-listed with its reason. Inspect samples with ``workbook-gen audit FILE --verbose``.
+(docs/audit.md, Findings and the file) and the seconds the findings took; then the totals.
+A file the audit refuses is listed with its reason. Inspect samples with
+``workbook-gen audit FILE --verbose``.
 
     python bench/findings.py [CORPUS_DIR | FILE...]
 """

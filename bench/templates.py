@@ -50,7 +50,7 @@ def main(paths: list[str]) -> None:
             report = audit(path)
             worst_ref = max(report.reference.values(), default=float("nan"))
             worst_lo = libreoffice_worst(path)
-            from workbook_gen.model import select
+            from workbook_gen.pruning import select
             columns = len(select(scene.template, scene.outputs).columns) + 2
             print(f"{Path(scene_path).stem:<28}{columns:>8}{report.formula_cells:>15,}"
                   f"{worst_ref:>14.1e}{worst_lo:>16.1e}  {'ok' if report.ok else 'FAILED'}")

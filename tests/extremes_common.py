@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from mp_reference import measure
 
-TOL = 1e-8  # of each column's magnitude (SPEC 9)
+TOL = 1e-8  # of each column's magnitude (docs/stability.md, Numerical soundness at the extremes)
 EXACT = [0.0, 90.0, 180.0, 270.0, 360.0]
 
 

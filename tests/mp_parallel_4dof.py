@@ -1,5 +1,6 @@
-"""A 50-digit reference for the spatial 4-DOF parallel mechanism (SPEC 7.8), for the
-extreme-case tests (issue 21), independent of the trees and of workbook_gen.reference.
+"""A 50-digit reference for the spatial 4-DOF parallel mechanism
+(docs/mechanisms.md, parallel_4dof), for the extreme-case tests (issue 21), independent of the trees
+and of workbook_gen.reference.
 
 Pose at the path parameter t: alpha = alpha_0 + A_alpha sin t, psi = A_psi sin(t + 45),
 vartheta = A_vartheta cos t, phi = A_phi sin 2t (deg); the platform is turned by

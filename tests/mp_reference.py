@@ -1,4 +1,5 @@
-"""A 50-digit reference for the extreme-case tests (SPEC 9), independent of the trees.
+"""A 50-digit reference for the extreme-case tests
+(docs/stability.md, Numerical soundness at the extremes), independent of the trees.
 
 Each mechanism writes its closure equations Phi(q, x) = 0 once, in mpmath; a
 textbook construction (law of cosines, at 50 digits) gives the start and

@@ -39,3 +39,21 @@ def test_cell_name_quotes_the_sheet_as_excel_does(sheet):
 def test_row_col_refuses_what_is_not_a_cell(text):
     with pytest.raises(ValueError):
         row_col(text)
+
+
+def test_every_column_as_xlsxwriters_utilities_name_it():
+    """The writers took XlsxWriter's utilities (0-based) before cellref (1-based): every
+    column of a sheet, relative and absolute, and cells at the first, a middle and the
+    last row, give the same text."""
+    from xlsxwriter.utility import xl_cell_to_rowcol, xl_col_to_name, xl_rowcol_to_cell
+
+    for col in range(16384):
+        letters = xl_col_to_name(col)
+        assert column_letters(col + 1) == letters, col
+        assert column_letters(col + 1, True) == xl_col_to_name(col, True) == "$" + letters
+        assert column_number(letters) == col + 1
+        for row in (0, 99, 1048575):
+            assert a1(row + 1, col + 1) == xl_rowcol_to_cell(row, col), (row, col)
+            assert a1(row + 1, col + 1, True) == xl_rowcol_to_cell(row, col, True, True)
+            assert row_col(a1(row + 1, col + 1, True)) == tuple(
+                x + 1 for x in xl_cell_to_rowcol(xl_rowcol_to_cell(row, col)))

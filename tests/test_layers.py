@@ -11,15 +11,15 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent / "workbook_gen"
 
 #: Lowest first; a unit (a top-level module or package) imports only from its own layer
-#: or below (docs/ARCHITECTURE.md, "Layers").
+#: or below (docs/ARCHITECTURE.md, The four pipelines: "Layers, lowest first").
 LAYERS = [
     {"xlerror", "errors", "cellref", "version", "progress", "terminate", "forked", "files",
      "names"},
     {"xlmath"},
     {"expr", "formula"},
     {"mechanisms", "xlsx", "evaluator", "engines"},
-    {"scene", "model", "reference"},
-    {"tabulate", "extremes"},
+    {"scene", "pruning", "reference"},
+    {"tabulate"},
     {"workbook"},
     {"auditor"},
     {"batching", "tradeoff"},

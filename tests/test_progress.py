@@ -25,7 +25,7 @@ def test_progress_is_silent_when_the_stream_is_not_a_terminal():
 
 def test_progress_draws_a_bar_with_count_on_a_terminal():
     stream = FakeTerminal()
-    with Progress(4, desc="work", unit="row", stream=stream, leave=True) as bar:
+    with Progress(4, desc="work", step="row", stream=stream, leave=True) as bar:
         bar.update(2)
         bar("half")
         bar.update(1)

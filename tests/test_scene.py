@@ -1,4 +1,5 @@
-"""Bad scenes (SPEC section 10): exit 2, one line naming file, key and value, nothing written."""
+"""Bad scenes (docs/scene.md, Errors): exit 2, one line naming file, key and value,
+nothing written."""
 
 from __future__ import annotations
 

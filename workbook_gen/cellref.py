@@ -1,7 +1,9 @@
 """Cell references in A1 form: column letters and numbers, a cell's name with its sheet.
 
-The one place these conversions live (the reader, the parser, the evaluator, the auditor
-and the names rule use them; the writer's XlsxWriter has its own)."""
+The one place these conversions live: the reader, the parser, the evaluator, the auditor,
+the names rule and the writers (the workbook, the batch summary) use them, not XlsxWriter's
+utilities (tests/test_cellref.py checks them against openpyxl's and XlsxWriter's).
+Rows and columns are 1-based here; XlsxWriter's calls take 0-based ones."""
 
 from __future__ import annotations
 
@@ -10,13 +12,13 @@ from functools import lru_cache
 
 
 @lru_cache(maxsize=4096)
-def column_letters(col: int) -> str:
-    """1 -> ``A``, 28 -> ``AB``, 16384 -> ``XFD``."""
+def column_letters(col: int, absolute: bool = False) -> str:
+    """1 -> ``A``, 28 -> ``AB``, 16384 -> ``XFD``; ``$A`` if ``absolute``."""
     letters = ""
     while col > 0:
         col, rem = divmod(col - 1, 26)
         letters = chr(65 + rem) + letters
-    return letters
+    return "$" + letters if absolute else letters
 
 
 def column_number(letters: str) -> int:
@@ -27,8 +29,10 @@ def column_number(letters: str) -> int:
     return number
 
 
-def a1(row: int, col: int) -> str:
-    """(1, 1) -> ``A1``: 1-based row and column."""
+def a1(row: int, col: int, absolute: bool = False) -> str:
+    """(1, 1) -> ``A1`` (``$A$1`` if ``absolute``): 1-based row and column."""
+    if absolute:
+        return f"${column_letters(col)}${row}"
     return f"{column_letters(col)}{row}"
 
 

@@ -75,7 +75,7 @@ def _generate(args: argparse.Namespace) -> int:
     _warn(scene)
     from .workbook import write_workbook  # after the scene: a bad one need not pay for it
     from .progress import Progress
-    with Progress(2 * scene.sweep.rows, desc=f"{scene.name}.xlsx", unit="row",
+    with Progress(2 * scene.sweep.rows, desc=f"{scene.name}.xlsx", step="row",
                   delay=1.0) as bar:
         path = write_workbook(scene, args.out, force=args.force, progress=bar.update)
     print(path)
@@ -97,7 +97,7 @@ def _audit(args: argparse.Namespace) -> int:
     from .auditor import PHASES
     from .progress import Progress
     phases = len(PHASES) - (0 if args.engine else 1)
-    with Progress(total=phases, desc="audit", unit="phase", delay=1.0) as bar:
+    with Progress(total=phases, desc="audit", step="phase", delay=1.0) as bar:
         report = audit(args.paths[0], engine=args.engine, progress=bar,
                        max_cells=args.max_cells)
     if args.json:
@@ -122,7 +122,7 @@ def _audit_many(args: argparse.Namespace) -> int:
         raise WorkbookReadError(f"--jobs {args.jobs}: give a number of processes >= 1")
     count = len(expand(args.paths))
     results, worst = [], 0
-    with Progress(total=count, desc="audit", unit="file") as bar:
+    with Progress(total=count, desc="audit", step="file") as bar:
         for result in audit_many(args.paths, jobs=args.jobs, engine=args.engine,
                                  progress=bar, max_cells=args.max_cells):
             results.append(result)
@@ -138,13 +138,13 @@ def _audit_many(args: argparse.Namespace) -> int:
 def _tradeoff(args: argparse.Namespace) -> int:
     from .scene import load_scene
     from .progress import Progress
-    from .tradeoff import format_table, measure, units, write_tradeoff_workbook
+    from .tradeoff import format_table, measure, progress_steps, write_tradeoff_workbook
     scene = load_scene(args.scene)
     if args.out:
         from .files import refuse_existing
         from .tradeoff.book import output_path
         refuse_existing(output_path(scene, args.out), args.force)  # before minutes of work
-    with Progress(units(scene), desc="tradeoff", unit="run") as bar:
+    with Progress(progress_steps(scene), desc="tradeoff", step="run") as bar:
         result = measure(scene, progress=bar)
     if args.json:
         print(json.dumps(result.to_json(), indent=2, allow_nan=False))

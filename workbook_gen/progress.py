@@ -5,13 +5,13 @@ otherwise nothing is drawn and tqdm is not even imported (a command that shows
 no bar pays nothing for it).  Library code takes a plain callback; the command
 line makes the bar and passes it in:
 
-    with Progress(total=len(steps), desc="tradeoff", unit="run") as bar:
-        measure(scene, progress=bar)        # bar(label) advances one unit
+    with Progress(total=len(runs), desc="tradeoff", step="run") as bar:
+        measure(scene, progress=bar)        # bar(label) advances one step
         ...
         bar.update(250)                      # or advance by a count
 
 A ``Progress`` is a ``Callable[[str], None]`` (``bar(label)`` advances one
-unit and shows ``label``) and has ``update(n)`` for counts such as rows.
+step and shows ``label``) and has ``update(n)`` for counts such as rows.
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from __future__ import annotations
 import sys
 from typing import Callable, TextIO
 
-#: A progress callback: ``progress(label)`` is called once per finished unit of work.
+#: A progress callback: ``progress(label)`` is called once per finished step of work.
 Callback = Callable[[str], None]
 
 
@@ -39,11 +39,12 @@ class Progress:
     """A tqdm bar on ``stream`` (stderr by default), drawn only on a terminal
     (and, with ``delay``, only once the work has taken that many seconds).
 
-    ``bar(label)`` advances by one and shows ``label``; ``bar.update(n)``
-    advances by ``n``; ``close()`` (or leaving the ``with`` block) clears it.
+    ``bar(label)`` advances by one step and shows ``label``; ``bar.update(n)``
+    advances by ``n`` steps; ``close()`` (or leaving the ``with`` block) clears it.
+    ``step``: what one step is, as the bar names it ("row": ``120/500 row``, ``row/s``).
     """
 
-    def __init__(self, total: int | None = None, *, desc: str = "", unit: str = "it",
+    def __init__(self, total: int | None = None, *, desc: str = "", step: str = "it",
                  stream: TextIO | None = None, quiet: bool = False, leave: bool = False,
                  delay: float = 0.0):
         self.stream = stream if stream is not None else sys.stderr
@@ -53,7 +54,7 @@ class Progress:
         self._bar = None
         if self.enabled:
             from tqdm import tqdm  # only when a bar is drawn
-            self._bar = tqdm(total=total, desc=desc or None, unit=unit, file=self.stream,
+            self._bar = tqdm(total=total, desc=desc or None, unit=step, file=self.stream,
                              leave=leave, dynamic_ncols=True, smoothing=0.1,
                              mininterval=0.2, delay=delay)
 

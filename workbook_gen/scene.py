@@ -366,7 +366,7 @@ def parse_scene(text: str, source: str, overrides: Mapping[str, Any] | None = No
 def load_scene(path: str | Path, overrides: Mapping[str, Any] | None = None,
                step: float | None = None, *, start: float | None = None,
                stop: float | None = None, name: str | None = None) -> Scene:
-    """Read and validate a scene file (see SPEC section 3).
+    """Read and validate a scene file (docs/scene.md).
 
     ``overrides`` replace parameters or options by name, ``start``/``stop``/``step``
     the sweep, ``name`` the output file stem; the command line's --set, --start,

@@ -48,6 +48,12 @@ class ExcelError(enum.Enum):
         return self.value
 
 
+#: SIN, COS and TAN of an argument this large or larger are #NUM! in Excel: the
+#: kernels (xlmath/kernels.py, formula/functions/math.py) and the actuator's check of
+#: its bracket (mechanisms/actuator_linkage.py) read it here.
+TRIG_LIMIT = 2.0 ** 27
+
+
 _CODES = {err: i + 1 for i, err in enumerate(ExcelError)}
 _BY_CODE = {code: err for err, code in _CODES.items()}
 _BY_TEXT = {err.value: err for err in ExcelError if err.name != "CIRC"}

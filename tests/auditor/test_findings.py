@@ -1,6 +1,6 @@
-"""Findings (SPEC 12): the mistakes spreadsheet checkers look for, and none where the
-layout is deliberate. Cases are written with openpyxl and recalculated by LibreOffice,
-so the cached values (errors included) are a real engine's."""
+"""Findings (docs/audit.md, Findings and the file): the mistakes spreadsheet checkers look for, and
+none where the layout is deliberate. Cases are written with openpyxl and recalculated by
+LibreOffice, so the cached values (errors included) are a real engine's."""
 
 from __future__ import annotations
 

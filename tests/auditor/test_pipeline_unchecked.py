@@ -22,7 +22,7 @@ from workbook_gen.auditor import audit
 from workbook_gen.evaluator import evaluate_cells
 from workbook_gen.evaluator.volatile import Clock
 from workbook_gen.formula.functions import availability
-from workbook_gen.formula.functions.reference import display_text
+from workbook_gen.formula.functions.lookup.reference import display_text
 from workbook_gen.formula.parser import parse
 from workbook_gen.formula.scalar import DictResolver, evaluate
 from workbook_gen.xlerror import ExcelError

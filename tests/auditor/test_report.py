@@ -1,4 +1,4 @@
-"""The audit report's verdicts (SPEC 12.1 "Reports"): a cell without a cached value is not a
+"""The audit report's verdicts (docs/audit.md, Verdicts): a cell without a cached value is not a
 disagreement, an array formula disagrees once, a disagreement counts once at its source with
 what follows from it (including a headline "PASS" that recalculation would turn to "FAIL"),
 the counts add up, and stdout/stderr hold only the report."""

@@ -1,4 +1,4 @@
-"""workbook-gen batch (SPEC 11): variants, one workbook per variant that is byte for byte
+"""workbook-gen batch (docs/batch.md): variants, one workbook per variant that is byte for byte
 what `generate` writes, the summary against closed-form references and against the
 workbooks themselves, failure isolation, determinism, resuming, --summary-only."""
 

@@ -1,9 +1,9 @@
-"""A batch rerun never destroys work (SPEC 11.1, issue 22 items 5-7): files edited since
-the batch wrote them are kept and named (exit 1) unless --force; the temporary files of
-a killed run are removed by the next run, and a SIGTERM'd run removes its own; with
---scheduler and no Dask worker connected the run says so, waits, and gives up after
---timeout.  Real processes throughout: the batches killed are `workbook-gen batch`
-subprocesses, the cluster a `dask scheduler` and a `dask worker`."""
+"""A batch rerun never destroys work (docs/batch.md, Running again; issue 22 items 5-7): files
+edited since the batch wrote them are kept and named (exit 1) unless --force; the temporary files of
+a killed run are removed by the next run, and a SIGTERM'd run removes its own; with --scheduler and
+no Dask worker connected the run says so, waits, and gives up after --timeout.  Real processes
+throughout: the batches killed are `workbook-gen batch` subprocesses, the cluster a `dask scheduler`
+and a `dask worker`."""
 
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
-"""workbook-gen batch on a Dask cluster (SPEC 11): the same bytes as a local run, on a
-LocalCluster and on a real `dask scheduler` with two `dask worker` processes, one of
-which is killed in the middle of the batch."""
+"""workbook-gen batch on a Dask cluster (docs/batch.md, Running on several cores or a Dask cluster):
+the same bytes as a local run, on a LocalCluster and on a real `dask scheduler` with two `dask
+worker` processes, one of which is killed in the middle of the batch."""
 
 from __future__ import annotations
 

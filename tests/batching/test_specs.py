@@ -1,4 +1,5 @@
-"""Batches that vary template options like parameters (SPEC 11.1, issue 22 items 1 and 3).
+"""Batches that vary template options like parameters (docs/batch.md, Variants;
+issue 22 items 1 and 3).
 
 Every varied option's workbook is compared with what `generate --set OPTION=VALUE`
 writes (the option set directly, bytes), its Table with the 50-digit reference of that

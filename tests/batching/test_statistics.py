@@ -1,7 +1,7 @@
-"""The batch summary an engineer comparing designs reads first (SPEC 11.1, issue 22 item 2):
-a random study's Statistics sheet against numpy and scipy over the summary.csv values,
-LibreOffice recalculating it to the same numbers, our audit passing it; the Sensitivity
-chart; one chart per varied parameter; variant numbers as numbers."""
+"""The batch summary an engineer comparing designs reads first (docs/batch.md, summary.xlsx; issue
+22 item 2): a random study's Statistics sheet against numpy and scipy over the summary.csv values,
+LibreOffice recalculating it to the same numbers, our audit passing it; the Sensitivity chart; one
+chart per varied parameter; variant numbers as numbers."""
 
 from __future__ import annotations
 

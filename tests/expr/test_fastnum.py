@@ -17,7 +17,7 @@ from workbook_gen.expr.tree import Call, Num
 from workbook_gen.mechanisms import TEMPLATES
 from workbook_gen.scene import load_scene
 from workbook_gen.tabulate import derived_values, evaluate
-from workbook_gen.workbook.checks import plan
+from workbook_gen.tabulate.checks import plan
 from workbook_gen.xlerror import ExcelError
 
 ROWS = 6

@@ -1,5 +1,5 @@
-"""actuator_linkage (SPEC 7.5): every Table cell against the independent reference,
-the successive halving against the closed form and an independent scalar bisection,
+"""actuator_linkage (docs/mechanisms.md, actuator_linkage): every Table cell against the independent
+reference, the successive halving against the closed form and an independent scalar bisection,
 LibreOffice's recalculation, the audit."""
 
 from __future__ import annotations

@@ -1,6 +1,7 @@
-"""SPEC 9 for actuator_linkage (assembly limits, the halving bracket's ends) and five_bar
-(paths touching the edge of the workspace), against 50-digit mpmath; and one extreme
-workbook (a change-point four-bar) through the audit, LibreOffice and the Summary count."""
+"""docs/stability.md, Numerical soundness at the extremes, for actuator_linkage (assembly limits,
+the halving bracket's ends) and five_bar (paths touching the edge of the workspace), against
+50-digit mpmath; and one extreme workbook (a change-point four-bar) through the audit, LibreOffice
+and the Summary count."""
 
 from __future__ import annotations
 

@@ -1,4 +1,5 @@
-"""Shaking force and balance (SPEC 7.7): every dynamics cell against an independent route.
+"""Shaking force and balance (docs/mechanisms.md, Shaking force and balance): every dynamics cell
+against an independent route.
 
 The reference here shares nothing with the trees: the links' frames come from the joint
 positions of the reference model (workbook_gen.reference, Newton on the closure equations),

@@ -1,7 +1,7 @@
-"""The five-bar template (SPEC 7.6): every Table cell against the independent reference,
-Newton columns converging to the closed form, sensitivities against finite differences of
-the exact position, clearance errors against their first-order estimate, LibreOffice,
-the audit, and scene errors."""
+"""The five-bar template (docs/mechanisms.md, five_bar): every Table cell against the independent
+reference, Newton columns converging to the closed form, sensitivities against finite differences of
+the exact position, clearance errors against their first-order estimate, LibreOffice, the audit, and
+scene errors."""
 
 from __future__ import annotations
 

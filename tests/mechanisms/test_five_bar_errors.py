@@ -1,5 +1,5 @@
-"""Five-bar joint clearance by component (issue 12 item 13, SPEC 7.6): dx_C, dy_C of each
-joint and direction against a 50-digit circle-circle intersection, the issue's sign
+"""Five-bar joint clearance by component (issue 12 item 13, docs/mechanisms.md, five_bar): dx_C,
+dy_C of each joint and direction against a 50-digit circle-circle intersection, the issue's sign
 convention, and the extremes over a 0.1 deg sweep (what the paper's Table 2 prints)."""
 
 from __future__ import annotations

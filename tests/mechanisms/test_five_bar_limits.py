@@ -1,4 +1,5 @@
-"""five_bar and parallel_4dof right at their limits (issue 21, SPEC 9.1).
+"""five_bar and parallel_4dof right at their limits (issue 21,
+docs/stability.md, Limits by template).
 
 Each limit is hit EXACTLY on a grid row (dyadic lengths: the float parameters are the
 exact limit, and the 50-digit reference sees the same numbers) and to within 1e-12

@@ -1,7 +1,7 @@
-"""four_bar template (SPEC 7.3): every Table cell against the independent reference
-(Newton on the loop closure, rates from the differentiated closure), both branches,
-Norton's published angles, toggles, Grashof class, toggle angles and time ratio,
-the audit and LibreOffice."""
+"""four_bar template (docs/mechanisms.md, four_bar): every Table cell against the independent
+reference (Newton on the loop closure, rates from the differentiated closure), both branches,
+Norton's published angles, toggles, Grashof class, toggle angles and time ratio, the audit and
+LibreOffice."""
 
 from __future__ import annotations
 

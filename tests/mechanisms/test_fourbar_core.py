@@ -1,7 +1,7 @@
-"""SPEC 9 for the four-bar (fourbar_core, also under walking_beam): float64 cells against
-50-digit mpmath at the Grashof boundary (just inside, just outside, exactly on it: the
-change point), both branches, crank angles exactly 0/90/180/270/360 and a hair from the
-collinear positions; the singular rows must be flagged "toggle"."""
+"""docs/stability.md, Numerical soundness at the extremes, for the four-bar (fourbar_core, also
+under walking_beam): float64 cells against 50-digit mpmath at the Grashof boundary (just inside,
+just outside, exactly on it: the change point), both branches, crank angles exactly 0/90/180/270/360
+and a hair from the collinear positions; the singular rows must be flagged "toggle"."""
 
 from __future__ import annotations
 
@@ -47,7 +47,7 @@ def test_norton_and_crossed_at_exact_angles():
 def test_grashof_crank_rockers_near_the_boundary(ground, crank, coupler, log_gap, branch):
     """Crank shortest, s + l = p + q - gap (rocker lengthened by 10^log_gap).  Link
     ratios here stay within 1e3: with a rocker 1e-6 of the coupler on the boundary the
-    coupler rate loses ~6 digits more (docs/stability.md, what is left)."""
+    coupler rate loses ~6 digits more (docs/stability.md, four_bar)."""
     a, b = crank * ground, coupler * ground
     longest = max(ground, b)
     c = longest + a - (ground + b - longest)           # s + l = p + q on the boundary

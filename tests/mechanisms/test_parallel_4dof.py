@@ -1,8 +1,8 @@
-"""parallel_4dof template (SPEC 7.8, issue 11): every Table cell against the independent
-reference (Newton per leg on |P_i - O_i2(theta)| = l_i2, centres of mass from link frames,
-complex-step rates cross-checked by mpmath), LibreOffice recalculating the scenes in one
-run, the balance (a still centre of mass over the sweep and over random poses, each of the
-12 conditions necessary), out-of-reach poses, and modelling only what a scene asks."""
+"""parallel_4dof template (docs/mechanisms.md, parallel_4dof; issue 11): every Table cell against
+the independent reference (Newton per leg on |P_i - O_i2(theta)| = l_i2, centres of mass from link
+frames, complex-step rates cross-checked by mpmath), LibreOffice recalculating the scenes in one
+run, the balance (a still centre of mass over the sweep and over random poses, each of the 12
+conditions necessary), out-of-reach poses, and modelling only what a scene asks."""
 
 from __future__ import annotations
 
@@ -19,7 +19,7 @@ from workbook_gen import audit
 from workbook_gen.tabulate import compute, derived_values, evaluate
 from workbook_gen.engines.libreoffice import recalculated_values_many
 from workbook_gen.expr.numeric import compile_numpy
-from workbook_gen.model import select
+from workbook_gen.pruning import select
 from workbook_gen.reference import parallel_4dof as ref
 from workbook_gen.reference import solve
 from workbook_gen.scene import load_scene

@@ -1,5 +1,5 @@
 """Sewing machine and four-bar exactly at their limits, and 1e-12 from them (issue 21,
-SPEC 9.1; the table in docs/stability.md).
+the table in docs/stability.md, Limits by template).
 
 Each scene puts a limit exactly on a Table row (a 10 deg row, or a row of a sweep that
 starts at -537 or 713 deg), or within rounding of it, or 1e-12 (relative) from it:

@@ -1,6 +1,7 @@
-"""SPEC 9 for slider_crank and sewing_machine: float64 cells against 50-digit mpmath over
-families: rods barely longer than the crank, link ratios 1e-6..1e6, very large lengths
-with offset and inclined slides, angles exactly 0/90/180/270/360, dead centres."""
+"""docs/stability.md, Numerical soundness at the extremes, for slider_crank and sewing_machine:
+float64 cells against 50-digit mpmath over families: rods barely longer than the crank, link ratios
+1e-6..1e6, very large lengths with offset and inclined slides, angles exactly 0/90/180/270/360, dead
+centres."""
 
 from __future__ import annotations
 

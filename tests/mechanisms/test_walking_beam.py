@@ -1,6 +1,6 @@
-"""walking_beam template (SPEC 7.4): every Table cell against the independent reference
-(the eight-bar's closure solved by Newton: the four-bar, the parallelogram copy and the
-beam), the beam's translation, Hoekens' straight line, the audit and LibreOffice."""
+"""walking_beam template (docs/mechanisms.md, walking_beam): every Table cell against the
+independent reference (the eight-bar's closure solved by Newton: the four-bar, the parallelogram
+copy and the beam), the beam's translation, Hoekens' straight line, the audit and LibreOffice."""
 
 from __future__ import annotations
 

@@ -1,5 +1,6 @@
-"""SPEC 9.1 for walking_beam and actuator_linkage (issue 21): each limit of the geometry hit
-exactly on a row (also of sweeps starting at -537 and 713 deg) and to within 1e-12.
+"""docs/stability.md, Limits by template, for walking_beam and actuator_linkage (issue 21): each
+limit of the geometry hit exactly on a row (also of sweeps starting at -537 and 713 deg) and to
+within 1e-12.
 
 (a) every ok row against the 50-digit references (tests/mp_walking_beam.py, mp_reference's
 actuator), singular rows flagged with error-valued rates; (b) each workbook passes its own

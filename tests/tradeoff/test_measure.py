@@ -149,10 +149,10 @@ def test_cli_json_and_workbook_with_log_charts(tmp_path, capsys):
 
 
 def test_tradeoff_measures_the_ok_rows_only_as_the_summary_does():
-    """SPEC 9.1: the tradeoff follows the Summary's rule.  A slider-crank rod 1e-12 longer
-    than its tangent length has flagged rows whose rates keep 8 digits (alpha_2 1.6e-3 of
-    its magnitude off 50 digits); they must not set the float64 error of the table, and
-    the ok rows agree with the 50-digit trees to the last digits."""
+    """docs/tradeoff.md, The command: the tradeoff follows the Summary's rule.  A slider-crank rod
+    1e-12 longer than its tangent length has flagged rows whose rates keep 8 digits (alpha_2 1.6e-3
+    of its magnitude off 50 digits); they must not set the float64 error of the table, and the ok
+    rows agree with the 50-digit trees to the last digits."""
     from workbook_gen.tradeoff.common import studied
     scene = load_scene("templates/slider_crank.toml",
                        overrides={"l_AB": 40.0, "e": 10.0, "l_BC": 10.0 * (1 + 1e-12)})
@@ -165,3 +165,22 @@ def test_tradeoff_measures_the_ok_rows_only_as_the_summary_does():
     assert max(errors.values()) <= 1e-12, errors
     raw = floats(result, "alpha_2", ok_only=False)
     assert relative(mp_diff(raw, reference, "alpha_2"), mp_floats(reference, "alpha_2")) > 1e-9
+
+
+def test_fifty_digits_of_a_template_with_derived_values_agree_with_mpmath_reference():
+    """The four-bar's columns use named derived values (G_far, toggle angles...) from the
+    Parameters sheet: the 50-digit reference computes them too (it raised KeyError 'G_far',
+    so `workbook-gen tradeoff templates/four_bar.toml` crashed)."""
+    import mpmath
+
+    from mp_reference import four_bar
+    scene = load_scene("templates/four_bar.toml")
+    precise = Precise(scene)
+    for theta in (0.0, 40.0, 137.0, 300.0):
+        row = precise.row(theta)
+        with mpmath.workdps(50):
+            ref, _ = four_bar({k: mpmath.mpf(v) for k, v in scene.parameters.items()},
+                              mpmath.mpf(theta))
+        for name in ("theta_3", "theta_4", "omega_4", "alpha_4"):
+            assert abs(row[name] - ref[name]) <= mpmath.mpf("1e-30") * (1 + abs(ref[name])), \
+                (theta, name)

@@ -115,3 +115,20 @@ def test_every_chart_lies_within_one_printed_page(workbooks):
     assert len(anchors) == len(TITLES)
     for col0, row0, col1, row1 in ((int(v) for v in a) for a in anchors):
         assert row0 // 40 == row1 // 40 and col1 < 18, (col0, row0, col1, row1)
+
+
+def test_a_scene_without_charted_outputs_gets_no_print_area(tmp_path):
+    """Rows 1..0 are no range: `Charts!$A$1:$R$0` made openpyxl warn and is not a legal
+    print area; the sheet says why it is empty instead."""
+    import warnings
+
+    import openpyxl
+    scene = tmp_path / "one.toml"
+    scene.write_text('name = "one"\nmechanism = "four_bar"\n[outputs]\nquantities = ["theta_3"]\n')
+    path = write_workbook(load_scene(str(scene)), tmp_path / "out")
+    names = _part(path, "xl/workbook.xml")
+    assert "Charts!" not in names
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        book = openpyxl.load_workbook(path)
+    assert book["Charts"]["A1"].value.startswith("No chart")

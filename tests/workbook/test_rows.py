@@ -115,7 +115,8 @@ def _deflated_size(data: bytes, level: int) -> int:
 
 def test_package_is_deflated_at_our_level_and_other_workbooks_at_xlsxwriters():
     """package.py sets the zlib level of our workbooks' archive (COMPRESSLEVEL); any
-    other XlsxWriter workbook in the process keeps zlib's default."""
+    other XlsxWriter workbook in the process keeps zlib's default, and XlsxWriter's
+    module its ZipFile (no process-wide patch)."""
     from workbook_gen.scene import load_scene
     from workbook_gen.workbook import workbook_bytes
     from workbook_gen.workbook.package import COMPRESSLEVEL
@@ -126,6 +127,7 @@ def test_package_is_deflated_at_our_level_and_other_workbooks_at_xlsxwriters():
     book = xlsxwriter.Workbook(plain)
     book.add_worksheet().write_column(0, 0, [f"row {i} " * 20 for i in range(300)])
     book.close()
+    assert xlsxwriter.workbook.ZipFile is zipfile.ZipFile
     for data, level in ((ours, COMPRESSLEVEL), (plain.getvalue(), 6)):
         with zipfile.ZipFile(io.BytesIO(data)) as z:
             big = max(z.infolist(), key=lambda i: i.file_size)
@@ -189,16 +191,16 @@ def test_rows_kept_by_what_decides_them_give_xlsxwriters_bytes():
 
 
 def test_parts_deflated_once_per_process_give_zlibs_bytes():
-    """package.py keeps the deflated bytes of small parts (the same for every variant):
+    """FastZipFile keeps the deflated bytes of small parts (the same for every variant):
     a workbook packaged from kept parts is the one packaged from scratch, and every
     entry's data is zlib's at our level."""
     from workbook_gen.scene import load_scene
-    from workbook_gen.workbook import package, workbook_bytes
+    from workbook_gen.workbook import package, workbook_bytes, xlsxwriter_internals
 
     scene = load_scene("templates/four_bar.toml", step=20.0)
-    package._DEFLATED.clear()
+    xlsxwriter_internals.DEFLATED.clear()
     fresh = workbook_bytes(scene, "x.xlsx")
-    assert package._DEFLATED   # small parts were kept
+    assert xlsxwriter_internals.DEFLATED   # small parts were kept
     assert workbook_bytes(scene, "x.xlsx") == fresh   # now from the kept parts
     with zipfile.ZipFile(io.BytesIO(fresh)) as z:
         for info in z.infolist():
@@ -248,7 +250,7 @@ def test_charts_kept_per_thread_give_the_fresh_bytes():
 
 
 def test_entries_written_by_package_are_zipfiles_bytes():
-    """package._ZipFile writes the in-memory parts itself: the archive is byte for byte
+    """FastZipFile writes the in-memory parts itself: the archive is byte for byte
     what zipfile writes for the same parts, names, dates and level (twice: the second
     time from the kept deflated parts)."""
     from workbook_gen.scene import load_scene

@@ -1,5 +1,5 @@
 """The Summary's extremes over the ok rows, and figures that hold only under a condition
-(issue 21 items 2 and 3, SPEC 9.1).
+(issue 21 items 2 and 3, docs/workbook.md, Summary).
 
 One flagged row (a dead centre, a change point, a tangent rod) never turns a Summary cell
 into an error value while one row is ok; the extremes and their inputs are those of the
@@ -106,8 +106,8 @@ def test_the_batch_summary_follows_the_same_rules(tmp_path):
 
 
 def test_batch_summary_counts_the_flagged_rows_like_the_workbook(tmp_path):
-    """SPEC 9.1: the batch summary follows the Summary's rules and says how many rows its
-    extremes left out: rows_flagged (not converged, a dead centre...) beside
+    """docs/batch.md, summary.csv: the batch summary follows the Summary's rules and says how many
+    rows its extremes left out: rows_flagged (not converged, a dead centre...) beside
     rows_not_assembled, equal to the workbook's own count of flagged rows."""
     import openpyxl
     from workbook_gen.batching import batch

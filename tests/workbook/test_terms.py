@@ -1,4 +1,4 @@
-"""The terms the Checks residuals share (workbook/terms.py): the factored residuals are
+"""The terms the Checks residuals share (tabulate/terms.py): the factored residuals are
 the inline ones to the bit, the formulas are short, and no term is dead."""
 
 from __future__ import annotations
@@ -13,8 +13,8 @@ from workbook_gen.expr import Var, walk
 from workbook_gen.expr.numeric import compile_numpy
 from workbook_gen.scene import load_scene
 from workbook_gen.workbook import write_workbook
-from workbook_gen.workbook.checks import guarded, plan, residuals
-from workbook_gen.workbook.terms import MIN_SAVING, common_terms
+from workbook_gen.tabulate.checks import guarded, plan, residuals
+from workbook_gen.tabulate.terms import MIN_SAVING, common_terms
 
 SCENES = ["sewing_machine", "slider_crank", "four_bar", "walking_beam", "sewing_machine_masses"]
 
@@ -70,12 +70,12 @@ def test_nothing_to_share_gives_no_terms():
 
 
 def test_cells_of_a_guarded_column_are_those_of_the_guard_tree():
-    """checks._cells: the cached values (and error codes) of IF(status="ok", r, "n/a")
+    """checks.guarded_cells: the cached values (and error codes) of IF(status="ok", r, "n/a")
     without object arrays, equal to xm.where's, errors and -0 included."""
     import numpy as np
     from workbook_gen import xlmath as xm
-    from workbook_gen.workbook.checks import SKIPPED, _cells, _max_abs
-    from workbook_gen.workbook.table import cached_values
+    from workbook_gen.tabulate.checks import SKIPPED, guarded_cells, max_abs
+    from workbook_gen.tabulate.table import cached_values
     status = xm.XArray(np.array(["ok", "toggle", "ok", "ok", "cannot assemble", "ok"],
                                 dtype=object), np.zeros(6, np.uint8))
     ok = xm.compare("=", status, xm.const("ok", 6))
@@ -86,7 +86,7 @@ def test_cells_of_a_guarded_column_are_those_of_the_guard_tree():
     for e in (err, np.zeros(6, np.uint8)):
         column = xm.XArray(np.where(e != 0, np.nan, np.nan_to_num(val)), e)
         guarded = xm.where(ok, column, xm.const(SKIPPED, 6))
-        cells, codes = _cells(column, ok)
+        cells, codes = guarded_cells(column, ok)
         assert cells == cached_values(guarded) and np.array_equal(codes, guarded.err)
         assert [repr(v) for v in cells] == [repr(v) for v in cached_values(guarded)]
-        assert _max_abs(cells, codes) == ("#NUM!" if e.any() else 2e-9)  # 3.0 is skipped
+        assert max_abs(cells, codes) == ("#NUM!" if e.any() else 2e-9)  # 3.0 is skipped

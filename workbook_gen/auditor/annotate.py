@@ -23,7 +23,8 @@ from ..errors import OutputExistsError, WorkbookGenError, WorkbookReadError
 from ..files import refuse_existing, write_atomically
 from ..xlsx.limits import Package
 from . import notes as parts
-from .report import AuditReport, _show
+from .grid import show_value
+from .report import AuditReport
 
 _REL = "http://schemas.openxmlformats.org/officeDocument/2006/relationships"
 _A1 = re.compile(r"\$?([A-Z]{1,3})\$?([0-9]{1,7})")
@@ -55,13 +56,13 @@ def notes_of(report: AuditReport) -> dict[tuple[str, str], tuple[str, list[str]]
         out[where] = ("disagree" if "disagree" in (fill, kind) else "finding", texts + [text])
 
     for m in report.mismatches:
-        add(m.cell, "disagree", f"disagrees: the file holds {_show(m.cached)}, the formula "
-                                f"gives {_show(m.recomputed)}"
+        add(m.cell, "disagree", f"disagrees: the file holds {show_value(m.cached)}, the formula "
+                                f"gives {show_value(m.recomputed)}"
                                 + ("" if m.root else " (it reads a cell that disagrees)"))
     if report.engine is not None:
         for m in report.engine.mismatches:
-            add(m.cell, "disagree", f"{report.engine.engine} computes {_show(m.cached)}, "
-                                    f"the audit {_show(m.recomputed)}")
+            add(m.cell, "disagree", f"{report.engine.engine} computes {show_value(m.cached)}, "
+                                    f"the audit {show_value(m.recomputed)}")
     for f in report.findings:
         add(f.cell, "finding", f"{f.kind}: {f.message}")
     return out

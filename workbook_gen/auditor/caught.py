@@ -1,6 +1,6 @@
 """What the audit's own code says while it runs, kept for the report instead of printed.
 
-The output of ``audit`` is its report (SPEC 12.1: stdout and stderr hold only the
+The output of ``audit`` is its report (docs/audit.md, The report: stdout and stderr hold only the
 report), so a Python warning or a log record of ``workbook_gen`` at WARNING or above
 raised during an audit is counted in the report's ``warnings`` (message -> times), where
 a test can see it, rather than written to stderr by Python's last-resort handler.

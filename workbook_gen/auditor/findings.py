@@ -38,7 +38,7 @@ from ..formula import ast
 from ..cellref import column_letters
 from ..xlerror import ExcelError
 from .grid import ERROR, FORMULA, NUMBER, TEXT, Grid, Key, value_kind
-from .report import _show
+from .grid import show_value
 from .structure import Finding
 
 _ERROR = frozenset({ExcelError})
@@ -99,7 +99,7 @@ class _Checks:
         if key in grid.formulas:
             return "=" + grid.formulas[key]
         value = grid.constants.get(key)
-        return _show(value)
+        return show_value(value)
 
     # inconsistent_formula, constant_in_formula_run -----------------------------------
     def token(self, key: Key):

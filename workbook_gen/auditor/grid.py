@@ -215,3 +215,13 @@ def value_kind(value) -> str | None:
     if isinstance(value, ExcelError):
         return ERROR
     return TEXT
+
+
+def show_value(value: object) -> str:
+    """A cell's value as a message shows it: a number to 15 significant digits (as Excel
+    displays it), an error by its text, anything else (text, a boolean) as its repr."""
+    if isinstance(value, float):
+        return f"{value:.15g}"
+    if isinstance(value, ExcelError):
+        return value.value
+    return repr(value)

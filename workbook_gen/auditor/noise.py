@@ -1,4 +1,5 @@
-"""The rounding noise of a Table column: the magnitudes its formulas cancelled (SPEC 5).
+"""The rounding noise of a Table column: the magnitudes its formulas cancelled
+(docs/audit.md, How cells are compared).
 
 A value computed in float64 carries an absolute rounding error of about
 ``eps * m``, where ``m`` is not the value's own size but the size of what the

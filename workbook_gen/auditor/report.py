@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 
 from ..xlerror import ExcelError
 from .compare import ColumnStats
+from .grid import show_value
 from .mechanics import REFERENCE_TOLERANCE, MechanicsReport
 from .structure import Finding
 from .tally import NO_CACHED_VALUE, Tally
@@ -217,14 +218,6 @@ def _mismatch_json(m: Mismatch) -> dict:
     return out
 
 
-def _show(value: object) -> str:
-    if isinstance(value, float):
-        return f"{value:.15g}"
-    if isinstance(value, ExcelError):
-        return value.value
-    return repr(value)
-
-
 def _worst(report: AuditReport) -> list:
     """Disagreeing cells, sources first, then by the size of the difference."""
     def size(m):
@@ -257,7 +250,8 @@ def _disagreements(report: AuditReport, verbose: bool) -> list[str]:
                  if m.area and first != last else "")
         at = f"at {m.at}: " if m.at else ""
         lines.append(f"    {m.cell}{where}: ={m.formula}")
-        lines.append(f"      {at}cached {_show(m.cached)}, recomputed {_show(m.recomputed)}"
+        lines.append(f"      {at}cached {show_value(m.cached)}, "
+                     f"recomputed {show_value(m.recomputed)}"
                      + (f"; {len(m.followers)} cell{'s' * (len(m.followers) > 1)} "
                         f"follow{'s' * (len(m.followers) == 1)} from it: "
                         f"{_names(m.followers)}" if m.followers else ""))
@@ -270,7 +264,8 @@ def _disagreements(report: AuditReport, verbose: bool) -> list[str]:
         for m in follow[:limit]:
             why = f", because of {_names(m.sources, 3)}" if m.sources else ""
             lines.append(f"    {m.cell}: ={_cut(m.formula)}")
-            lines.append(f"      shows {_show(m.cached)}, would show {_show(m.recomputed)}{why}")
+            lines.append(f"      shows {show_value(m.cached)}, "
+                         f"would show {show_value(m.recomputed)}{why}")
     return lines
 
 
@@ -334,14 +329,15 @@ def format_report(report: AuditReport, verbose: bool = False) -> str:
         lines += [f"  {e.engine}: {e.cells} cells recalculated in {e.seconds:.1f} s, "
                   f"{len(e.mismatches)} disagree with the recomputed values"]
         for m in e.mismatches[:MAX_LISTED if verbose else WORST]:
-            lines.append(f"    {m.cell}: ={_cut(m.formula)}: {e.engine} {_cut(_show(m.cached))}, "
-                         f"ours {_cut(_show(m.recomputed))}")
+            lines.append(f"    {m.cell}: ={_cut(m.formula)}: {e.engine} "
+                         f"{_cut(show_value(m.cached))}, ours {_cut(show_value(m.recomputed))}")
         if e.differences:
             lines.append(f"  {len(e.differences)} cells differ where LibreOffice's own semantics "
                          "differ from Excel's (its difference, not the file's; not failed):")
             for m in e.differences[:MAX_LISTED if verbose else 3]:
                 lines.append(f"    {m.cell}: ={_cut(m.formula)}: LibreOffice "
-                             f"{_cut(_show(m.cached))}, Excel {_cut(_show(m.recomputed))}")
+                             f"{_cut(show_value(m.cached))}, "
+                             f"Excel {_cut(show_value(m.recomputed))}")
     if report.warnings:
         lines.append(f"  the audit warned {sum(report.warnings.values())} times (its own "
                      "problem, not the file's): " + "; ".join(
@@ -385,7 +381,7 @@ def _mechanics_lines(m: MechanicsReport) -> list[str]:
     if m.residuals:
         lines.append(f"  closure residuals (Checks sheet, tolerance {m.tolerance:g}):")
         for name, value in m.residuals.items():
-            lines.append(f"    {name:<22}{_show(value)}")
+            lines.append(f"    {name:<22}{show_value(value)}")
     if m.paper_table:
         lines.append("  lever angular acceleration alpha_5 against the model, per 10 deg "
                      "(the paper's Table 2; it found 0.707% at 310 deg against CAD):")

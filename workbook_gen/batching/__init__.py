@@ -1,5 +1,5 @@
 """Batch: design variants of a scene, one auditable workbook each and a summary that
-compares them (SPEC section 11).
+compares them (docs/batch.md).
 
     from workbook_gen import batch
     frame = batch("templates/sewing_machine.toml", vary={"l_BC": "95:105:5", "l_AB": [30, 32]})

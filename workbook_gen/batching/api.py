@@ -25,7 +25,7 @@ from ..errors import SceneError
 from ..mechanisms import get_template
 from ..scene import Scene, parse_scene, read_scene_text
 from ..files import write_bytes_atomically
-from ..model import select
+from ..pruning import select
 from ..version import VERSION
 from . import runners
 from .folder import Folder, Resumed, digest

@@ -31,7 +31,8 @@ from typing import Mapping, Sequence
 
 import numpy as np
 import orjson
-from xlsxwriter.utility import xl_col_to_name
+
+from ..cellref import column_letters
 
 TEXT_COLUMNS = ("variant", "file", "status", "audit")
 _CSV_SPECIAL = re.compile(r'[,"\r\n]')
@@ -153,7 +154,7 @@ def _cell(name: str, ref: str, value: object) -> str:
 def _xml_items(name: str, col: int, kind: str, values: Sequence[object],
                texts: list[str] | None, rows: list[str]) -> list:
     """A column's share of each row's XML: constants (str) and per-row lists."""
-    letter = xl_col_to_name(col)
+    letter = column_letters(col + 1)
     if name == "variant":
         return _variant_items(letter, values, rows)
     if kind == "number":

@@ -10,7 +10,7 @@ operation on any element:
 - a subtree that several columns share (``x_E - x_F``) is computed once per block.
 
 Each element still goes through the same ``xlmath`` operations in the same order as
-in ``compute.evaluate``, so the numbers are the workbooks' cached values, bit for bit.
+in ``tabulate.evaluate``, so the numbers are the workbooks' cached values, bit for bit.
 """
 
 from __future__ import annotations
@@ -25,7 +25,7 @@ from ..expr import Bin, Call, Neg, Node, Num, Param, Text, Var
 from ..expr import fastnum
 from ..expr.numeric import Compiled, compile_numpy
 from ..expr.tree import children
-from ..model import select
+from ..pruning import select
 from ..scene import Scene
 
 _HIDDEN = "\x00"  # prefix of names no quantity can have

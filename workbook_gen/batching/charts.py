@@ -1,5 +1,5 @@
 """The Charts sheet of summary.xlsx: each span and each output's max and min against
-every varied parameter (SPEC 11.1), native scatter charts over the Variants sheet.
+every varied parameter (docs/batch.md, summary.xlsx), native scatter charts over the Variants sheet.
 
 - One chart per plotted quantity and varied parameter that is a number (an option that
   takes texts is no axis): one row of charts per quantity, one column per parameter (a

@@ -3,7 +3,7 @@ job (a block of one) and for ``--summary-only`` (blocks of thousands).
 
 Columns arrive flattened, variant after variant (``V * n`` rows, ``n`` rows per
 variant); extremes are taken over the ok rows as the workbook's Summary takes them
-(workbook_gen/extremes.py: a flagged row or one that cannot be assembled is left out),
+(tabulate/extremes.py: a flagged row or one that cannot be assembled is left out),
 the ``_at`` value is the input of the first ok row where the extreme occurs.
 """
 
@@ -17,10 +17,10 @@ import numpy as np
 from .. import xlmath as xm
 from ..expr import Bin, Call, Neg, Node, Param, Var
 from ..expr.numeric import compile_numpy
-from ..extremes import OK, ok_extremes
-from ..model import Model
+from ..tabulate.extremes import OK, ok_extremes
+from ..tabulate.table import CANNOT_ASSEMBLE
+from ..pruning import Model
 
-CANNOT_ASSEMBLE = "cannot assemble"
 #: The summary's counts of a variant's rows left out of its extremes: flagged (a dead
 #: centre, a toggle, not converged: the workbook's Summary counts them too) and those
 #: that cannot be assembled.
@@ -148,8 +148,3 @@ def summarise(model: Model, inputs: np.ndarray, columns: Mapping[str, xm.XArray]
            for name in value_columns(model)}
     out["status"] = ["partial" if m else "ok" for m in out["rows_not_assembled"]]
     return out
-
-
-def status_texts(status: xm.XArray) -> np.ndarray:
-    """The Table's status column as texts, as ``compute.evaluate`` reads it."""
-    return np.where(status.err != 0, CANNOT_ASSEMBLE, status.val).astype(object)

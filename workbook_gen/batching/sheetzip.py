@@ -30,6 +30,10 @@ from typing import BinaryIO
 
 from isal import isal_zlib
 
+from ..workbook.xlsxwriter_internals import (encoded_filename, mark_modified, stringCentralDir,
+                                            stringEndArchive, structCentralDir,
+                                            structEndArchive)
+
 _LOCAL_HEADER = 30  # bytes of a local file header before its name and extra field
 # A member at least this large (uncompressed) is written in ZIP64 form: zipfile's own
 # limit (2 GiB - 1, which readers that take sizes as signed 32-bit numbers also read).
@@ -118,7 +122,7 @@ def splice(book: bytes, name: str, member: DeflatedMember, target: BinaryIO) -> 
             _central_directory(out.fp, out.filelist, name)
             out.fp = None  # written: nothing left for zipfile to write
         else:
-            out._didModify = True
+            mark_modified(out)
     finally:
         out.close()  # the central directory, from those ZipInfo
         source.close()
@@ -134,7 +138,7 @@ def _zip64_member(fp: BinaryIO, info: zipfile.ZipInfo, member: DeflatedMember) -
     if member.compressed_size >= _LIMIT32 or fp.tell() >= _LIMIT32:
         raise zipfile.LargeZipFile("summary.xlsx: the Variants sheet deflates to more "
                                    "than 4 GiB")
-    filename, flags = info._encodeFilenameFlags()
+    filename, flags = encoded_filename(info)
     info.flag_bits = flags | _DATA_DESCRIPTOR
     info.extract_version = info.create_version = _ZIP64_VERSION
     time, date = _dos_time(info)
@@ -154,12 +158,12 @@ def _central_directory(fp: BinaryIO, infos: list[zipfile.ZipInfo], name: str) ->
     if start >= _LIMIT32 or len(infos) >= 0xFFFF:
         raise zipfile.LargeZipFile("summary.xlsx: the zip would need a ZIP64 end record")
     for info in infos:
-        filename, flags = info._encodeFilenameFlags()
+        filename, flags = encoded_filename(info)
         time, date = _dos_time(info)
         size, extra, version = info.file_size, info.extra, info.extract_version
         if info.filename == name and info.file_size >= ZIP64_EXTRA_THRESHOLD:
             size, extra = _LIMIT32, struct.pack("<HHQ", 1, 8, info.file_size)
-        fp.write(struct.pack(zipfile.structCentralDir, zipfile.stringCentralDir,
+        fp.write(struct.pack(structCentralDir, stringCentralDir,
                              max(version, info.create_version), info.create_system, version,
                              info.reserved, flags, info.compress_type, time, date, info.CRC,
                              info.compress_size, size, len(filename), len(extra),
@@ -167,5 +171,5 @@ def _central_directory(fp: BinaryIO, infos: list[zipfile.ZipInfo], name: str) ->
                              info.header_offset))
         fp.write(filename + extra + info.comment)
     end = fp.tell()
-    fp.write(struct.pack(zipfile.structEndArchive, zipfile.stringEndArchive, 0, 0,
+    fp.write(struct.pack(structEndArchive, stringEndArchive, 0, 0,
                          len(infos), len(infos), end - start, start, 0))

@@ -1,6 +1,6 @@
-"""The Statistics sheet of a random study's summary.xlsx (SPEC 11.1): for every output
-extreme, span and numeric figure, its spread over the ok variants and each varied
-parameter's effect on it, with a Sensitivity chart of the effects.
+"""The Statistics sheet of a random study's summary.xlsx (docs/batch.md, summary.xlsx): for every
+output extreme, span and numeric figure, its spread over the ok variants and each varied parameter's
+effect on it, with a Sensitivity chart of the effects.
 
 Every statistic is a live formula over the Variants sheet that Excel and LibreOffice
 both compute, an array formula filtering the ok variants (``IF(status="ok", column)``:
@@ -22,8 +22,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from xlsxwriter.utility import xl_col_to_name, xl_rowcol_to_cell
 
+from ..cellref import a1, column_letters
 from .rows import figure_columns
 from .table import Table
 
@@ -74,7 +74,7 @@ def stat_columns(table: Table, ok: np.ndarray) -> list[Column]:
         size = float(np.abs(values).max())
         spread = float(values.max() - values.min())
         out.append(Column(name, table.units.get(name, ""),
-                          xl_col_to_name(table.columns.index(name)), values,
+                          column_letters(table.columns.index(name) + 1), values,
                           spread <= _CONSTANT * size))
     return out
 
@@ -126,7 +126,7 @@ def write_statistics(book, table: Table) -> None:
         return f"Variants!${letter}$2:${letter}${last}"
 
     params = list(design.names)
-    p_letters = [xl_col_to_name(table.columns.index(p)) for p in params]
+    p_letters = [column_letters(table.columns.index(p) + 1) for p in params]
     p_values = [np.array(table.data[p], dtype=float)[ok] for p in params]
     effects = count >= k + 2
     r_col = first_src + k + 1
@@ -139,8 +139,8 @@ def write_statistics(book, table: Table) -> None:
     top = _HEAD + 1
     matrix_row = top + len(columns) + 2          # the parameters' correlation matrix
     R = np.atleast_2d(np.corrcoef(np.vstack(p_values))) if effects else None
-    matrix = (f"{xl_rowcol_to_cell(matrix_row + 2, 1, True, True)}:"
-              f"{xl_rowcol_to_cell(matrix_row + 1 + k, k, True, True)}")
+    matrix = (f"{a1(matrix_row + 3, 2, True)}:"
+              f"{a1(matrix_row + 2 + k, k + 1, True)}")
     cached: list[list] = []  # each column's SRCs (None where "constant"), for the chart
     for i, column in enumerate(columns):
         row = top + i
@@ -161,14 +161,14 @@ def write_statistics(book, table: Table) -> None:
         r = np.array([np.corrcoef(x, column.values)[0, 1] for x in p_values])
         src = np.linalg.solve(R, r)
         cached[-1] = [float(v) for v in src]
-        r_row = (f"{xl_rowcol_to_cell(row, r_col, True, True)}:"
-                 f"{xl_rowcol_to_cell(row, r_col + k - 1, True, True)}")
+        r_row = (f"{a1(row + 1, r_col + 1, True)}:"
+                 f"{a1(row + 1, r_col + k, True)}")
         for j in range(k):
             _array(sheet, row, first_src + j,
                    f"{{=INDEX(MMULT({r_row},MINVERSE({matrix})),1,{j + 1})}}", float(src[j]))
         sheet.write_formula(row, first_src + k,
-                            f"=SUMPRODUCT({r_row},{xl_rowcol_to_cell(row, first_src)}:"
-                            f"{xl_rowcol_to_cell(row, first_src + k - 1)})",
+                            f"=SUMPRODUCT({r_row},{a1(row + 1, first_src + 1)}:"
+                            f"{a1(row + 1, first_src + k)})",
                             None, float(r @ src))
         for j in range(k):
             _array(sheet, row, r_col + j,

@@ -21,11 +21,11 @@ import numpy as np
 
 from ..errors import SceneError
 from ..scene import MAGNITUDE, Scene, parse_scene
+from ..tabulate.table import status_texts
 from .broadcast import Plan
 from .job import JobSpec, refused_reason, unassembled_reason, variant_scene
 from .blocktext import TEXT_COLUMNS, block_texts, has_value, value_kind
-from .rows import (ROW_COUNTS, figure_values, status_texts, summarise, text_figures,
-                   value_columns)
+from .rows import ROW_COUNTS, figure_values, summarise, text_figures, value_columns
 from .summary import BlockText
 from .specs import shown
 from .variants import Variant

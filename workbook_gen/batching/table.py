@@ -1,4 +1,4 @@
-"""The summary table: one row per variant, the columns SPEC section 11 lists.
+"""The summary table: one row per variant, the columns of docs/batch.md, summary.csv.
 
 ``variant``, ``file``, ``status``, the varied parameters and options (an option
 that takes texts or true/false is a text column), then for each output
@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from typing import Iterable, Mapping, Sequence
 
-from ..model import Model
+from ..pruning import Model
 from .blocktext import TEXT_COLUMNS, value_kind
 from .rows import ROW_COUNTS, column_units, header, text_figures, value_columns
 from .specs import shown

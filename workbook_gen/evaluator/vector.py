@@ -26,7 +26,7 @@ from workbook_gen.evaluator.ops import (
 from workbook_gen.evaluator.store import Num, value_scale
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
-from workbook_gen.formula.functions.subtotal import READS_LAYOUT
+from workbook_gen.formula.functions.math.subtotal import READS_LAYOUT
 from workbook_gen.formula.values import to_bool
 
 

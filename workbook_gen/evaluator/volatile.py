@@ -328,7 +328,7 @@ def check_array(node: ast.Node, cached: list[list], evaluate) -> list[list[Outco
     fills (``cached``: the area's cached values, row by row): within the call's rows and
     columns a draw within its contract (between min and max, whole with whole_number
     TRUE), #N/A beyond them; an error the arguments make certain is recomputed."""
-    from workbook_gen.formula.functions.randarray import contract
+    from workbook_gen.formula.functions.math.randarray import contract
     call = _bare(node)
     args = [None if isinstance(a, ast.Missing) else evaluate(a) for a in call.args]
     found = contract(*args)

@@ -1,5 +1,5 @@
 """The magnitudes a tree's arithmetic cancels, row by row: its rounding noise is about
-eps times this (the Summary's tie threshold; SPEC 5).
+eps times this (the Summary's tie threshold; docs/workbook.md, Summary).
 
     m(a +- b) = m(a) + m(b)     m(a * b) = |b| m(a) + |a| m(b)
     m(a / b)  = m(a) / |b| + |a| m(b) / b^2     m(f(a)) = |f'(a)| m(a) + |f(a)|

@@ -13,7 +13,7 @@ from __future__ import annotations
 from workbook_gen.formula.functions.availability import unavailable
 from workbook_gen.formula import arraysfast, ast
 from workbook_gen.formula import functions as fx
-from workbook_gen.formula.functions import lambdas
+from workbook_gen.formula.functions.logical import lambdas
 from workbook_gen.formula import values as xv
 from workbook_gen.formula.scalar import Evaluator, use_array_evaluator
 from workbook_gen.formula.values import Range

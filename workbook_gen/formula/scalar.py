@@ -16,7 +16,7 @@ from typing import Callable, Protocol
 from workbook_gen.formula.functions.availability import unavailable
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
-from workbook_gen.formula.functions import lambdas
+from workbook_gen.formula.functions.logical import lambdas
 from workbook_gen.formula import values as xv
 from workbook_gen.formula.values import Range, Ref, Value
 from workbook_gen.formula.tokenizer import CELL_PARTS, column_number, split_sheet
@@ -117,7 +117,7 @@ def _clean(x: float | ExcelError) -> float | ExcelError:
 
 
 # functions whose arguments Excel evaluates as arrays even outside an array formula
-# (AGGREGATE: its array form, 14-19; the reference form refuses an array, subtotal.py)
+# (AGGREGATE: its array form, 14-19; the reference form refuses an array, math/subtotal.py)
 ARRAY_ARGUMENTS = frozenset({"SUMPRODUCT", "MMULT", "TRANSPOSE", "MDETERM", "MINVERSE",
                              "AGGREGATE"})
 

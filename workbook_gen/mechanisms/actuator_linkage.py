@@ -1,4 +1,4 @@
-"""Actuator linkage: a lever driven by a hydraulic cylinder (SPEC 7.5).
+"""Actuator linkage: a lever driven by a hydraulic cylinder (docs/mechanisms.md, actuator_linkage).
 
 Lever 2 turns about the fixed pivot A = (x_A, y_A); the cylinder 3 about the
 fixed pivot B = (x_B, y_B); the piston rod 4 is pinned to the lever at
@@ -48,6 +48,7 @@ from dataclasses import replace
 from typing import Mapping
 
 from ..expr import Node, Num, abs_, atan2, cos, eq, if_, iserror, le, lt, min_, pi, root, sin, sqrt
+from ..xlerror import TRIG_LIMIT  # Excel's SIN and COS give #NUM! from there
 from .actuator_halving import halving_quantities, lever_point
 from .base import (Chart, Check, Figure, InputSpec, Link, OptionSpec, ParamSpec, Quantity, Span,
                    Template, quantity_vars, symbols)
@@ -173,7 +174,6 @@ def _checks() -> tuple[Check, ...]:
 
 
 _ZERO = Num(0.0)  # fixed pivots: no acceleration
-TRIG_LIMIT = 2.0 ** 27  # Excel's SIN and COS of an argument this large are #NUM!
 
 CHARTS = (
     Chart("Lever angle", "s_BC", ("phi_2",), "phi_2 [rad]"),

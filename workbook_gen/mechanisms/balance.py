@@ -1,4 +1,5 @@
-"""Full shaking-force balance of a four-bar by counterweights on crank and rocker (SPEC 7.7).
+"""Full shaking-force balance of a four-bar by counterweights on crank and rocker
+(docs/mechanisms.md, Shaking force and balance).
 
 Linearly independent vectors method (Berkof and Lowen, 1969): with complex numbers for
 the plane and each link's centre of mass written z = u + i v in its own frame (crank from

@@ -1,7 +1,7 @@
 """What a mechanism template is: parameters, quantities as trees, checks, charts.
 
 A template is data.  It knows nothing of xlsx: the workbook writer reads the
-trees and prints them; ``model.py`` prunes them to what a scene asks for.
+trees and prints them; ``pruning.py`` prunes them to what a scene asks for.
 """
 
 from __future__ import annotations
@@ -110,7 +110,8 @@ NOT_APPLICABLE = "n/a"
 
 def only_if(expr: Node, condition: Node, needs: str) -> Node:
     """A figure that holds only under ``condition``: its value where the condition holds,
-    else the text ``n/a: needs <needs>`` (SPEC 9.1; never a number that does not apply)."""
+    else the text ``n/a: needs <needs>`` (docs/workbook.md, Summary; never a number that does not
+    apply)."""
     return if_(condition, expr, f"{NOT_APPLICABLE}: needs {needs}")
 
 
@@ -169,7 +170,8 @@ class OptionSpec:
 
 @dataclass(frozen=True)
 class Link:
-    """A moving link, for centres of mass and the shaking force (SPEC 7.7).
+    """A moving link, for centres of mass and the shaking force
+    (docs/mechanisms.md, Shaking force and balance).
 
     Its frame: origin at its first joint, u along ``angle`` (rad), v to the left.
     All fields are trees over the template's quantities and parameters."""
@@ -185,7 +187,7 @@ class Link:
 @dataclass(frozen=True)
 class Mass:
     """A link's mass (kg) and centre of mass: ``u`` along the link from its first joint,
-    ``v`` to its left, in the template's length unit (SPEC 7.7)."""
+    ``v`` to its left, in the template's length unit (docs/scene.md, masses)."""
 
     m: float
     u: float

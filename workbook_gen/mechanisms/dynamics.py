@@ -1,4 +1,5 @@
-"""Centres of mass, shaking force and shaking moment of any template (SPEC 7.7).
+"""Centres of mass, shaking force and shaking moment of any template
+(docs/mechanisms.md, Shaking force and balance).
 
 Each link with a mass gets three parameters, ``m_<link>`` (kg) and ``u_<link>``,
 ``v_<link>`` (the template's length unit): the centre of mass S lies at u along

@@ -3,7 +3,7 @@ sensitivity of C to the link lengths, and the error of C from joint clearance.
 
 A = (0, 0), E = (l_5, 0); cranks AB = l_1 (angle theta_1) and ED = l_4 (theta_4);
 couplers BC = l_2 and DC = l_3.  C follows the circle x_0 + R_path cos phi,
-y_0 + R_path sin phi (the SPEC's ``R`` is not a legal Excel name: ``R_path``).
+y_0 + R_path sin phi (``R`` is not a legal Excel name: ``R_path``).
 
 Inverse kinematics, branch "elbows out" (B left of the directed line A->C, D right
 of E->C).  With d = |C - A|, B's distance from the line AC is the half chord
@@ -47,7 +47,7 @@ PARAMETERS = (
     ParamSpec("l_5", 1.6, "m", "ground AE: E = (l_5, 0)", positive=True),
     ParamSpec("x_0", 0.8, "m", "centre of C's circular path, x"),
     ParamSpec("y_0", 1.6, "m", "centre of C's circular path, y"),
-    ParamSpec("R_path", 0.3, "m", "radius of C's path (the SPEC's R, not a legal Excel name)",
+    ParamSpec("R_path", 0.3, "m", "radius of C's path (the paper's R, not a legal Excel name)",
               positive=True),
     ParamSpec("r_clear", 1e-5, "m", "radial clearance of one joint at a time", positive=True),
 )

@@ -1,4 +1,5 @@
-"""Four-bar linkage with a coupler point (SPEC 7.3); the trees live in fourbar_core.
+"""Four-bar linkage with a coupler point (docs/mechanisms.md, four_bar); the trees live in
+fourbar_core.
 
 Defaults: Norton's example 100/40/120/80 (ground, crank, coupler, rocker), for
 which theta_2 = 40 deg gives theta_3 = 20.30 deg, theta_4 = 57.32 deg on the

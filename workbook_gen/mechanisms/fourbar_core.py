@@ -52,7 +52,7 @@ l_O1O2, l_O1A, l_AB, l_O2B, l_AC, delta_C, omega_2 = symbols(
 
 THETA_2R, theta_2r = reduced_input("theta_2r", theta_2, "crank angle")
 
-# Limits (SPEC 9.1, docs/stability.md).  p^2 - d^2 = G (p + g + a) + 4 g a cos^2(theta_2/2)
+# Limits (docs/stability.md, four_bar).  p^2 - d^2 = G (p + g + a) + 4 g a cos^2(theta_2/2)
 # and d^2 - q^2 = G1 G2 + 4 g a sin^2(theta_2/2) round to a few ulps of the sum of their
 # terms' magnitudes, which at the limit (the factor near 0) is twice the crank term,
 # 4 g a cos^2 = (g + a)^2 - d^2 resp. 4 g a sin^2 = d^2 - (g - a)^2.  Within REACH_ROUNDING

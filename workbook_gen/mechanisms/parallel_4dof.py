@@ -1,4 +1,4 @@
-"""Spatial 4-DOF parallel mechanism with shaking-force balance (SPEC 7.8).
+"""Spatial 4-DOF parallel mechanism with shaking-force balance (docs/mechanisms.md, parallel_4dof).
 
 Base frame Oxyz, z up, O the centre of leg 5's hinge (axis y).  Leg 5 (undriven):
 P5 = l_5 (cos alpha, 0, sin alpha).  The platform turns about the spherical joint P5,

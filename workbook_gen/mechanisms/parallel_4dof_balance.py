@@ -1,5 +1,5 @@
-"""Shaking-force balance of the 4-DOF parallel mechanism (SPEC 7.8): the 12 conditions and
-the counterweights that satisfy them.
+"""Shaking-force balance of the 4-DOF parallel mechanism (docs/mechanisms.md, parallel_4dof): the 12
+conditions and the counterweights that satisfy them.
 
 The paper's method (redundant generalized coordinates): write the total mass moment
 sum m_k r_k as linear in functions of the coordinates that vary independently over the

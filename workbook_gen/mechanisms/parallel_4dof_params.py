@@ -1,4 +1,5 @@
-"""Parameters of the spatial 4-DOF parallel mechanism (SPEC 7.8): names, defaults, units.
+"""Parameters of the spatial 4-DOF parallel mechanism (docs/mechanisms.md, parallel_4dof): names,
+defaults, units.
 
 Lengths in m, masses in kg, angles in deg.  The defaults are deliberately asymmetric
 (a symmetric layout with P5 on the hinge axis is singular at the home pose).

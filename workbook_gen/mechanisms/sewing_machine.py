@@ -43,7 +43,7 @@ cb, sb = cos(radians(beta_E)), sin(radians(beta_E))
 dx, dy = x_E - x_F, y_E - y_F
 w2 = omega_1 ** 2
 
-# Limits (SPEC 9.1, docs/stability.md).  A reach factor l_BC -+ x_B = d + t, d = l_BC - l_AB,
+# Limits (docs/stability.md, sewing_machine).  A reach factor l_BC -+ x_B = d + t, d = l_BC - l_AB,
 # t = 2 l_AB sin^2 or cos^2 >= 0, rounds to a few ulps of |d| + t = |f - d| + |d|: within
 # REACH_ROUNDING of that it is 0 (the rod exactly perpendicular to the needle bar: a dead
 # centre, h_BC = 0, its rates #DIV/0!, never the square root of rounding); within

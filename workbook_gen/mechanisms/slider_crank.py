@@ -40,9 +40,10 @@ PARAMETERS = (
 
 # A reach factor within rounding of 0 is 0: the rod exactly tangent to the slide line
 # (l_BC = l_AB + |e| at one crank angle) is a dead centre, flagged, its rates #DIV/0!,
-# never the square root of rounding (h_BC 3.8e-7 mm, v_C -1e10 mm/s; SPEC 9.1).  The
-# factor's terms round to a few ulps of l_BC + l_AB + |e| + 2 l_AB; a true excess
-# of 1e-12 of the lengths is kept (tests/mechanisms/test_slider_crank_extremes.py).
+# never the square root of rounding (h_BC 3.8e-7 mm, v_C -1e10 mm/s; see
+# docs/stability.md, slider_crank).  The factor's terms round to a few ulps of l_BC + l_AB
+# + |e| + 2 l_AB; a true excess of 1e-12 of the lengths is kept
+# (tests/mechanisms/test_slider_crank_extremes.py).
 REACH_ROUNDING = 16 * 2.0 ** -52
 
 

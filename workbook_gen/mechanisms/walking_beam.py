@@ -1,4 +1,4 @@
-"""Walking beam: the eight-bar transport mechanism (SPEC 7.4).
+"""Walking beam: the eight-bar transport mechanism (docs/mechanisms.md, walking_beam).
 
 A crank-rocker four-bar (the trees of fourbar_core, same conventions as
 four_bar) traces the coupler curve of C.  An identical four-bar, its ground

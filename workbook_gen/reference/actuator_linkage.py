@@ -1,4 +1,4 @@
-"""Reference solution of the actuator linkage (SPEC section 7, template 5).
+"""Reference solution of the actuator linkage (docs/mechanisms.md, actuator_linkage).
 
 Unknowns q = (phi_2, phi_3); closure, driven by s = s_BC with s' = v_s, s'' = 0:
     A + l_A1 (cos phi_2, sin phi_2) + l_A1C (sin phi_2, -cos phi_2) = B + s (cos phi_3, sin phi_3).

@@ -1,4 +1,4 @@
-"""Reference solution of the five-bar (SPEC section 7, template 6), by Newton on the loops.
+"""Reference solution of the five-bar (docs/mechanisms.md, five_bar), by Newton on the loops.
 
 Inverse kinematics: each dyad separately, unknowns (theta_1, theta_2) with
 l_1 u(theta_1) + l_2 u(theta_2) = C, and (theta_4, theta_3) with

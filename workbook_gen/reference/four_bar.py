@@ -1,4 +1,4 @@
-"""Reference solution of the four-bar with a coupler point (SPEC section 7, template 3).
+"""Reference solution of the four-bar with a coupler point (docs/mechanisms.md, four_bar).
 
 Unknowns q = (theta_3, theta_4); closure
 l_O1A e(theta_2) + l_AB e(theta_3) - (l_O1O2, 0) - l_O2B e(theta_4) = 0,

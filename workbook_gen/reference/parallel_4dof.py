@@ -1,4 +1,5 @@
-"""Reference solution of the spatial 4-DOF parallel mechanism (SPEC 7.8), shared with no tree.
+"""Reference solution of the spatial 4-DOF parallel mechanism (docs/mechanisms.md, parallel_4dof),
+shared with no tree.
 
 Positions: the platform's rotation is applied as three successive axis rotations
 (Rodrigues' formula about x, then y, then z; no matrix entries written out), P5 is e_x

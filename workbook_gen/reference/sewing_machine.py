@@ -1,4 +1,4 @@
-"""Reference solution of the sewing machine (SPEC section 7, template 2).
+"""Reference solution of the sewing machine (docs/mechanisms.md, sewing_machine).
 
 Two stages, each solved by Newton on its closure equations:
 1. needle bar: q = (y_C, theta_2) with B + l_BC*(cos theta_2, sin theta_2) = (0, y_C);

@@ -1,4 +1,4 @@
-"""Reference solution of the offset slider-crank (SPEC section 7, template 1).
+"""Reference solution of the offset slider-crank (docs/mechanisms.md, slider_crank).
 
 Unknowns q = (s_C, theta_2); closure: B + l_BC*(cos theta_2, sin theta_2) = s_C*u + e*n,
 with B = l_AB*(cos theta_1, sin theta_1). Branch: slider ahead of the pin, (C - B).u > 0,

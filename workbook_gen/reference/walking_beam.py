@@ -1,4 +1,4 @@
-"""Reference solution of the walking beam (SPEC section 7, template 4).
+"""Reference solution of the walking beam (docs/mechanisms.md, walking_beam).
 
 Stage 1: the four-bar (reference.four_bar) gives C.  Stage 2 solves the rest of
 the eight-bar by Newton: the copy, a second four-bar with ground pivots at

@@ -1,4 +1,4 @@
-"""Speed against accuracy (SPEC section 8): ``workbook-gen tradeoff SCENE``.
+"""Speed against accuracy (docs/tradeoff.md, The command): ``workbook-gen tradeoff SCENE``.
 
     from workbook_gen.tradeoff import measure, write_tradeoff_workbook, format_table
     result = measure(load_scene("templates/sewing_machine.toml"))
@@ -14,8 +14,8 @@ with another step, options or outputs), ``report`` (terminal table), ``book`` (t
 
 from .book import write_tradeoff_workbook
 from .common import Row
-from .measure import Tradeoff, measure, units
+from .measure import Tradeoff, measure, progress_steps
 from .report import format_table
 
-__all__ = ["measure", "units", "Tradeoff", "Row", "format_table",
+__all__ = ["measure", "progress_steps", "Tradeoff", "Row", "format_table",
            "write_tradeoff_workbook"]

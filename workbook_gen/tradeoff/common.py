@@ -12,11 +12,11 @@ from typing import Callable
 import mpmath
 import numpy as np
 
-from ..extremes import ok_rows
+from ..tabulate.extremes import ok_rows
 from ..tabulate import Evaluated
 from ..scene import Scene
 
-#: progress(label): called once per finished unit of work.
+#: progress(label): called once per finished step of work (``progress_steps`` in all).
 Progress = Callable[[str], None]
 
 #: Columns left out of the extremes and precision studies: their table values are

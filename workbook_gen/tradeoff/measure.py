@@ -1,4 +1,4 @@
-"""Speed against accuracy on one scene (SPEC section 8): every dimension, in order.
+"""Speed against accuracy on one scene (docs/tradeoff.md, The command): every dimension, in order.
 
     result = measure(load_scene("templates/sewing_machine.toml"))
     result.rows       # Row per measured setting: dimension, setting, max_error, seconds ...
@@ -17,10 +17,11 @@ from dataclasses import dataclass
 
 from ..scene import Scene
 from .common import Progress, Row, quiet
-from .methods import measure_methods, method_units
+from .methods import measure_methods, method_progress_steps
 from .precision import measure_precision
 from .reference50 import Extremes, Precise
-from .steps import derivative_units, find_extremes, measure_derivatives, measure_steps, step_settings
+from .steps import (derivative_progress_steps, find_extremes, measure_derivatives, measure_steps,
+                    step_settings)
 
 DIMENSIONS = ("step", "method", "derivative", "precision")
 
@@ -48,9 +49,10 @@ class Tradeoff:
         }
 
 
-def units(scene: Scene) -> int:
+def progress_steps(scene: Scene) -> int:
     """How many progress calls ``measure`` makes."""
-    return 2 + len(step_settings(scene)) + derivative_units(scene) + method_units(scene)
+    return (2 + len(step_settings(scene)) + derivative_progress_steps(scene)
+            + method_progress_steps(scene))
 
 
 def measure(scene: Scene, progress: Progress = quiet) -> Tradeoff:

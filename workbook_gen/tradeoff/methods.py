@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..extremes import ok_rows
+from ..tabulate.extremes import ok_rows
 from ..tabulate import evaluate
 from ..mechanisms import get_template
 from ..scene import Scene
@@ -28,7 +28,7 @@ NEWTON = {"five_bar": (("th1_{k}", "theta_1"), ("th4_{k}", "theta_4"))}
 HALVING = {"actuator_linkage": (("phi_2_iter", "phi_2"),)}
 
 
-def method_units(scene: Scene) -> int:
+def method_progress_steps(scene: Scene) -> int:
     tid = scene.template.id
     return (1 + len(NEWTON_ITERATIONS) if tid in NEWTON
             else 1 + len(EPSILONS) if tid in HALVING else 0)
@@ -44,7 +44,7 @@ def _audit_note(spent) -> str:
 
 def _flagged(result) -> str:
     """How many assembled rows the workbook flags (not converged, singular): they set no
-    Summary extreme (SPEC 9.1)."""
+    Summary extreme (docs/workbook.md, Summary)."""
     flagged = int(np.sum(result.assembled & ~ok_rows(result.status)))
     return f"{flagged} rows flagged" if flagged else ""
 

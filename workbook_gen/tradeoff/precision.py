@@ -50,11 +50,12 @@ def measure_precision(scene: Scene, precise: Precise, extremes: dict[str, Extrem
     near, compared = {}, 0
     fine = finest.result
     for name, true in extremes.items():
-        y = floats(fine, name)
-        if not np.isfinite(y).any():
+        found = fine.extremes[name]  # over the ok rows, as the Summary takes them
+        if not found.counted[0]:
             continue
+        y = floats(fine, name)
         picks = set()
-        for i in (int(np.nanargmax(y)), int(np.nanargmin(y))):
+        for i in (int(found.hi_row[0]), int(found.lo_row[0])):
             picks.update(range(max(0, i - NEAR), min(fine.rows, i + NEAR + 1)))
         idx = sorted(picks)
         values = precise.table(fine.inputs[idx], (name,))

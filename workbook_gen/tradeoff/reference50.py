@@ -18,7 +18,7 @@ import mpmath
 import numpy as np
 
 from ..expr.precise import compile_mpmath
-from ..model import needed, select
+from ..pruning import needed, select
 from ..scene import Scene
 
 DPS = 50
@@ -33,6 +33,9 @@ class Precise:
         self.model = select(scene.template, scene.outputs)
         self.input = scene.template.input.name
         self._compiled = [(q.name, compile_mpmath(q.expr)) for q in self.model.columns]
+        # the template's derived values (the four-bar's length gaps...), in their order:
+        # each may use the parameters and the ones before it
+        self._derived = [(d.name, compile_mpmath(d.expr)) for d in scene.template.derived]
         self._plans: dict[frozenset, list] = {}
 
     def _plan(self, names: Iterable[str] | None) -> list:
@@ -49,6 +52,9 @@ class Precise:
         mpf values or ExcelError."""
         with mpmath.workdps(self.dps):
             params = {k: mpmath.mpf(v) for k, v in self.scene.parameters.items()}
+            for name, fn in self._derived:
+                value = fn({}, params)
+                params[name] = value if isinstance(value, mpmath.mpf) else mpmath.nan
             values: dict[str, object] = {self.input: mpmath.mpf(x)}
             for name, fn in self._plan(names):
                 values[name] = fn(values, params)

@@ -1,19 +1,17 @@
 """The step and derivative dimensions: one generated and audited workbook per step.
 
 Step: the extremes of each output read off the table (its largest and smallest
-cached value) against the true extremes of the 50-digit formula, relative to
-the output's magnitude.  Derivative: finite differences of the tabulated
-positions against the analytic velocity and acceleration columns (``rates``),
-the analytic columns themselves against the 50-digit reference, and the cost
-of a workbook that holds the positions only (plus the difference columns it
-would need).
+cached value over the ok rows, ``tabulate.extremes``, as the Summary shows them)
+against the true extremes of the 50-digit formula, relative to the output's magnitude.
+Derivative: finite differences of the tabulated positions against the analytic
+velocity and acceleration columns (``rates``), the analytic columns themselves
+against the 50-digit reference, and the cost of a workbook that holds the positions
+only (plus the difference columns it would need).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-
-import numpy as np
 
 from ..tabulate import Evaluated, evaluate
 from ..scene import Scene
@@ -64,10 +62,10 @@ def measure_steps(scene: Scene, extremes: dict[str, Extremes],
         spent = cost(current)
         errors = {}
         for name, true in extremes.items():
-            y = floats(result, name)
-            if not np.isfinite(y).any():
+            found = result.extremes[name]  # over the ok rows, as the Summary takes them
+            if not found.counted[0]:
                 continue
-            err = max(abs(np.nanmax(y) - true.maximum), abs(np.nanmin(y) - true.minimum))
+            err = max(abs(found.hi[0] - true.maximum), abs(found.lo[0] - true.minimum))
             errors[name] = err / true.magnitude if true.magnitude > 0 else err
         note = "" if spent.audit_ok else "the audit flags it (1e-9 against the reference model)"
         rows.append(Row("step", step_label(scene, step), worst(errors), spent.seconds,
@@ -78,7 +76,7 @@ def measure_steps(scene: Scene, extremes: dict[str, Extremes],
     return rows, runs
 
 
-def derivative_units(scene: Scene) -> int:
+def derivative_progress_steps(scene: Scene) -> int:
     return len(step_settings(scene)) if chains_for(scene.template, scene.outputs)[1] else 0
 
 

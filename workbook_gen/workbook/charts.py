@@ -3,17 +3,17 @@
 from __future__ import annotations
 
 import functools
-import io
 import re
 import threading
 from functools import partial
 
 import numpy as np
 
-from xlsxwriter.utility import xl_col_to_name
-
+from ..cellref import a1
 from ..tabulate import Evaluated
 from .layout import A4, CHARTS, FIRST_ROW, TABLE, TableLayout, add_sheet
+from .xlsxwriter_internals import (assemble_xml, assembly, replace_assembly, reuse_chart,
+                                   write_xml)
 
 _COLUMNS = 2
 _ROWS_PER_CHART = 20
@@ -58,23 +58,18 @@ def _with_caches(xml: str, caches: dict[str, str]) -> str:
 
 
 def _assemble_cached(chart, key: str, configure=None, caches=None) -> None:
-    """``chart._assemble_xml_file()``, from the XML kept for ``key`` and its id, with the
+    """The chart's XML, from the XML kept for ``key`` and its id, with the
     series' ``caches`` spliced in; ``configure()`` (the axes, title and legend, which only
     the XML reads) is called first when the XML must be assembled."""
     found = _XML.get((key, chart.id))
     if found is None:
         if configure is not None:
             configure()
-        fh, internal = chart.fh, chart.internal_fh
-        chart.fh, chart.internal_fh = io.StringIO(), False
-        type(chart)._assemble_xml_file(chart)
-        found = chart.fh.getvalue()
-        chart.fh, chart.internal_fh = fh, internal
+        found = assemble_xml(chart)
         if len(_XML) >= _XML_LIMIT:
             _XML.clear()
         _XML[(key, chart.id)] = found
-    chart.fh.write(_with_caches(found, caches or {}))
-    chart._xml_close()
+    write_xml(chart, _with_caches(found, caches or {}))
 
 
 # The chart objects themselves, kept per thread by their position and key: building a
@@ -91,13 +86,9 @@ def _kept_chart(workbook, n: int, key: str, caches: dict[str, str]):
     this workbook's series ``caches``, or None."""
     kept = getattr(_KEPT, "charts", None)
     chart = None if kept is None else kept.get((n, key))
-    if chart is None or chart.date_1904 != workbook.date_1904 \
-            or chart.remove_timezone != workbook.remove_timezone:
+    if chart is None or not reuse_chart(workbook, chart):
         return None
-    chart.already_inserted = False
-    chart.formula_data = [None] * len(chart.formula_data)
-    chart._assemble_xml_file.keywords["caches"] = caches
-    workbook.charts.append(chart)
+    assembly(chart).keywords["caches"] = caches
     return chart
 
 
@@ -114,6 +105,10 @@ def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
     sheet.set_paper(A4)
     sheet.set_print_scale(_PRINT_SCALE)
     pages = -(-len(result.model.charts) // (_COLUMNS * _CHART_ROWS_PER_PAGE))
+    if not pages:  # no output asked for is charted: no print area (rows 1..0 are no range)
+        sheet.write_string(0, 0, "No chart: none of the scene's outputs is plotted by the "
+                                 "template's charts.")
+        return
     sheet.set_h_pagebreaks([p * _CHART_ROWS_PER_PAGE * _ROWS_PER_CHART for p in range(1, pages)])
     sheet.print_area(0, 0, pages * _CHART_ROWS_PER_PAGE * _ROWS_PER_CHART - 1,
                      _COLUMNS * _COLS_PER_CHART - 1)
@@ -180,11 +175,11 @@ def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
             configure = None
         else:
             _keep_chart(n, key, chart)
-        chart._assemble_xml_file = partial(_assemble_cached, chart, key, configure,
-                                           caches=caches)
+        replace_assembly(chart, partial(_assemble_cached, chart, key, configure,
+                                        caches=caches))
         sheet.insert_chart(row * _ROWS_PER_CHART, col * _COLS_PER_CHART, chart)
 
 
 def _range(first: int, col: int, last: int) -> str:
     """The series range as XlsxWriter writes it in <c:f>: Table!$A$2:$A$38."""
-    return f"{TABLE}!{xl_col_to_name(col, True)}${first + 1}:{xl_col_to_name(col, True)}${last + 1}"
+    return f"{TABLE}!{a1(first + 1, col + 1, True)}:{a1(last + 1, col + 1, True)}"

@@ -5,17 +5,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
 
-from xlsxwriter.utility import xl_col_to_name
-
-from ..cellref import quoted_sheet
+from ..cellref import column_letters, quoted_sheet
 from ..tabulate import Evaluated
+from ..tabulate.table import STATUS
 from ..expr import Node
 from ..expr.excel import ROW, Piece, Row, RowTemplate, row_template, to_excel
 from .rows import Sheet
 
 TABLE, PARAMETERS, CHECKS, SUMMARY, CHARTS, ABOUT = (
     "Table", "Parameters", "Checks", "Summary", "Charts", "About")
-STATUS = "status"  # the Table's last column
 FIRST_ROW = 2  # first data row of the Table (1-based); row 1 holds the headers
 CHECK_FIRST_ROW = 8  # first data row of the Checks sheet
 # A Checks row refers to the Table row this many rows up.
@@ -33,7 +31,7 @@ class TableLayout:
     @classmethod
     def of(cls, result: Evaluated) -> "TableLayout":
         names = result.model.names
-        letters = {name: xl_col_to_name(i) for i, name in enumerate(names + (STATUS,))}
+        letters = {name: column_letters(i + 1) for i, name in enumerate(names + (STATUS,))}
         return cls(letters, letters[STATUS], result.rows)
 
     @property
@@ -166,8 +164,8 @@ def print_columns(workbook, sheet, printed: list[bool], header_row: int,
     if len(runs) == 1:
         sheet.print_area(0, runs[0][0], last_row, runs[0][1])
         return
-    areas = ",".join(f"{quoted_sheet(sheet.name)}!${xl_col_to_name(first)}$1:"
-                     f"${xl_col_to_name(last)}${last_row + 1}" for first, last in runs)
+    areas = ",".join(f"{quoted_sheet(sheet.name)}!${column_letters(first + 1)}$1:"
+                     f"${column_letters(last + 1)}${last_row + 1}" for first, last in runs)
     workbook.define_name(f"{sheet.name}!_xlnm.Print_Area", areas)
 
 

@@ -23,13 +23,11 @@ from functools import lru_cache
 from itertools import repeat
 from typing import Callable, Sequence
 
-from xlsxwriter.utility import xl_col_to_name
-from xlsxwriter.worksheet import (CellBlankTuple, CellFormulaTuple, CellNumberTuple,
-                                  CellStringTuple, Worksheet, _preserve_whitespace,
-                                  re_dynamic_function)
-from xlsxwriter.xmlwriter import XMLwriter
-
+from ..cellref import column_letters
 from ..expr.excel import RowTemplate
+from .xlsxwriter_internals import (DYNAMIC_FUNCTION, CellBlankTuple, CellFormulaTuple,
+                                   CellNumberTuple, CellStringTuple, WorksheetHooks,
+                                   escape_control_characters, preserve_whitespace, xf_index)
 
 ERROR_CODES = frozenset(("#DIV/0!", "#N/A", "#NAME?", "#NULL!", "#NUM!", "#REF!", "#VALUE!"))
 _CHUNK = 500  # rows per write (and per progress call)
@@ -46,7 +44,10 @@ class Column:
     cell_format: object = None         # an XlsxWriter Format, else the column's format
 
 
-_column_name = lru_cache(maxsize=None)(xl_col_to_name)   # "A", "B", ... per column index
+@lru_cache(maxsize=None)
+def _column_name(col: int) -> str:
+    """The letters of a 0-based column index (XlsxWriter's numbering): 0 -> A."""
+    return column_letters(col + 1)
 
 
 def _escape(text: str) -> str:
@@ -87,10 +88,10 @@ def _string_xml(text: str) -> str | None:
     constant_memory mode; None for a rich string (written by XlsxWriter itself)."""
     found = _STRING_XML.get(text)
     if found is None:
-        text_x = XMLwriter._escape_control_characters(text)
+        text_x = escape_control_characters(text)
         if text_x.startswith("<r>") and text_x.endswith("</r>"):
             return None
-        space = ' xml:space="preserve"' if _preserve_whitespace(text_x) else ""
+        space = ' xml:space="preserve"' if preserve_whitespace(text_x) else ""
         found = f' t="inlineStr"><is><t{space}>{_escape(text_x)}</t></is></c>'
         if len(_STRING_XML) >= _STRING_XML_LIMIT:
             _STRING_XML.clear()
@@ -126,10 +127,10 @@ def _formula_xml(formula: RowTemplate, offsets: tuple[int, ...]) -> str:
     return "".join(text)
 
 
-class Sheet(Worksheet):
+class Sheet(WorksheetHooks):
     """A worksheet that writes our formula text as it is, and blocks of rows whole."""
 
-    def _write_single_row(self, current_row_num=0) -> None:
+    def write_held_row(self, current_row_num=0) -> None:
         """XlsxWriter's (constant_memory: the row held back, then the table cleared), the
         XML of plain rows of numbers, texts and formulas written here at once: the same
         bytes as ``_write_row`` and ``_write_cell``, each style index asked in the order
@@ -138,7 +139,7 @@ class Sheet(Worksheet):
         cells = self.table.get(row)
         if (not cells or row in self.comments or self.excel_version != 2007
                 or not all(type(c) in _PLAIN for c in cells.values())):
-            return super()._write_single_row(current_row_num)
+            return super().write_held_row(current_row_num)
         self.previous_row = current_row_num
         info = self.row_info.get(row)
         row_format = None
@@ -149,7 +150,7 @@ class Sheet(Worksheet):
             if info.height is not None:
                 height = info.height
             if row_format:
-                index = row_format._get_xf_index()
+                index = xf_index(row_format)
                 if index:
                     out.append(f' s="{index}"')
                 out.append(' customFormat="1"')
@@ -176,14 +177,14 @@ class Sheet(Worksheet):
                     fmt = col_info[col].column_format
             ref = f'<c r="{_column_name(col)}{number}"'
             if fmt is not None:
-                ref += f' s="{fmt._get_xf_index()}"'
+                ref += f' s="{xf_index(fmt)}"'
             kind = type(cell)
             if kind is CellStringTuple:
                 text = _string_xml(cell.string)
                 if text is None:   # a rich string: XlsxWriter's own XML
                     fh, self.fh = self.fh, io.StringIO()
                     try:
-                        self._write_cell(row, col, cell)
+                        self.write_cell_xml(row, col, cell)
                         out.append(self.fh.getvalue())
                     finally:
                         self.fh = fh
@@ -214,7 +215,7 @@ class Sheet(Worksheet):
         if self.dim_colmax is None or col > self.dim_colmax:
             self.dim_colmax = col
         if row > self.previous_row:
-            self._write_single_row(row)
+            self.flush_rows(row)
         self.table[row][col] = cell
 
     def _plain_cell(self, row, col) -> bool:
@@ -228,7 +229,7 @@ class Sheet(Worksheet):
                 self._put(args[0], args[1], CellStringTuple(string, args[3] if len(args) == 4
                                                             else None))
                 return 0
-        return Worksheet.write_string(self, *args, **kwargs)
+        return WorksheetHooks.write_string(self, *args, **kwargs)
 
     def write_number(self, *args, **kwargs):
         if len(args) in (3, 4) and not kwargs and self._plain_cell(args[0], args[1]):
@@ -237,20 +238,20 @@ class Sheet(Worksheet):
                 self._put(args[0], args[1], CellNumberTuple(number, args[3] if len(args) == 4
                                                             else None))
                 return 0
-        return Worksheet.write_number(self, *args, **kwargs)
+        return WorksheetHooks.write_number(self, *args, **kwargs)
 
     def write_formula(self, *args, **kwargs):
         if 3 <= len(args) <= 5 and not kwargs and self._plain_cell(args[0], args[1]):
             formula = args[2]
-            if (formula.__class__ is str and formula and not re_dynamic_function.search(formula)
+            if (formula.__class__ is str and formula and not DYNAMIC_FUNCTION.search(formula)
                     and not (formula.startswith("{") and formula.endswith("}"))):
                 self._put(args[0], args[1], CellFormulaTuple(
-                    self._prepare_formula(formula), args[3] if len(args) > 3 else None,
+                    self.prepare_formula(formula), args[3] if len(args) > 3 else None,
                     args[4] if len(args) > 4 else 0))
                 return 0
-        return Worksheet.write_formula(self, *args, **kwargs)
+        return WorksheetHooks.write_formula(self, *args, **kwargs)
 
-    def _prepare_formula(self, formula, expand_future_functions=False):
+    def prepare_formula(self, formula, expand_future_functions=False):
         return formula[1:] if formula.startswith("=") else formula
 
     def _style(self, column: Column) -> str:
@@ -258,7 +259,7 @@ class Sheet(Worksheet):
         fmt = column.cell_format
         if fmt is None and column.col in self.col_info:
             fmt = self.col_info[column.col].column_format
-        return "" if fmt is None else f' s="{fmt._get_xf_index()}"'
+        return "" if fmt is None else f' s="{xf_index(fmt)}"'
 
     def write_rows(self, first_row: int, columns: Sequence[Column],
                    progress: Callable[[int], None] | None = None) -> None:
@@ -280,10 +281,10 @@ class Sheet(Worksheet):
                 or any(first_row <= r <= last_row for r in self.row_info)):
             raise ValueError("write_rows writes plain rows only (no row formats or heights)")
         for row, col in ((first_row, columns[0].col), (last_row, columns[-1].col)):
-            if self._check_dimensions(row, col):
+            if self.check_dimensions(row, col):
                 raise ValueError(f"write_rows: cell ({row}, {col}) is outside the sheet")
         if first_row > self.previous_row:  # flush the row XlsxWriter holds back
-            self._write_single_row(first_row)
+            self.flush_rows(first_row)
 
         template, offsets, arguments = self._row_template(columns)
         # 1-based row numbers (ints: str.format prints them as str() would)

@@ -4,11 +4,7 @@ from __future__ import annotations
 
 import json
 
-import numpy as np
-
-from .. import xlmath as xm
 from ..tabulate import Evaluated
-from .table import cached_values
 from .layout import (ABOUT, LINE_HEIGHT, PARAMETERS, add_sheet, excel_text, print_wide,
                      wrapped_lines)
 
@@ -35,8 +31,7 @@ def write_parameters(workbook, formats, result: Evaluated) -> None:
         workbook.define_name(spec.name, f"={PARAMETERS}!$B${row + 1}")
     for row, item in enumerate(result.scene.template.derived, start=row + 1):
         sheet.write_string(row, 0, item.name)
-        sheet.write_formula(row, 1, excel_text(item.expr), None,
-                            cached_values(xm.array(np.array([result.params[item.name]])))[0])
+        sheet.write_formula(row, 1, excel_text(item.expr), None, result.derived[item.name])
         sheet.write_string(row, 2, item.unit)
         # wrapped within the column: a longer line would widen the printed page
         text = f"{item.description} (computed from the parameters above)"

@@ -1,53 +1,17 @@
 """The Summary sheet: extremes of each output and where they occur, spans
 (stroke, swing), figures from the parameters, and the count of rows that
-cannot be assembled."""
+cannot be assembled.  The values its formulas cache are ``result.summary``
+(``tabulate/summary.py``)."""
 
 from __future__ import annotations
 
-import numpy as np
+from ..cellref import column_letters
 
-from .. import xlmath as xm
-from ..extremes import OK, ok_extremes, ok_rows
+from ..tabulate import STATUS_OK as OK
 from ..tabulate import Evaluated
-from ..expr.magnitude import magnitude, scope
-from ..expr.numeric import compile_numpy
-from ..xlerror import ExcelError
-
-# where no row is ok: #N/A (AGGREGATE of nothing is #NUM! in Excel, #VALUE! in LibreOffice)
-NONE_OK = ExcelError.NA.value
-from .table import cached_values
+from ..tabulate.summary import TIE
 from .layout import (CHECK_FIRST_ROW, CHECKS, FIRST_ROW, LINE_HEIGHT, STATUS, SUMMARY,
                      TableLayout, add_sheet, excel_text, print_wide, wrapped_lines)
-from xlsxwriter.utility import xl_col_to_name
-
-
-def _extremes(column: xm.XArray, inputs: np.ndarray, status: np.ndarray):
-    """(max, its input, min, its input) over the ok rows, as the Summary's formulas give
-    them: #N/A where no row counts."""
-    found = ok_extremes(column.val, column.err, status, inputs)
-    if not found.counted[0]:
-        return NONE_OK, NONE_OK, NONE_OK, NONE_OK
-    return (float(found.hi[0]), float(found.hi_at[0]), float(found.lo[0]),
-            float(found.lo_at[0]))
-
-
-# A column whose max - min is within TIE_ULPS ulps of the magnitudes its formula cancels
-# (expr/magnitude.py) is constant to rounding: its extremes are a tie, not a location
-# (a balanced shaking force, a centre of mass that stands still).  Engines round such
-# noise differently (LibreOffice makes near-equal differences 0), so a location there
-# would be an accident of the engine.
-TIE_ULPS = 4096
-TIE = "tie"
-
-
-def tie_threshold(result: Evaluated, name: str, shared=None) -> float:
-    """Largest max - min that is rounding noise for quantity ``name`` (0 if none).
-    ``shared``: a magnitude ``scope`` of ``result`` kept over its outputs."""
-    quantity = result.model.template.quantity(name)
-    m = magnitude(quantity.expr, result.columns, result.params, result.rows, shared)
-    m = m[np.isfinite(m)]
-    bound = TIE_ULPS * np.finfo(float).eps * float(m.max()) if m.size else 0.0
-    return float(f"{bound:.3g}")  # as written in the formula
 
 
 def _where(row: int, value_col: str, inputs_abs: str, rng: str, ok: str, first: int,
@@ -98,73 +62,64 @@ def write_summary(workbook, formats, result: Evaluated, layout: TableLayout) -> 
     # the Summary's "rows in the extremes" cell, below the outputs, spans and figures
     model = result.model
     count_cell = "$C$" + str(len(model.outputs()) + len(model.spans) + len(model.figures) + 5)
-    extremes: dict[str, tuple[int, object, object]] = {}
+    values = result.summary
+    lines: dict[str, int] = {}  # each output's row on the sheet (1-based)
     row = 1
-    shared = scope(result.columns, result.params, result.rows)  # outputs share subtrees
-    shared.measure(tuple(q.expr for q in result.model.outputs()))
     for q in result.model.outputs():
-        column = result.columns[q.name]
+        found = values.outputs[q.name]
         rng = layout.column(q.name)
-        hi, at_hi, lo, at_lo = _extremes(column, result.inputs, result.status)
-        tie = tie_threshold(result, q.name, shared)
-        tied = isinstance(hi, float) and isinstance(lo, float) and hi - lo <= tie
-        if tied:
-            at_hi = at_lo = TIE
+        tie = found.tie
         sheet.write_string(row, 0, q.name)
         sheet.write_string(row, 1, q.unit)
         for col, text, value in (
-                (2, _aggregate(14, rng, ok, count_cell), hi),
-                (3, _where(row, "C", inputs_abs, rng, ok, FIRST_ROW, tie), at_hi),
-                (4, _aggregate(15, rng, ok, count_cell), lo),
-                (5, _where(row, "E", inputs_abs, rng, ok, FIRST_ROW, tie), at_lo)):
+                (2, _aggregate(14, rng, ok, count_cell), found.hi),
+                (3, _where(row, "C", inputs_abs, rng, ok, FIRST_ROW, tie), found.at_hi),
+                (4, _aggregate(15, rng, ok, count_cell), found.lo),
+                (5, _where(row, "E", inputs_abs, rng, ok, FIRST_ROW, tie), found.at_lo)):
             sheet.write_formula(row, col, text, None, value)
-        extremes[q.name] = (row + 1, hi, lo, tie, tied)
+        lines[q.name] = row + 1
         row += 1
 
     row += 1
     for c, text in enumerate(("figure", "unit", "value", "description")):
         sheet.write_string(row, c, text, formats["header"])
     row += 1
-    for span in result.model.spans:
-        line, hi, lo, tie, tied = extremes[span.quantity]
-        value = hi - lo if isinstance(hi, float) and isinstance(lo, float) else hi
+    for span, value in zip(result.model.spans, values.spans):
+        line, tie = lines[span.quantity], values.outputs[span.quantity].tie
         sheet.write_string(row, 0, f"{span.label} (from the table)")
         sheet.write_string(row, 1, result.model.template.quantity(span.quantity).unit)
         sheet.write_formula(row, 2, f"=IF(C{line}-E{line}<={tie!r},0,C{line}-E{line})", None,
-                            0.0 if tied else value)
+                            value)
         _describe(sheet, formats, row, f"max - min of {span.quantity} over the sweep")
         row += 1
-    for figure in result.model.figures:
-        value = compile_numpy(figure.expr)({}, result.params, 1)
-        cached = cached_values(value)[0]
+    for figure, cached in zip(result.model.figures, values.figures):
         sheet.write_string(row, 0, figure.label)
         sheet.write_string(row, 1, figure.unit)
         sheet.write_formula(row, 2, excel_text(figure.expr), None, cached)
         _describe(sheet, formats, row, figure.description)
         row += 1
-    flags = xl_col_to_name(len(result.model.checks) + 1)
+    flags = column_letters(len(result.model.checks) + 2)
     last = CHECK_FIRST_ROW + result.rows - 1
     sheet.write_string(row, 0, "rows")
-    sheet.write_number(row, 2, result.rows)
+    sheet.write_number(row, 2, values.rows)
     row += 1
     assert f"$C${row + 1}" == count_cell  # (the extremes' formulas refer to this cell)
     sheet.write_string(row, 0, "rows in the extremes")
     sheet.write_formula(row, 2, f'=COUNTIF({layout.column(STATUS, absolute=True)},"{OK}")',
-                        None, int(np.sum(ok_rows(result.status))))
+                        None, values.rows_ok)
     _describe(sheet, formats, row, "the max and min above are taken over the ok rows only; "
                                    "the rows counted below are left out")
     row += 1
     sheet.write_string(row, 0, "rows that cannot be assembled")
     sheet.write_formula(row, 2, f"=SUM({CHECKS}!{flags}{CHECK_FIRST_ROW}:{flags}{last})", None,
-                        int(np.sum(result.status == "cannot assemble")))
+                        values.rows_not_assembled)
     _describe(sheet, formats, row, "these rows hold #NUM! in the Table")
     row += 1
-    flagged = xl_col_to_name(len(result.model.checks) + 2)
-    texts = sorted({t for t in result.status if t not in ("ok", "cannot assemble")})
-    counts = ", ".join(f"{t}: {int(np.sum(result.status == t))}" for t in texts)
+    flagged = column_letters(len(result.model.checks) + 3)
+    counts = ", ".join(f"{t}: {n}" for t, n in values.flagged.items())
     sheet.write_string(row, 0, "rows flagged singular or not converged")
     sheet.write_formula(row, 2, f"=SUM({CHECKS}!{flagged}{CHECK_FIRST_ROW}:{flagged}{last})",
-                        None, int(sum(int(np.sum(result.status == t)) for t in texts)))
+                        None, values.rows_flagged)
     _describe(sheet, formats, row, "status other than ok (toggle, dead centre, not converged, "
                                    "...): rates there are singular or not to be trusted"
                                    + (f"; {counts}" if counts else ""))

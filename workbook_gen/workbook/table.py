@@ -2,24 +2,10 @@
 
 from __future__ import annotations
 
-import numpy as np
-
 from ..tabulate import Evaluated, headers
-from .. import xlmath as xm
+from ..tabulate.table import STATUS, cached_values
 from .layout import FIRST_ROW, TABLE, TableLayout, add_sheet, print_columns
 from .rows import Column
-from ..xlerror import ExcelError
-
-
-def cached_values(column: xm.XArray) -> list:
-    """Cached values for XlsxWriter: numbers, booleans, texts or Excel error texts."""
-    values = column.val.tolist()
-    if column.boolean:
-        values = [bool(v) if v == v else v for v in values]
-    if np.count_nonzero(column.err):   # (a C call: .any() is Python-level in numpy)
-        for i in np.flatnonzero(column.err):
-            values[i] = ExcelError.from_code(int(column.err[i])).value
-    return values
 
 
 def write_table(workbook, formats, result: Evaluated, layout: TableLayout,
@@ -28,7 +14,7 @@ def write_table(workbook, formats, result: Evaluated, layout: TableLayout,
     model = result.model
     aux = {q.name for q in model.columns if not q.output}
     names = model.names
-    for col, (name, header) in enumerate(zip(names + ("status",), headers(model))):
+    for col, (name, header) in enumerate(zip(names + (STATUS,), headers(model))):
         sheet.write_string(0, col, header, formats["aux_header" if name in aux else "header"])
     sheet.set_row(0, 30)
     sheet.freeze_panes(1, 1)

@@ -9,14 +9,15 @@ from pathlib import Path
 from typing import Callable
 
 from ..tabulate import Evaluated, evaluate
+from ..tabulate.checks import plan
 from ..errors import SceneError
-from ..model import select
+from ..pruning import select
 from ..xlsx.limits import MAX_CELLS
 from ..files import refuse_existing, write_bytes_atomically
 from ..scene import Scene
 from ..version import VERSION
 from .charts import write_charts
-from .checks import plan, write_checks
+from .checks import write_checks
 from .layout import FORMATS, TableLayout
 from .package import IN_MEMORY_CELLS, Book, Stream
 from .sheets import write_about, write_parameters

@@ -15,12 +15,11 @@ import math
 
 import numpy as np
 
-from workbook_gen.xlerror import ExcelError
+from workbook_gen.xlerror import TRIG_LIMIT, ExcelError
 
 NUM = ExcelError.NUM.code
 DIV0 = ExcelError.DIV0.code
-TRIG_LIMIT = 2.0 ** 27  # SIN, COS, TAN give #NUM! from here on (scalar ones too:
-#                       formula/functions/math.py reads it)
+# TRIG_LIMIT (xlerror.py): SIN, COS, TAN give #NUM! from there on (scalar ones too)
 
 
 def _safe(fn):

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from workbook_gen.formula.functions import lambdas
+from workbook_gen.formula.functions.logical import lambdas
 from workbook_gen.formula.parser import parse
 from workbook_gen.formula.scalar import DictResolver, evaluate
 

@@ -1,8 +1,9 @@
 """The function library describing itself: ``docs/functions.md``, generated from the registry.
 
-One row per registered name: its family and module, how many arguments it takes and of
-which kind, whether the column evaluator has a vectorised form, whether it is volatile,
-where LibreOffice's dialect differs, and a test file that calls it.  Made by
+One row per registered name: its family (the package that registers it) and module, how
+many arguments it takes and of which kind, whether the column evaluator has a vectorised
+form, whether it is volatile, where LibreOffice's dialect differs, and a test file that
+calls it.  Made by
 ``python scripts/functions_doc.py``; ``tests/formula/functions/test_catalog.py`` checks that the
 file is what the registry says.
 """
@@ -10,11 +11,13 @@ file is what the registry says.
 from __future__ import annotations
 
 import re
+from collections import Counter
 from pathlib import Path
 
 from workbook_gen.formula.functions import REGISTRY
 from workbook_gen.formula.functions.dialect import (LIBREOFFICE_DIFFERENCES, LIBREOFFICE_ERRORS,
                                                     NUMERIC_DEVIATIONS)
+from workbook_gen.formula.functions.registry import FAMILIES
 
 HEADER = """# Worksheet functions the audit recomputes
 
@@ -62,13 +65,16 @@ def _tests(root: Path) -> dict[str, str]:
 
 def markdown(root: Path) -> str:
     tests = _tests(root)
-    lines = [HEADER, f"{len(REGISTRY)} functions.\n",
+    counts = Counter(f.family for f in REGISTRY.values())
+    families = ", ".join(f"{family} {counts[family]}" for family in FAMILIES)
+    lines = [HEADER, f"{len(REGISTRY)} functions. By family (each a package of "
+             f"`workbook_gen/formula/functions/`, after Excel's categories): {families}.\n",
              "| function | family | module | arguments | kinds | vectorised | volatile "
              "| LibreOffice | test |",
              "|---|---|---|---|---|---|---|---|---|"]
     for name in sorted(REGISTRY):
         f = REGISTRY[name]
-        module = f.fn.__module__.rsplit(".", 1)[-1]
+        module = f.module.partition(".")[2]  # the family's module that registers it
         lines.append(" | ".join([
             f"| `{name}`", f.family, module, _arity(f), ", ".join(f.kinds) or "-",
             "yes" if f.vector is not None else "", "yes" if f.volatile else "",

@@ -212,14 +212,15 @@ def has_wildcard(text: str) -> bool:
     return any(c in text for c in "*?~")
 
 
-_OPERATORS = ("<=", ">=", "<>", "=", "<", ">")
+#: the comparison operators a criterion may open with, longest first
+CRITERION_OPERATORS = ("<=", ">=", "<>", "=", "<", ">")
 
 
 @lru_cache(maxsize=512)
 def _criterion(kind: type, crit) -> "callable":
     from_text = kind is str  # "=5" (text) also matches the text "5"; the number 5 doesn't
     if kind is str:
-        op = next((o for o in _OPERATORS if crit.startswith(o)), "")
+        op = next((o for o in CRITERION_OPERATORS if crit.startswith(o)), "")
         body = crit[len(op):]
         target: Value = body
         # "" matches empty cells and empty text, "=" empty cells only, "<>" all but empty

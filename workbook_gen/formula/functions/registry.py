@@ -1,4 +1,6 @@
-"""The table of worksheet functions: one :class:`Function` entry per name.
+"""The table of worksheet functions: one :class:`Function` entry per name, with its family:
+the package of :mod:`workbook_gen.formula.functions` whose module registers it
+(:data:`FAMILIES`, after Excel's categories; :func:`family_of`).
 
 An entry says how many arguments the function takes, what kind each is, and gives the
 scalar form (and, where the column evaluator has one, the vectorised form):
@@ -22,6 +24,7 @@ None where it cannot be exact (the caller then goes cell by cell).
 
 from __future__ import annotations
 
+import sys
 from dataclasses import dataclass
 from typing import Callable
 
@@ -29,6 +32,10 @@ from workbook_gen.formula.values import Range, Ref, Value, scalar_of
 from workbook_gen.xlerror import ExcelError
 
 KINDS = frozenset({"scalar", "range", "ref", "lazy"})
+#: the families, each a package of this one, after Excel's own categories (Microsoft's
+#: "Excel functions (by category)"; its Compatibility functions sit with their successors)
+FAMILIES = ("math", "statistical", "engineering", "financial", "date", "text", "logical",
+            "lookup", "information", "database", "cube")
 DIALECTS = ("excel", "libreoffice")
 
 
@@ -89,7 +96,7 @@ class Context:
 @dataclass(frozen=True)
 class Function:
     name: str
-    family: str
+    family: str                   # the family package that registers it (see :func:`register`)
     fn: Callable
     min_args: int
     max_args: int | None          # None: any number (Excel's limit is 255)
@@ -100,6 +107,7 @@ class Function:
     range_numbers: bool = False   # its ranges keep only numbers (SUM): booleans skipped
     omitted: bool = False         # an omitted argument (LINEST(y,,FALSE)) arrives as None, not 0
     accepts: Callable | None = None  # accepts(arg nodes): False where it cannot compute the call
+    module: str = ""              # the module that registers it ("statistical.fit")
 
     def kind(self, i: int) -> str:
         return self.kinds[min(i, len(self.kinds) - 1)] if self.kinds else "scalar"
@@ -115,12 +123,29 @@ REGISTRY: dict[str, Function] = {}
 ARRAY_LIFTED: dict[str, Callable[[int], bool]] = {}
 
 
-def register(name: str, family: str, min_args: int, max_args: int | None = None,
+def family_of(module: str) -> tuple[str, str]:
+    """``(family, module)`` of a registering module's dotted name: the family is the package
+    directly under this one (``...functions.statistical.fit`` -> ``("statistical",
+    "statistical.fit")``). Only family packages register; anything else is refused."""
+    prefix = __name__.rpartition(".")[0] + "."
+    inner = module[len(prefix):] if module.startswith(prefix) else ""
+    family, dot, rest = inner.partition(".")
+    if not dot or not rest or family not in FAMILIES:
+        raise ValueError(f"functions are registered from a family package of {prefix[:-1]}, "
+                         f"not from {module}")
+    return family, inner
+
+
+def register(name: str, min_args: int, max_args: int | None = None,
              kinds: tuple[str, ...] | str = "scalar", *, volatile: bool = False,
              vector: Callable | None = None, position: bool = False,
              range_numbers: bool = False, aliases=(), omitted: bool = False,
              accepts: Callable | None = None):
-    """Decorator: add ``fn`` to the registry under ``name`` (and ``aliases``)."""
+    """Decorator: add ``fn`` to the registry under ``name`` (and ``aliases``).
+
+    The family is not written by hand: it is the family package of the module calling
+    ``register`` (:func:`family_of`), so a function's family is where it is defined."""
+    family, module = family_of(sys._getframe(1).f_globals["__name__"])
     if isinstance(kinds, str):
         kinds = (kinds,)
     assert set(kinds) <= KINDS, kinds
@@ -131,7 +156,7 @@ def register(name: str, family: str, min_args: int, max_args: int | None = None,
     def deco(fn):
         for n in (name, *aliases):
             REGISTRY[n] = Function(n, family, fn, min_args, max_args, kinds, volatile,
-                                   vector, position, range_numbers, omitted, accepts)
+                                   vector, position, range_numbers, omitted, accepts, module)
         return fn
     return deco
 

@@ -40,7 +40,7 @@ def fixed_digits(x: float, decimals: int) -> str:
 
 
 def round_half_up(x: float, d: int) -> float:
-    from workbook_gen.formula.functions.math import _round as round_to
+    from workbook_gen.formula.functions.math.core import round_digits as round_to
     return round_to(x, d, ROUND_HALF_UP)
 
 
