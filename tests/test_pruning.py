@@ -1,4 +1,4 @@
-"""workbook_gen/model.py: a scene asking for some outputs gets exactly the columns those
+"""workbook_gen/pruning.py: a scene asking for some outputs gets exactly the columns those
 need: closed (every kept tree refers only to the input, parameters and kept columns),
 minimal (each kept column is needed by a requested one or the status), and computing
 the same numbers, to the bit, as the whole template does (random subsets of every
@@ -14,7 +14,7 @@ import pytest
 
 from workbook_gen import compute, load_scene
 from workbook_gen.expr import variables
-from workbook_gen.model import needed, select
+from workbook_gen.pruning import needed, select
 
 TEMPLATES = ["slider_crank", "sewing_machine", "four_bar", "walking_beam", "actuator_linkage",
              "five_bar"]

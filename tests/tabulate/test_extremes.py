@@ -1,4 +1,4 @@
-"""workbook_gen/extremes.py: the extremes of a column over its ok rows and the input of
+"""tabulate/extremes.py: the extremes of a column over its ok rows and the input of
 the first row that holds each, against a plain loop over the rows, on random columns
 with errors, flagged rows and ties, several variants at once."""
 
@@ -10,7 +10,7 @@ import random
 import numpy as np
 import pytest
 
-from workbook_gen.extremes import ok_extremes, ok_rows
+from workbook_gen.tabulate.extremes import ok_extremes, ok_rows
 
 STATUSES = ["ok", "ok", "ok", "toggle", "not assembled", "flagged", "dead centre"]
 
