@@ -1,7 +1,6 @@
-"""formula/functions/eng.py: CONVERT against the units' legal definitions (the 1959
-international yard and pound, the standard atmosphere, temperature scales), with its
-metric and binary prefixes; DEC2BIN/OCT/HEX and back against Python's integers in Excel's
-10-digit two's complement; DELTA and GESTEP."""
+"""formula/functions/engineering/convert.py: CONVERT against the units' legal definitions
+(the 1959 international yard and pound, the standard atmosphere, temperature scales),
+with its metric and binary prefixes, and its refusals."""
 
 from __future__ import annotations
 
@@ -44,28 +43,3 @@ def test_temperatures_and_refusals():
     assert ev('=CONVERT(2.5,"ft","sec")') == ExcelError.NA   # another quantity
     assert ev('=CONVERT(1,"kin","m")') == ExcelError.NA      # inch takes no prefix
     assert ev('=CONVERT(1,"xyz","m")') == ExcelError.NA
-
-
-def twos(n: int, base: int) -> str:
-    """Excel's form: negatives as 10-digit two's complement in the base."""
-    digits = {2: 10, 8: 30, 16: 40}[base]   # 10 digits = this many bits
-    n %= 2**digits
-    return format(n, {2: "b", 8: "o", 16: "X"}[base])
-
-
-@pytest.mark.parametrize("base, name, limit", [(2, "BIN", 2**9), (8, "OCT", 2**29),
-                                              (16, "HEX", 2**39)])
-def test_dec2x_and_back(base, name, limit):
-    for _ in range(200):
-        n = RNG.randrange(-limit, limit)
-        text = ev(f"=DEC2{name}({n})")
-        assert text == twos(n, base), n
-        assert ev(f'={name}2DEC("{text}")') == n
-    assert ev(f"=DEC2{name}({limit})") == ExcelError.NUM
-    assert ev(f"=DEC2{name}(3,4)") == twos(3, base).zfill(4)      # places pad with zeros
-    assert ev(f"=DEC2{name}({limit - 1},1)") == ExcelError.NUM    # too few places
-
-
-def test_delta_and_gestep():
-    assert ev("=DELTA(5,4)") == 0 and ev("=DELTA(5,5)") == 1 and ev("=DELTA(0)") == 1
-    assert ev("=GESTEP(5,4)") == 1 and ev("=GESTEP(-4,-5)") == 1 and ev("=GESTEP(-1)") == 0

@@ -1,14 +1,12 @@
-"""formula/functions/dynamic.py: the array-shaping functions against numpy on random
-arrays (SEQUENCE, TOCOL/TOROW by row or column, WRAPROWS/WRAPCOLS with padding, TAKE,
-DROP, CHOOSEROWS/CHOOSECOLS, EXPAND, HSTACK/VSTACK) and the text splitters against
-Python's str (TEXTBEFORE, TEXTAFTER, TEXTSPLIT)."""
+"""formula/functions/lookup/shape.py: the array-shaping functions against numpy on random
+arrays (TOCOL/TOROW by row or column, WRAPROWS/WRAPCOLS with padding, TAKE, DROP,
+CHOOSEROWS/CHOOSECOLS, EXPAND, HSTACK/VSTACK)."""
 
 from __future__ import annotations
 
 import random
 
 import numpy as np
-import pytest
 
 from workbook_gen.formula import DictResolver, parse
 from workbook_gen.formula.arrays import evaluate_array
@@ -30,14 +28,6 @@ def arrays(n=15):
     for _ in range(n):
         r, c = RNG.randint(1, 5), RNG.randint(1, 5)
         yield np.array([[float(RNG.randint(-9, 99)) for _ in range(c)] for _ in range(r)])
-
-
-def test_sequence_as_arange():
-    for _ in range(20):
-        r, c, start, step = RNG.randint(1, 6), RNG.randint(1, 6), RNG.randint(-5, 5), \
-            RNG.choice([1, 2, -3, 0.5])
-        want = (start + step * np.arange(r * c)).reshape(r, c)
-        assert ev(f"=SEQUENCE({r},{c},{start},{step})") == want.tolist()
 
 
 def test_reshaping_as_numpy():
@@ -79,24 +69,3 @@ def test_take_drop_choose_expand_stack():
     # #VALUE!, as arrayops.py does for an empty FILTER after Mac Excel 16's cached values:
     # which Excel is right here is not settled, so neither is asserted)
     assert ev("=CHOOSEROWS({1,2;3,4},3)") == ExcelError.VALUE
-
-
-def q(s: str) -> str:
-    return '"' + s + '"'
-
-
-def test_text_before_after_split_as_str():
-    words = ["ab", "c", "", "def", "g"]
-    for _ in range(40):
-        parts = [RNG.choice(words) for _ in range(RNG.randint(2, 5))]
-        s = "-".join(parts)
-        n = RNG.randint(1, len(parts) - 1)
-        assert ev(f'=TEXTBEFORE({q(s)},"-",{n})') == "-".join(parts[:n])
-        assert ev(f'=TEXTAFTER({q(s)},"-",{n})') == "-".join(parts[n:])
-        assert ev(f'=TEXTAFTER({q(s)},"-",-{n})') == "-".join(parts[len(parts) - n:])
-        assert ev(f'=TEXTSPLIT({q(s)},"-")') == [parts]
-        assert ev(f'=TEXTSPLIT({q(s)},,"-")') == [[p] for p in parts]
-        if any(parts):   # ignore_empty drops the empty pieces
-            assert ev(f'=TEXTSPLIT({q(s)},"-",,TRUE)') == [[p for p in parts if p]]
-    assert ev('=TEXTBEFORE("abc","x")') == ExcelError.NA
-    assert ev('=TEXTBEFORE("aXbxc","x",1,1)') == "a"            # match_mode 1: any case

@@ -1,8 +1,7 @@
-"""formula/functions/stats.py: the aggregates against numpy and Python's statistics on
-random ranges (text, booleans and blanks in a range are skipped, as Microsoft documents;
-the *A forms count TRUE as 1 and text as 0), the criteria functions (SUMIF, COUNTIF,
-AVERAGEIF and the *IFS) against a Python filter of the same comparisons, LARGE/SMALL/RANK
-against sorting, MODE against collections.Counter."""
+"""formula/functions/statistical/core.py: the aggregates against numpy and Python's
+statistics on random ranges (text, booleans and blanks in a range are skipped, as
+Microsoft documents; the *A forms count TRUE as 1 and text as 0), LARGE/SMALL/RANK against
+sorting, MODE against collections.Counter, SUMPRODUCT against numpy.dot."""
 
 from __future__ import annotations
 
@@ -67,40 +66,6 @@ def test_the_a_forms_count_booleans_and_text():
     assert ev("=MAXA(A1:A5)", data) == 9.0 and ev("=MINA(A1:A5)", data) == 0.0
     assert ev("=COUNTA(A1:A6)", data) == 5 and ev("=COUNTBLANK(A1:A6)", data) == 1
     assert ev("=AVERAGE(A1:A5)", data) == 6.0                 # the plain form skips them
-
-
-CRITERIA = [(">10", lambda v: v > 10), ("<=-5", lambda v: v <= -5), ("<>0", lambda v: v != 0),
-            ("=12.5", lambda v: v == 12.5), ("25", lambda v: v == 25)]
-
-
-@pytest.mark.parametrize("criterion, keep", CRITERIA)
-def test_criteria_functions_as_a_filter(criterion, keep):
-    n = 60
-    xs = [float(RNG.choice([RNG.randint(-20, 30), 12.5, 25])) for _ in range(n)]
-    ys = [round(RNG.uniform(-50, 50), 2) for _ in range(n)]
-    data = {**cells(xs, "A"), **cells(ys, "B")}
-    picked = [y for x, y in zip(xs, ys) if keep(x)]
-    assert ev(f'=COUNTIF(A1:A{n},"{criterion}")', data) == len(picked)
-    assert ev(f'=SUMIF(A1:A{n},"{criterion}",B1:B{n})', data) == pytest.approx(sum(picked))
-    assert ev(f'=SUMIFS(B1:B{n},A1:A{n},"{criterion}")', data) == pytest.approx(sum(picked))
-    if picked:
-        assert ev(f'=AVERAGEIF(A1:A{n},"{criterion}",B1:B{n})', data) == \
-            pytest.approx(statistics.fmean(picked))
-        assert ev(f'=MAXIFS(B1:B{n},A1:A{n},"{criterion}")', data) == max(picked)
-        assert ev(f'=MINIFS(B1:B{n},A1:A{n},"{criterion}")', data) == min(picked)
-    else:
-        assert ev(f'=AVERAGEIF(A1:A{n},"{criterion}",B1:B{n})', data) == ExcelError.DIV0
-    both = [y for x, y in zip(xs, ys) if keep(x) and y > 0]
-    assert ev(f'=COUNTIFS(A1:A{n},"{criterion}",B1:B{n},">0")', data) == len(both)
-
-
-def test_text_criteria_are_case_insensitive_with_wildcards():
-    words = ["apple", "Apricot", "banana", "APPLE", "grape", "a?c", "abc"]
-    data = cells(words)
-    assert ev('=COUNTIF(A1:A7,"apple")', data) == 2
-    assert ev('=COUNTIF(A1:A7,"ap*")', data) == 3
-    assert ev('=COUNTIF(A1:A7,"a?c")', data) == 2
-    assert ev('=COUNTIF(A1:A7,"a~?c")', data) == 1          # ~ escapes the wildcard
 
 
 def test_large_small_rank_mode_sumproduct():
