@@ -244,3 +244,17 @@ def test_every_test_file_names_its_module():
 
 def test_no_module_is_both_exempt_and_awaited():
     assert not set(NO_LOGIC) & NOT_YET
+
+
+if __name__ == "__main__":
+    # python tests/test_test_tree.py: rewrite NOT_YET as the modules still without their
+    # test file (after a merge adds or renames modules; the list should only shrink)
+    import re
+    missing = _missing()
+    body = ("NOT_YET: set[str] = {\n" + "".join(f'    "{m}",\n' for m in missing) + "}\n"
+            if missing else "NOT_YET: set[str] = set()\n")
+    source = Path(__file__).read_text(encoding="utf-8")
+    source = re.sub(r"NOT_YET: set\[str\] = (set\(\)|\{\n.*?\n\})\n", lambda _: body, source,
+                    count=1, flags=re.S)
+    Path(__file__).write_text(source, encoding="utf-8")
+    print(f"NOT_YET: {len(missing)} of {len(modules())} modules")
