@@ -3,7 +3,8 @@ the one extremes rule against a plain loop (first ok row, ties, errors, many var
 the cached values of the Checks, Summary and Parameters cells, read back with openpyxl,
 are ``evaluate(scene)``'s values in their places.  The values themselves are checked
 independently elsewhere: the Summary against the Table and LibreOffice
-(tests/workbook/test_summary.py), the residuals against the inline trees (tests/tabulate/test_terms.py)."""
+(tests/workbook/test_summary.py), the residuals against the inline trees
+(tests/tabulate/test_terms.py)."""
 
 from __future__ import annotations
 
