@@ -7,8 +7,8 @@ other module uses the public names below (``FastZipFile``, ``ZippedWorkbook``,
 speed-up: XlsxWriter has no API for it.  ``PRIVATE`` lists every name relied on, with its
 parameters where it is called or overridden; tests/workbook/test_xlsxwriter_internals.py
 checks each against the installed libraries and fails naming the one that went or changed,
-and checks that no other module uses an underscore name of either library.  XlsxWriter is pinned to
-the tested range in pyproject.toml.
+and checks that no other module uses an underscore name of either library.  XlsxWriter is
+pinned to the tested range in pyproject.toml.
 
 Undocumented attributes without an underscore are listed (and tested) here too, but are
 still read where they are used: the worksheet state in workbook/rows.py's ``Sheet`` (a
