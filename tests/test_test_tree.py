@@ -92,8 +92,6 @@ NOT_YET: set[str] = {
     "formula/functions/financial/oddbonds.py",
     "formula/functions/information/sheets.py",
     "formula/functions/lookup/rtd.py",
-    "formula/functions/math/conditional.py",
-    "formula/functions/math/randarray.py",
     "formula/functions/math/reciprocal.py",
     "formula/functions/numfmt/sections.py",
     "formula/functions/numfmt/tokens.py",
