@@ -112,7 +112,6 @@ NOT_YET: set[str] = {
     "reference/walking_beam.py",
     "tabulate/checks.py",
     "tabulate/evaluated.py",
-    "tabulate/summary.py",
     "tabulate/table.py",
     "tradeoff/book.py",
     "tradeoff/common.py",
