@@ -80,7 +80,6 @@ NOT_YET: set[str] = {
     "evaluator/whatif.py",
     "expr/magnitude.py",
     "expr/numeric.py",
-    "expr/tree.py",
     "formula/functions/arrayargs.py",
     "formula/functions/availability.py",
     "formula/functions/callables.py",
