@@ -18,9 +18,15 @@ from workbook_gen.expr.numeric import compile_numpy
 from workbook_gen.mechanisms.angles import (cos_deg, cos_half_squared, reduced, sin_deg,
                                             sin_half_squared, sin_half_squared_90)
 
-mpmath.mp.dps = 50
 RNG = random.Random(23)
 U = Var("u")
+
+
+@pytest.fixture(autouse=True)
+def fifty_digits():
+    """mpmath at 50 digits here only (a global setting would leak into other modules)."""
+    with mpmath.workdps(50):
+        yield
 
 
 def values(tree, xs: list[float]) -> np.ndarray:

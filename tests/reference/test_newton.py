@@ -14,8 +14,14 @@ import pytest
 
 from workbook_gen.reference.newton import Jet, jcos, jsin, solve_batched, solve_stage, wrap_deg
 
-mpmath.mp.dps = 30
 L1, L2 = 1.3, 0.8
+
+
+@pytest.fixture(autouse=True)
+def thirty_digits():
+    """mpmath at 30 digits here only (a global setting would leak into other modules)."""
+    with mpmath.workdps(30):
+        yield
 
 
 def test_jets_carry_two_derivatives():
