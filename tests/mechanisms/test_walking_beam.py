@@ -125,7 +125,7 @@ def test_libreoffice_agrees_with_every_cached_value(libreoffice, generate, optio
                                                     monkeypatch):
     """As tests/engines/test_libreoffice_recalc.py, with tied Summary positions accepted when
     LibreOffice names another of the tied inputs."""
-    import test_libreoffice_recalc as recalc
+    from tests.engines import test_libreoffice_recalc as recalc
     path = generate(SCENE, **options)
     tied = _tied_positions(path)
     theirs = recalc.recalculated_values(path)
