@@ -193,7 +193,7 @@ def libreoffice_runner(path: str, cells: list, timeout: float) -> list:
     """LibreOffice's values of ``cells`` in its recalculated copy, read by position: the
     cells an array formula fills are plain values there, not formulas."""
     import openpyxl
-    from workbook_gen.engines.libreoffice import _cell_value, recalculate
+    from workbook_gen.engines.libreoffice import cell_value, recalculate
     wanted: dict[str, dict[tuple[int, int], int]] = {}
     for i, (sheet, row, col, _, _) in enumerate(cells):
         wanted.setdefault(sheet, {})[(row, col)] = i
@@ -212,7 +212,7 @@ def libreoffice_runner(path: str, cells: list, timeout: float) -> list:
                     for cell in row:
                         i = here.get((getattr(cell, "row", None), getattr(cell, "column", None)))
                         if i is not None:
-                            out[i] = encode(_cell_value(cell.value, cell.data_type, book.epoch))
+                            out[i] = encode(cell_value(cell.value, cell.data_type, book.epoch))
         finally:
             book.close()
     return out

@@ -479,17 +479,16 @@ def compare(formulas: list[str], theirs: dict, ours: dict, parts=None):
 def _parts(inputs, result):
     """``parts(formula)``: the errors that the formula's calls, operators and cells
     evaluate to with our LibreOffice dialect."""
-    from workbook_gen.auditor.dialects import _Resolver
+    from workbook_gen.auditor.recomputed import Recomputed, RecomputedResolver
     from workbook_gen.formula import ast, parse
     from workbook_gen.formula.scalar import evaluate as evaluate_scalar
     from workbook_gen.xlerror import ExcelError
 
-    def value_of(sheet, row, col):
-        key = (sheet, row, col)
-        return result.values[key] if key in result.values else inputs.constants.get(key)
+    value_of = Recomputed(result, inputs.constants)
 
     def parts(formula: str) -> frozenset:
-        resolver = _Resolver(value_of, inputs.book.defined_names, "Cases")
+        resolver = RecomputedResolver(value_of, inputs.book.defined_names, "Cases",
+                                      inputs.is_formula)
         found = set()
         for name, ref in NAMES.items():  # the parts evaluated alone: names as their ranges
             formula = re.sub(rf"(?<![\w!$.]){name}(?![\w(])", ref, formula)

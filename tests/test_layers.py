@@ -118,3 +118,115 @@ def test_no_import_runs_up_the_layers():
 
 def test_the_cycle_finder_finds_a_cycle():
     assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
+
+
+# -- private names stay in their package ------------------------------------------------------
+
+TREES = [ROOT, ROOT.parent / "bench", ROOT.parent / "scripts"]
+
+
+def _private(name: str) -> bool:
+    return name.startswith("_") and not name.startswith("__")
+
+
+def _dotted(path: Path, top: Path = ROOT.parent) -> tuple[str, str]:
+    """(the module's dotted name, its package's): ``workbook_gen.auditor.pipeline`` is in
+    ``workbook_gen.auditor``, a package's ``__init__`` in the package itself; a script of
+    bench/ or scripts/ in ``bench`` or ``scripts``."""
+    parts = list(path.relative_to(top).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+        return ".".join(parts), ".".join(parts)
+    return ".".join(parts), ".".join(parts[:-1])
+
+
+def _modules() -> dict[str, Path]:
+    return {_dotted(p)[0]: p for tree in TREES for p in sorted(tree.rglob("*.py"))}
+
+
+def _package_of(module: str, modules: dict[str, Path]) -> str:
+    return _dotted(modules[module])[1] if module in modules else module.rpartition(".")[0]
+
+
+def _private_uses(path: Path, modules: dict[str, Path], top: Path = ROOT.parent
+                  ) -> list[tuple[str, str, str]]:
+    """(importer's package, imported module, private name) of every private name ``path``
+    takes from another module: ``from m import _x``, ``from pkg import _module`` and
+    ``m._x`` on a module ``m`` it imported."""
+    name, package = _dotted(path, top)
+    found, aliases = [], {}  # alias -> the module it names
+    tree = ast.parse(path.read_text())
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = (name if path.name == "__init__.py" else package).split(".")
+                base = base[:len(base) - node.level + 1]
+                target = ".".join(base + ([node.module] if node.module else []))
+            else:
+                target = node.module or ""
+            for alias in node.names:
+                sub = f"{target}.{alias.name}"
+                if sub in modules:  # a module of a package
+                    aliases[alias.asname or alias.name] = sub
+                    if _private(alias.name):
+                        found.append((package, target, alias.name))
+                elif target in modules and _private(alias.name):
+                    found.append((package, target, alias.name))
+        elif isinstance(node, ast.Import):
+            for alias in node.names:
+                if alias.name in modules:
+                    aliases[alias.asname or alias.name] = alias.name
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Attribute) and _private(node.attr):
+            module = aliases.get(_dotted_name(node.value))
+            if module is not None:
+                found.append((package, module, node.attr))
+    return found
+
+
+def _dotted_name(node: ast.AST) -> str | None:
+    """``a.b.c`` of a chain of attributes on a name, else None."""
+    if isinstance(node, ast.Name):
+        return node.id
+    if isinstance(node, ast.Attribute):
+        base = _dotted_name(node.value)
+        return None if base is None else f"{base}.{node.attr}"
+    return None
+
+
+def _private_imports() -> tuple[list[str], list[str]]:
+    """(uses across packages, uses within a package) of private names, as
+    ``importer package: module._name``."""
+    modules = _modules()
+    across, within = set(), set()
+    for path in modules.values():
+        for package, target, private in _private_uses(path, modules):
+            where = f"{path.relative_to(ROOT.parent)}: {target}.{private}"
+            (within if _package_of(target, modules) == package else across).add(where)
+    return sorted(across), sorted(within)
+
+
+def test_no_private_name_taken_from_another_package():
+    across, _ = _private_imports()
+    assert across == []
+
+
+def test_the_private_name_finder_finds_one(tmp_path):
+    root = tmp_path / "workbook_gen"
+    (root / "a").mkdir(parents=True)
+    (root / "b").mkdir()
+    for part in ("__init__.py", "a/__init__.py", "b/__init__.py", "b/inner.py"):
+        (root / part).write_text("")
+    (root / "a" / "m.py").write_text(
+        "from workbook_gen.b.inner import _hidden, shown\n"
+        "from ..b import inner\nfrom . import n\nfrom .n import _mine\n"
+        "import workbook_gen.b.inner\n"
+        "x = inner._other + n._same + workbook_gen.b.inner._dotted\n")
+    (root / "a" / "n.py").write_text("")
+    modules = {_dotted(p, tmp_path)[0]: p for p in root.rglob("*.py")}
+    uses = _private_uses(root / "a" / "m.py", modules, tmp_path)
+    assert sorted(uses) == [("workbook_gen.a", "workbook_gen.a.n", "_mine"),
+                            ("workbook_gen.a", "workbook_gen.a.n", "_same"),
+                            ("workbook_gen.a", "workbook_gen.b.inner", "_dotted"),
+                            ("workbook_gen.a", "workbook_gen.b.inner", "_hidden"),
+                            ("workbook_gen.a", "workbook_gen.b.inner", "_other")]

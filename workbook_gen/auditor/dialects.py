@@ -12,42 +12,12 @@ import numpy as np
 
 from ..errors import FormulaSyntaxError
 from ..formula import parse
-from ..formula.parser import parse_name
 from ..formula.functions import Unanswered as fx_unanswered
 from ..formula.scalar import evaluate as evaluate_scalar
-from ..xlerror import ExcelError
 from .compare import compare
 from .inputs import AuditInputs
+from .recomputed import RecomputedResolver
 from .report import EngineResult, Mismatch
-
-
-class _Resolver:
-    """The scalar evaluator's view of the recomputed workbook (for re-evaluating a cell
-    with LibreOffice's semantics)."""
-
-    def __init__(self, value_of, names: dict[str, str], sheet: str, clip=None):
-        self.value_of, self.names, self.sheet = value_of, names, sheet
-        self.clip = clip
-        self._upper = {k.upper(): v for k, v in names.items()}
-
-    def cell(self, sheet, row, col):
-        return self.value_of(sheet or self.sheet, row, col)
-
-    def range(self, sheet, row1, col1, row2, col2):
-        if self.clip is not None:  # A:A is read up to the used range only
-            row1, col1, row2, col2 = self.clip(sheet or self.sheet, row1, col1, row2, col2)
-        return [[self.cell(sheet, r, c) for c in range(col1, col2 + 1)]
-                for r in range(row1, row2 + 1)]
-
-    def name(self, name, sheet):
-        text = self._upper.get(name.upper())
-        if text is None:
-            return ExcelError.NAME
-        try:
-            node = parse_name(text)
-        except FormulaSyntaxError:
-            return ExcelError.NAME
-        return evaluate_scalar(node, self)
 
 
 def libreoffice_explains(inputs: AuditInputs, key, value_of, cached) -> bool:
@@ -57,9 +27,7 @@ def libreoffice_explains(inputs: AuditInputs, key, value_of, cached) -> bool:
         node = parse(inputs.text_of(key).removeprefix("{=").removesuffix("}"))
     except FormulaSyntaxError:
         return False
-    resolver = _Resolver(value_of, inputs.book.defined_names, key[0],
-                         getattr(value_of, "clip", None))
-    resolver.has_formula = lambda sheet, row, col: inputs.is_formula((sheet or key[0], row, col))
+    resolver = RecomputedResolver(value_of, inputs.book.defined_names, key[0], inputs.is_formula)
     try:
         with np.errstate(all="ignore"):  # overflow is #NUM! there too (engine._floats_quiet)
             value = evaluate_scalar(node, resolver, dialect="libreoffice")

@@ -61,7 +61,7 @@ class Grid:
         self.cached = inputs.cached
         self.constants = inputs.constants
         # cells an array formula fills (its master included): compared with nothing
-        self.array = set(inputs.array_cells) | set(getattr(inputs, "array_master", ()))
+        self.array = set(inputs.array_cells) | set(inputs.array_master)
         self.sheets = {s.lower(): s for s in inputs.book.sheet_names}
         self.runs = [r for r in runs if (r.sheet, r.first, r.col) in self.formulas]
         self.key_of_run = [to_relative(run.node, run.first, run.col) for run in self.runs]

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 
-from ..cellref import cell_name as _cell_name, column_letters
+from ..cellref import cell_name, column_letters
 from ..errors import FormulaSyntaxError, WorkbookGenError, WorkbookReadError
 from ..evaluator import evaluate_cells
 from ..evaluator.keys import column_groups, pick
@@ -25,11 +25,12 @@ from ..forked import Forked
 import numpy as np
 
 from .caught import caught
-from .dialects import against_libreoffice, libreoffice_explains as _libreoffice_explains
+from .dialects import against_libreoffice, libreoffice_explains
 from .compare import ColumnStats, compare, compare_numbers
 from .findings import find as find_findings
 from .inputs import AuditInputs, read_inputs
 from .mechanics import check_mechanics, noise_trees
+from .recomputed import Recomputed
 from .report import AuditReport, EngineResult, Mismatch
 from .saved import last_saved
 from .sources import Stale, arrays_once, rectangles, settle
@@ -160,7 +161,6 @@ def _audit(path, engine, vectorize, progress, max_cells=None) -> AuditReport:
         raise
     timings["evaluate_all"] = time.perf_counter() - t
 
-    values, constants = evaluation.values, inputs.constants
     local = aside.result()
     timings["evaluate_all"] = time.perf_counter() - t
     # "parse": cutting the columns into runs equal in R1C1 form (the formula text analysis);
@@ -170,11 +170,7 @@ def _audit(path, engine, vectorize, progress, max_cells=None) -> AuditReport:
     timings["evaluate"] = sum(p.get(k, 0.0) for p in phases for k in ("graph", "vector", "scalar"))
     step("evaluate")
 
-    def value_of(sheet: str, row: int, col: int):
-        key = (sheet, row, col)
-        return values[key] if key in values else constants.get(key)
-    value_of.clip = lambda sheet, *rect: evaluation.store.clip(evaluation.store.sheet(sheet),
-                                                               *rect)
+    value_of = Recomputed(evaluation, inputs.constants)
 
     # the reference model's check and the findings on the other core while this one
     # compares (their times their own, spent alongside); is_formula would make the
@@ -183,7 +179,7 @@ def _audit(path, engine, vectorize, progress, max_cells=None) -> AuditReport:
                         lambda k: k in inputs.formulas or k in inputs.broken
                         or k in inputs.array_master)
     aside = Forked(_beside_compare, inputs, evaluation.runs, value_of,
-                   evaluation.store.column_values, trees)
+                   evaluation.column_values, trees)
     try:
         absent = absent_values(inputs.cached)
         without = bool(absent) and len(absent) == len(inputs.cached)  # none has a value
@@ -194,8 +190,8 @@ def _audit(path, engine, vectorize, progress, max_cells=None) -> AuditReport:
         mismatches, columns, counts, skipped, explained, max_abs, max_rel = _compare(
             inputs, evaluation, local, semantics, value_of, timings, absent)
         step("compare")
-        findings = check_structure(inputs, evaluation, _cell_name)
-        findings += no_cached_findings(inputs, absent, _cell_name)
+        findings = check_structure(inputs, evaluation, cell_name)
+        findings += no_cached_findings(inputs, absent, cell_name)
         (mechanics, timings["reference"]), (seen, timings["findings"]) = aside.result()
         findings += seen
     except BaseException:
@@ -207,7 +203,7 @@ def _audit(path, engine, vectorize, progress, max_cells=None) -> AuditReport:
                              evaluation.not_checked) if engine else None)
     if engine:
         step("engine")
-    not_checked = {_cell_name(k): reason for k, reason in sorted(skipped.items())
+    not_checked = {cell_name(k): reason for k, reason in sorted(skipped.items())
                    if inputs.is_formula(k)}
     return AuditReport(
         path=str(path), formula_cells=inputs.formula_count, cells_checked=counts.checked,
@@ -216,7 +212,7 @@ def _audit(path, engine, vectorize, progress, max_cells=None) -> AuditReport:
         libreoffice_semantics=explained, vector_cells=evaluation.groups.vector_cells,
         seconds=time.perf_counter() - started, engine=engine_result, timings=timings,
         macros=inputs.book.vba_project, semantics=semantics,
-        by_contract={_cell_name(k): o.message for k, o in sorted(evaluation.contract.items())
+        by_contract={cell_name(k): o.message for k, o in sorted(evaluation.contract.items())
                      if o.status != "disagrees"},
         application=inputs.book.application, counts=counts,
         saved_without_values=without)
@@ -248,7 +244,7 @@ def _beside_compare(inputs: AuditInputs, runs, value_of, column_of, trees):
     """((the reference check, seconds), (the findings, seconds)), while the cells are
     compared."""
     return (_timed(check_mechanics, inputs.book, value_of, column_of, trees),
-            _timed(find_findings, inputs, runs, _cell_name))
+            _timed(find_findings, inputs, runs, cell_name))
 
 
 def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, timings,
@@ -275,27 +271,25 @@ def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, t
     if aggregates:
         fast_all &= ~np.fromiter(map(aggregates.__contains__, keys), bool, len(keys))
     done = np.zeros(len(keys), bool)
-    store = evaluation.store
     for sheet, col, idx in groups:
         stats = columns[(sheet, col)] = ColumnStats(sheet, column_letters(col))
         fast = idx[fast_all[idx]]
         if len(fast):
-            column = store.cols[(sheet, col)]
-            rows = all_rows[fast]
             cached = np.array(pick(cached_values, fast), float)
-            plain = ~column.irr[rows] & (column.err[rows] == 0)
+            plain, recomputed, scale = evaluation.numbers(sheet, col, all_rows[fast])
             if not plain.all():
-                fast, rows, cached = fast[plain], rows[plain], cached[plain]
+                fast, cached = fast[plain], cached[plain]
+                recomputed, scale = recomputed[plain], scale[plain]
             done[fast] = True
-            agree, diff, rel = compare_numbers(cached, column.val[rows], column.scale[rows])
+            agree, diff, rel = compare_numbers(cached, recomputed, scale)
             stats.add_many(lambda i: inputs.ref(keys[fast[i]]), agree, rel)
             if agree.any():
                 max_abs = max(max_abs, float(diff[agree].max()))
                 max_rel = max(max_rel, float(rel[agree].max()))
             for i in np.flatnonzero(~agree):
                 k = keys[fast[i]]
-                mismatches.append(Mismatch(_cell_name(k), inputs.text_of(k), inputs.cached[k],
-                                           float(column.val[rows[i]]), float(diff[i]), key=k))
+                mismatches.append(Mismatch(cell_name(k), inputs.text_of(k), inputs.cached[k],
+                                           float(recomputed[i]), float(diff[i]), key=k))
         for key in pick(keys, idx[~done[idx]]):
             cached = inputs.cached[key]
             source = local if key in local.values else evaluation
@@ -303,12 +297,12 @@ def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, t
             if semantics == "libreoffice":  # no boolean type there: TRUE is stored as 1
                 cached, recomputed = _number_if_bool(cached), _number_if_bool(recomputed)
             verdict = compare(cached, recomputed, source.operands_scale.get(key, 0.0))
-            if not verdict.agree and _libreoffice_explains(inputs, key, value_of, cached):
+            if not verdict.agree and libreoffice_explains(inputs, key, value_of, cached):
                 explained += 1
                 continue
             stats.add(inputs.ref(key), verdict)
             if not verdict.agree:
-                mismatches.append(Mismatch(_cell_name(key), inputs.text_of(key), cached,
+                mismatches.append(Mismatch(cell_name(key), inputs.text_of(key), cached,
                                            recomputed, verdict.abs_error, key=key))
             else:
                 max_abs = max(max_abs, verdict.abs_error)
@@ -318,7 +312,7 @@ def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, t
     contract_ok = []
     for key, outcome in evaluation.contract.items():
         if outcome.status == "disagrees":
-            mismatches.append(Mismatch(_cell_name(key), inputs.text_of(key), inputs.cached[key],
+            mismatches.append(Mismatch(cell_name(key), inputs.text_of(key), inputs.cached[key],
                                        outcome.contract, key=key))
         else:
             contract_ok.append(key)
@@ -331,7 +325,7 @@ def _compare(inputs: AuditInputs, evaluation, local, semantics: str, value_of, t
         if not compare(cached, values[k], evaluation.operands_scale[k]).agree:
             stale[k] = Stale(inputs.text_of(k), cached, values[k])
     disagreeing = [m.key for m in mismatches]
-    mismatches = settle(inputs, arrays_once(inputs, mismatches, _cell_name), stale, _cell_name)
+    mismatches = settle(inputs, arrays_once(inputs, mismatches, cell_name), stale, cell_name)
     disagreeing += [m.key for m in mismatches if m.stale]
     not_checked = dict(skipped)
     not_checked.update(inputs.opaque)
@@ -357,4 +351,4 @@ def _engine(path, engine: str, inputs: AuditInputs, value_of, scales,
     local = _local_evaluation(inputs, seen, dialect="libreoffice",
                               saved=Clock({}, last_saved(path), _agree))
     return against_libreoffice(inputs, theirs, local, value_of, scales, scales_skip, started,
-                               _cell_name)
+                               cell_name)

@@ -46,9 +46,9 @@ def check_structure(inputs, evaluation, cell_name) -> list[Finding]:
                                     "(no relationship): its cells cannot be read, and the "
                                     "cells that read it are not checked"))
     for link in book.external_links:
-        findings.append(Finding(str(getattr(link, "part", link)), "external_link",
-                                f"the workbook links to {getattr(link, 'target', link)}"))
-    iterate = getattr(book, "iterate", False)
+        findings.append(Finding(link.part, "external_link",
+                                f"the workbook links to {link.target}"))
+    iterate = book.iterate
     for cycle in evaluation.cycles:
         path = " -> ".join(cell_name(k) for k in cycle[:8])
         more = f" (and {len(cycle) - 8} more)" if len(cycle) > 8 else ""

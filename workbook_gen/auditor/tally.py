@@ -62,19 +62,19 @@ def tally(inputs, compared, disagreeing, not_checked, contract_ok, disagreements
 
     fold = {**inputs.array_master, **tables} if tables else inputs.array_master
 
-    def unit(key):  # a cell of an array's area without an <f> counts with its anchor
+    def counted_as(key):  # a cell of an array's area without an <f> counts with its anchor
         return key if counts(key) else fold.get(key)
 
     skipped = {k for k in not_checked if counts(k)}
-    disagree = {unit(k) for k in disagreeing} - {None} - skipped
+    disagree = {counted_as(k) for k in disagreeing} - {None} - skipped
     # (an array of draws, RANDARRAY, some cells of which break the contract: disagrees)
     by_contract = {k for k in contract_ok if counts(k)} - skipped - disagree
-    units = set(compared)
+    counted = set(compared)
     if fold:
-        folded = [k for k in fold if k in units and not counts(k)]
-        units.difference_update(folded)
-        units.update(fold[k] for k in folded)
-    agree = len(units) - len(units.intersection(disagree | skipped | by_contract))
+        folded = [k for k in fold if k in counted and not counts(k)]
+        counted.difference_update(folded)
+        counted.update(fold[k] for k in folded)
+    agree = len(counted) - len(counted.intersection(disagree | skipped | by_contract))
     return Tally(agree, len(disagree), len(skipped), len(by_contract), disagreements)
 
 

@@ -161,7 +161,7 @@ def recalculate(src: Path | str, out_dir: Path | str, *, timeout: float = 300) -
     return target
 
 
-def _cell_value(value: object, data_type: str, epoch=None) -> object:
+def cell_value(value: object, data_type: str, epoch=None) -> object:
     """A recalculated formula cell's value in the evaluator's types (openpyxl reads a
     number in a date or time format as a datetime: back to the serial number)."""
     if data_type == "e":
@@ -214,7 +214,7 @@ def read_formula_values(path: Path | str) -> dict[str, dict[str, object]]:
     formulas = _formula_cells(path)
     wb = openpyxl.load_workbook(path, read_only=True, data_only=True)
     # numbers stay numbers: openpyxl would read one in a date format as a datetime (and
-    # a serial past 9999-12-31 as an error); _cell_value converts back if it still does
+    # a serial past 9999-12-31 as an error); cell_value converts back if it still does
     wb._date_formats, wb._timedelta_formats = set(), set()
     try:
         result: dict[str, dict[str, object]] = {}
@@ -228,7 +228,7 @@ def read_formula_values(path: Path | str) -> dict[str, dict[str, object]]:
                 for cell in row:
                     coord = getattr(cell, "coordinate", None)
                     if coord in wanted:
-                        values[coord] = _cell_value(cell.value, cell.data_type, wb.epoch)
+                        values[coord] = cell_value(cell.value, cell.data_type, wb.epoch)
             for coord in wanted - values.keys():
                 values[coord] = None
         return result

@@ -8,10 +8,9 @@ rest goes cell by cell through the scalar reference evaluator (``formula.scalar`
 whose semantics the vector path reproduces exactly.
 """
 
-from workbook_gen.evaluator.engine import (
-    CYCLE_VALUE, VOLATILE, CellMap, Evaluation, GroupStats, evaluate_cells,
-)
-from workbook_gen.evaluator.units import cell_scale
+from workbook_gen.evaluator.engine import CYCLE_VALUE, VOLATILE, evaluate_cells
+from workbook_gen.evaluator.evaluation import CellMap, Evaluation, GroupStats
+from workbook_gen.evaluator.tasks import cell_scale
 from workbook_gen.evaluator.grouping import expand_shared
 
 __all__ = ["CYCLE_VALUE", "VOLATILE", "CellMap", "Evaluation", "GroupStats", "cell_scale",

@@ -24,8 +24,8 @@ nothing, twice, from two placeholders that no formula can confuse (an error and 
 number); identical results are exact (a value computed from cells that are themselves
 final is final).
 
-Otherwise ``run`` reproduces Excel: the component's units are evaluated on demand (a read of a cell of
-the component evaluates its unit first), a read of a cell whose unit is under way gives
+Otherwise ``run`` reproduces Excel: the component's tasks are evaluated on demand (a read of a cell of
+the component evaluates its task first), a read of a cell whose task is under way gives
 :data:`CIRCULAR`, and the cells actually read are recorded. The strongly connected parts
 of that run-time graph are the cells on a cycle: they are fixed to :data:`CIRCULAR` and the
 component is evaluated again, until no new cycle shows (a pass with no cycle has read no
@@ -56,7 +56,7 @@ def shown(dialect: str):
 
 class _OnDemand:
     """The store as a formula of the component sees it: each read of a component cell
-    first evaluates that cell's unit (or notes the circular reference)."""
+    first evaluates that cell's task (or notes the circular reference)."""
 
     def __init__(self, store, run: "_Run"):
         self._store, self._run = store, run
@@ -88,13 +88,13 @@ class _OnDemand:
 class _Run:
     """One on-demand pass over a component, with the cells in ``fixed`` held circular."""
 
-    def __init__(self, units, cells_of, store, evaluate, fixed: set):
-        self.units, self.store, self.evaluate, self.fixed = units, store, evaluate, fixed
-        self.cells = [list(cells_of(u)) for u in units]
+    def __init__(self, tasks, cells_of, store, evaluate, fixed: set):
+        self.tasks, self.store, self.evaluate, self.fixed = tasks, store, evaluate, fixed
+        self.cells = [list(cells_of(u)) for u in tasks]
         self.owner = {c: i for i, cs in enumerate(self.cells) for c in cs}
-        self.state: dict[int, bool] = {}    # unit -> done (False: under way)
+        self.state: dict[int, bool] = {}    # task -> done (False: under way)
         self.stack: list[int] = []
-        self.reads: list[set] = [set() for _ in units]
+        self.reads: list[set] = [set() for _ in tasks]
         self.view = _OnDemand(store, self)
 
     def need_cell(self, cell) -> None:
@@ -118,7 +118,7 @@ class _Run:
         self.store.forget_rects()
         self.stack.append(u)
         try:
-            self.evaluate(self.units[u], self.view)
+            self.evaluate(self.tasks[u], self.view)
         finally:
             self.stack.pop()
         for cell in self.cells[u]:
@@ -130,7 +130,7 @@ class _Run:
     def all(self) -> None:
         for cell in self.fixed:
             self.store.put(*cell, CIRCULAR)
-        for u in range(len(self.units)):
+        for u in range(len(self.tasks)):
             if u not in self.state and not all(c in self.fixed for c in self.cells[u]):
                 self.compute(u)
 
@@ -141,20 +141,20 @@ class _Run:
                 if c not in self.fixed}
 
 
-def settle(units: Sequence, cells_of: Callable, get: Callable, put: Callable,
+def settle(tasks: Sequence, cells_of: Callable, get: Callable, put: Callable,
            evaluate: Callable) -> bool:
-    """Evaluate a cyclic component's ``units`` (``evaluate(unit)``) until they settle;
+    """Evaluate a cyclic component's ``tasks`` (``evaluate(task)``) until they settle;
     True when the values do not depend on the placeholders (the store holds them), False
     when they do (the store holds the last round's values: ``run`` overwrites them)."""
-    cells = [c for u in units for c in cells_of(u)]
+    cells = [c for u in tasks for c in cells_of(u)]
     runs = []
     for placeholder in PLACEHOLDERS:
         for cell in cells:
             put(cell, placeholder)
-        for _ in range(len(units) + 1):
+        for _ in range(len(tasks) + 1):
             before = [get(c) for c in cells]
-            for unit in units:
-                evaluate(unit)
+            for task in tasks:
+                evaluate(task)
             after = [get(c) for c in cells]
             if _same(before, after):
                 break
@@ -169,8 +169,8 @@ def _same(a: list, b: list) -> bool:
         x is y or (type(x) is type(y) and x == y) for x, y in zip(a, b))
 
 
-def run(units: Sequence, cells_of: Callable, store, evaluate: Callable) -> list[list]:
-    """Evaluate a cyclic component's ``units`` (``evaluate(unit, store_view)``) as Excel
+def run(tasks: Sequence, cells_of: Callable, store, evaluate: Callable) -> list[list]:
+    """Evaluate a cyclic component's ``tasks`` (``evaluate(task, store_view)``) as Excel
     does; the store ends with every value (cells on a cycle hold :data:`CIRCULAR`).
     Returns the run-time cycles, each a sorted list of cells (none: the values do not
     take the static cycle). RecursionError when the chain of reads is too deep."""
@@ -180,7 +180,7 @@ def run(units: Sequence, cells_of: Callable, store, evaluate: Callable) -> list[
     sys.setrecursionlimit(max(limit, _RECURSION))
     try:
         while True:
-            one = _Run(units, cells_of, store, evaluate, fixed)
+            one = _Run(tasks, cells_of, store, evaluate, fixed)
             one.all()
             new = [part for part in _strong_parts(one.graph()) if not fixed.intersection(part)]
             if not new:

@@ -41,7 +41,6 @@ import logging
 import re
 import time
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
 from operator import itemgetter
 
 import numpy as np
@@ -49,12 +48,13 @@ import numpy as np
 from workbook_gen.errors import FormulaSyntaxError
 from workbook_gen.evaluator import calls, cycles, graph, volatile as vol, whatif
 from workbook_gen.evaluator.book import BookInfo, resolve, resolve_fixed, without_missing_sheets
+from workbook_gen.evaluator.evaluation import Cell, CellMap, Evaluation
 from workbook_gen.evaluator.external import ExternalBooks
 from workbook_gen.evaluator.relnames import NameInliner
 from workbook_gen.evaluator.taint import Taint
 from workbook_gen.evaluator.grouping import Grouped, Run, group_formulas
 from workbook_gen.evaluator.store import Names, SheetResolver, Store, value_scale
-from workbook_gen.evaluator.units import (Unit, evaluate_unit, reads_only_above, rects,
+from workbook_gen.evaluator.tasks import (Task, evaluate_task, reads_only_above, rects,
                                           shapes_of, singles)
 from workbook_gen.evaluator.vector import NotVectorizable, compile_block
 from workbook_gen.formula import ast
@@ -66,7 +66,6 @@ from workbook_gen.xlerror import ExcelError
 
 log = logging.getLogger(__name__)
 
-Cell = tuple[str, int, int]
 VOLATILE = fx.VOLATILE | {"NOW", "TODAY", "RAND", "RANDBETWEEN", "RANDARRAY", "OFFSET",
                           "INDIRECT"}
 # volatile and not reproducible: the cached value is from another moment or another draw
@@ -75,66 +74,6 @@ CYCLE_VALUE = ExcelError.REF
 SYNTAX_VALUE = ExcelError.NAME
 EXTERNAL_VALUE = ExcelError.REF
 _EXTERNAL = re.compile(r"\[[^\]]*\][^!]*!")
-
-
-@dataclass
-class GroupStats:
-    vector_groups: int = 0    # runs evaluated as arrays
-    vector_cells: int = 0     # formula cells in those runs
-    scalar_cells: int = 0     # formula cells evaluated one by one
-
-
-class CellMap(Mapping):
-    """Read-only {(sheet, row, col): value} over the formula cells, backed by the store."""
-
-    def __init__(self, keys: Mapping, getter):
-        self._keys, self._get = keys, getter
-
-    def __getitem__(self, key):
-        if key not in self._keys:
-            raise KeyError(key)
-        return self._get(*key)
-
-    def __contains__(self, key):  # without reading the value (Mapping's would)
-        return key in self._keys
-
-    @property
-    def keyset(self):
-        """The keys, for membership tests without a Python call each."""
-        return self._keys
-
-    def __iter__(self):
-        return iter(self._keys)
-
-    def __len__(self):
-        return len(self._keys)
-
-
-@dataclass
-class Evaluation:
-    values: Mapping[Cell, object]
-    operands_scale: Mapping[Cell, float]
-    cycles: list[list[Cell]] = field(default_factory=list)
-    unsupported: dict[Cell, list[str]] = field(default_factory=dict)
-    # cells among ``unsupported`` whose evaluation took no branch calling one, or that
-    # call only unknown names (``unknown``) and cache #NAME? (the value of an unknown
-    # name; an add-in's or a macro's function would give another): recomputed
-    avoided: set[Cell] = field(default_factory=set)
-    unknown: dict[Cell, str] = field(default_factory=dict)  # calling only names Excel
-    # lacks: the reason they are not checked
-    syntax_errors: dict[Cell, str] = field(default_factory=dict)
-    volatile: dict[Cell, list[str]] = field(default_factory=dict)
-    external: list[Cell] = field(default_factory=list)
-    # every cell that cannot be recomputed or reads one: (sheet, row, col) -> reason
-    not_checked: dict[Cell, str] = field(default_factory=dict)
-    bad_names: dict[str, str] = field(default_factory=dict)  # name -> why it does not parse
-    # cells calling TODAY/NOW/RAND/RANDBETWEEN checked against the function's contract
-    # (agreeing or not); those it could not settle are in not_checked
-    contract: dict[Cell, vol.Outcome] = field(default_factory=dict)
-    groups: GroupStats = field(default_factory=GroupStats)
-    seconds: dict[str, float] = field(default_factory=dict)  # grouping, graph, vector, scalar
-    store: Store | None = None  # the values column by column, for array-wise comparison
-    runs: list = field(default_factory=list)  # (sheet, col, first, last, tree) of every formula
 
 
 def _floats_quiet(fn):
@@ -240,83 +179,83 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
             store.put(*cell, SYNTAX_VALUE)
             _source(result, taint, cell, cell, f"formula syntax: {message}")
     known = {s.lower() for s in [*book.sheets, *store.all_sheets]} if book.sheets else set()
-    units = _units(runs, vectorize, store, result, known, dialect)
-    units += _array_units(arrays or {}, book, result, taint, store, inliner, known, dialect)
-    _report_functions(units, result, name_table, dialect, stored)
+    tasks = _tasks(runs, vectorize, store, result, known, dialect)
+    tasks += _array_tasks(arrays or {}, book, result, taint, store, inliner, known, dialect)
+    _report_functions(tasks, result, name_table, dialect, stored)
     taint.flush()
 
     result.seconds["grouping"] = time.perf_counter() - clock
     clock = time.perf_counter()
     deps = []
     while True:
-        shapes = [shapes_of(u, store, name_table) for u in units]
-        inputs = [rects(u, s) for u, s in zip(units, shapes)]
+        shapes = [shapes_of(u, store, name_table) for u in tasks]
+        inputs = [rects(u, s) for u, s in zip(tasks, shapes)]
         deps = graph.build([(u.sheet, u.col, u.first, u.area[0] if u.area else u.last)
-                            for u in units], inputs,
-                           [(i, u.sheet, c, u.first, u.area[0]) for i, u in enumerate(units)
+                            for u in tasks], inputs,
+                           [(i, u.sheet, c, u.first, u.area[0]) for i, u in enumerate(tasks)
                             if u.area for c in range(u.col + 1, u.area[1] + 1)])
         components = graph.order(deps)
         cyclic = [c for c in components if graph.is_cycle(c, deps)]
         chains = set()  # a run reading its own rows above (=A1+1 filled down): in order
         for c in cyclic:
-            if (len(c) == 1 and units[c[0]].sequential
-                    and reads_only_above(units[c[0]], shapes[c[0]][0])):
+            if (len(c) == 1 and tasks[c[0]].sequential
+                    and reads_only_above(tasks[c[0]], shapes[c[0]][0])):
                 chains.add(c[0])
                 deps[c[0]] = [d for d in deps[c[0]] if d != c[0]]
         split = {u for c in cyclic for u in c if u not in chains
-                 and (units[u].block is not None or units[u].sequential)}
+                 and (tasks[u].block is not None or tasks[u].sequential)}
         if not split:
             break
-        units = [s for i, u in enumerate(units)
+        tasks = [s for i, u in enumerate(tasks)
                  for s in (singles(u) if i in split else [u])]
 
     result.seconds["graph"] = time.perf_counter() - clock
     if saved is not None and result.volatile:  # the moment of the last recalculation
-        vol.moments((((u.sheet, u.first, u.col), u.node) for u in units
+        vol.moments((((u.sheet, u.first, u.col), u.node) for u in tasks
                      if u.first == u.last and u.area in (None, (u.first, u.col))),
                     saved.cached, saved)
     spent = {"vector": 0.0, "scalar": 0.0}
     for component in components:
         if graph.is_cycle(component, deps):
-            _cycle([units[u] for u in component], [shapes[u] for u in component], taint,
+            _cycle([tasks[u] for u in component], [shapes[u] for u in component], taint,
                    result, store, name_table, dialect, iterate)
             taint.flush()
             continue
         for u in component:
-            head = (units[u].sheet, units[u].first, units[u].col)
-            by_contract = (saved is not None and (units[u].area in (None, head[1:])
-                                                  or vol.draws_array(units[u].node))
+            head = (tasks[u].sheet, tasks[u].first, tasks[u].col)
+            by_contract = (saved is not None and (tasks[u].area in (None, head[1:])
+                                                  or vol.draws_array(tasks[u].node))
                            and saved.cached.get(head) is not None
                            and _changing(result, head))
             if head in result.unsupported and not by_contract:
                 if (head in result.unknown and saved is not None
                         and saved.cached.get(head) is ExcelError.NAME):
                     result.avoided.add(head)
-                elif (units[u].block is None and units[u].area is None
-                      and calls.guarded(units[u].node)
-                      and calls.avoids(units[u].node, head, store, name_table, dialect)):
+                elif (tasks[u].block is None and tasks[u].area is None
+                      and calls.guarded(tasks[u].node)
+                      and calls.avoids(tasks[u].node, head, store, name_table, dialect)):
                     result.avoided.add(head)  # its branch without them: recomputed
             if taint or shapes[u][1] or head in result.unsupported or head in result.volatile:
-                _spread(units[u], shapes[u], taint, result, by_contract)
+                _spread(tasks[u], shapes[u], taint, result, by_contract)
             if by_contract:
-                _settle(units[u], store, name_table, dialect, saved, result)
+                _settle(tasks[u], store, name_table, dialect, saved, result)
                 taint.flush()
                 continue
             clock = time.perf_counter()
             try:
-                evaluate_unit(units[u], store, name_table, dialect)
+                evaluate_task(tasks[u], store, name_table, dialect)
             except fx.Unanswered as exc:  # read from a cache the file keeps, which lacks it
-                for cell in units[u].cells():
+                for cell in tasks[u].cells():
                     store.put(*cell, ExcelError.NA)
                     _source(result, taint, cell, cell, str(exc))
             except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
                     AttributeError, RecursionError) as exc:  # a defect must not lose the file
-                log.warning("evaluator failure at %s: %r", _where(units[u].cells()[0]), exc)
-                for cell in units[u].cells():
+                log.warning("evaluator failure at %s: %r", _where(tasks[u].cells()[0]), exc)
+                for cell in tasks[u].cells():
                     store.put(*cell, ExcelError.VALUE)
                     _source(result, taint, cell, cell,
                             f"evaluator failure: {type(exc).__name__}: {exc}")
-            spent["vector" if units[u].block is not None else "scalar"] += (
+            spent["vector" if tasks[u].block is not None else "scalar"] += (
                 time.perf_counter() - clock)
             taint.flush()
     result.seconds.update(spent)
@@ -325,7 +264,7 @@ def _evaluate_cells(formulas, constants, names, vectorize, uncheckable, dialect,
     whatif.put_tables(tables, store, name_table, dialect,
                       lambda k: resolve(parse(formulas[k]), book, *k), result.not_checked,
                       lambda cell, why: _source(result, taint, cell, cell, why))
-    for u in units:
+    for u in tasks:
         if u.block is not None:
             result.groups.vector_groups += 1
             result.groups.vector_cells += u.last - u.first + 1
@@ -376,15 +315,15 @@ def _cube(node: ast.Node) -> bool:
     return any(isinstance(n, ast.Func) and n.name in fx.CACHED_OUTSIDE for n in ast.walk(node))
 
 
-def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation,
-           sheets=(), dialect: str = "excel") -> list[Unit]:
+def _tasks(runs: list[Run], vectorize: bool, store: Store, result: Evaluation,
+           sheets=(), dialect: str = "excel") -> list[Task]:
     """``sheets``: the workbook's (lower case), a reference to another is an error."""
-    units = []
+    tasks = []
     for run in runs:
         outside = _external(run.node)
         if outside:
             result.external.extend((run.sheet, r, run.col) for r in range(run.first, run.last + 1))
-        unit = Unit(run.sheet, run.col, run.first, run.last,
+        task = Task(run.sheet, run.col, run.first, run.last,
                     without_missing_sheets(run.node, sheets, dialect))
         if run.last > run.first and (vol.calls(run.node) or calls.guarded(run.node)
                                      or (store.stored and calls.bare_future(run.node))
@@ -392,26 +331,26 @@ def _units(runs: list[Run], vectorize: bool, store: Store, result: Evaluation,
             # (a volatile contract, a branch that may avoid an unsupported call, a future
             # function without its prefix, a cell an outside cache may not answer: cell
             # by cell)
-            units.extend(singles(unit))
+            tasks.extend(singles(task))
             continue
         if vectorize and run.last > run.first:
             try:
-                unit.block = compile_block(unit.node, run.sheet, run.col, run.first,
+                task.block = compile_block(task.node, run.sheet, run.col, run.first,
                                            run.last, store.sheet)
             except NotVectorizable as exc:
                 log.debug("cell by cell: %s!%s%s..: %s", run.sheet, run.col, run.first, exc)
-        # a run not vectorised is evaluated row after row as one unit (a unit per cell,
+        # a run not vectorised is evaluated row after row as one task (a task per cell,
         # each with its tree, would cost ~1.5 KB a cell); split if in a cycle
-        unit.sequential = unit.block is None and run.last > run.first
-        units.append(unit)
-    return units
+        task.sequential = task.block is None and run.last > run.first
+        tasks.append(task)
+    return tasks
 
 
-def _array_units(arrays, book: BookInfo, result: Evaluation, taint: Taint,
+def _array_tasks(arrays, book: BookInfo, result: Evaluation, taint: Taint,
                  store: Store, inliner: NameInliner | None = None, sheets=(),
-                 dialect: str = "excel") -> list[Unit]:
-    """One unit per array formula, filling its rectangle."""
-    units = []
+                 dialect: str = "excel") -> list[Task]:
+    """One task per array formula, filling its rectangle."""
+    tasks = []
     for (sheet, row, col), (text, area) in arrays.items():
         try:
             node = parse(text)
@@ -426,14 +365,14 @@ def _array_units(arrays, book: BookInfo, result: Evaluation, taint: Taint,
                             f"formula syntax: {exc}")
             continue
         result.runs.append(Run(sheet, col, row, row, node))
-        units.append(Unit(sheet, col, row, row, without_missing_sheets(node, sheets, dialect),
+        tasks.append(Task(sheet, col, row, row, without_missing_sheets(node, sheets, dialect),
                           area=area))
-    return units
+    return tasks
 
 
-def _report_functions(units: list[Unit], result: Evaluation, names: Names,
+def _report_functions(tasks: list[Task], result: Evaluation, names: Names,
                       dialect: str, stored: bool) -> None:
-    for u in units:
+    for u in tasks:
         called = {n.name for n in ast.walk(u.node) if isinstance(n, ast.Func)}
         if not called:
             continue
@@ -472,10 +411,10 @@ def _changing(result: Evaluation, cell: Cell) -> list[str]:
     return [f for f in result.volatile.get(cell, ()) if f in CHANGING]
 
 
-def _unit_reason(unit: Unit, result: Evaluation, bad_names: list[str],
+def _task_reason(task: Task, result: Evaluation, bad_names: list[str],
                  by_contract: bool = False) -> str | None:
-    """Why a unit cannot be recomputed at all, or None."""
-    cell = (unit.sheet, unit.first, unit.col)
+    """Why a task cannot be recomputed at all, or None."""
+    cell = (task.sheet, task.first, task.col)
     if cell in result.unsupported and cell not in result.avoided:
         if cell in result.unknown:
             return result.unknown[cell]
@@ -492,34 +431,34 @@ def _unit_reason(unit: Unit, result: Evaluation, bad_names: list[str],
     return None
 
 
-def _spread(unit: Unit, shaped: tuple, taint: Taint, result: Evaluation,
+def _spread(task: Task, shaped: tuple, taint: Taint, result: Evaluation,
             by_contract: bool = False) -> None:
-    """Mark the unit's cells that cannot be recomputed or read a cell that cannot."""
+    """Mark the task's cells that cannot be recomputed or read a cell that cannot."""
     shapes, bad_names = shaped
-    reason = _unit_reason(unit, result, bad_names, by_contract)
+    reason = _task_reason(task, result, bad_names, by_contract)
     if reason is not None:
-        for cell in unit.cells():
+        for cell in task.cells():
             _source(result, taint, cell, cell, reason)
         return
-    n = unit.last - unit.first + 1
+    n = task.last - task.first + 1
     # a chain (a run reading its own column above each row): every later row may read
     # a row that cannot be recomputed
-    chain = unit.sequential and any(s.sheet == unit.sheet and s.col1 <= unit.col <= s.col2
+    chain = task.sequential and any(s.sheet == task.sheet and s.col1 <= task.col <= s.col2
                                     for s in shapes)
     for shape in shapes:
         for lo, hi, origin in taint.hits(shape, n):
             why = result.not_checked.get(origin, "")
             if chain:
                 hi = n - 1
-            cells = (unit.cells() if unit.area else
-                     [(unit.sheet, unit.first + i, unit.col) for i in range(lo, hi + 1)])
+            cells = (task.cells() if task.area else
+                     [(task.sheet, task.first + i, task.col) for i in range(lo, hi + 1)])
             for cell in cells:
                 if cell not in result.not_checked:
                     result.not_checked[cell] = f"depends on {_where(origin)}: {why}"
                     taint.mark(cell, origin)
 
 
-def _cycle(members: list[Unit], shaped: list, taint: Taint, result: Evaluation,
+def _cycle(members: list[Task], shaped: list, taint: Taint, result: Evaluation,
            store: Store, names: Names, dialect: str, iterate: bool) -> None:
     """A cyclic component of the reference graph, evaluated as Excel does with iteration
     off (:mod:`cycles`): the cells on a run-time cycle are reported and hold
@@ -531,14 +470,14 @@ def _cycle(members: list[Unit], shaped: list, taint: Taint, result: Evaluation,
     if len(cells) <= cycles.MAX_CELLS:
         try:
             simple = not any(m.area is not None or vol.calls(m.node) for m in members)
-            if simple and cycles.settle(members, Unit.cells, lambda c: store.get(*c),
+            if simple and cycles.settle(members, Task.cells, lambda c: store.get(*c),
                                         lambda c, v: store.put(*c, v),
-                                        lambda unit: _fresh(store) or evaluate_unit(
-                                            unit, store, names, dialect)):
+                                        lambda task: _fresh(store) or evaluate_task(
+                                            task, store, names, dialect)):
                 found = []
             else:
-                found = cycles.run(members, Unit.cells, store, lambda unit, view: evaluate_unit(
-                    unit, store, names, dialect, view=view))
+                found = cycles.run(members, Task.cells, store, lambda task, view: evaluate_task(
+                    task, store, names, dialect, view=view))
         except fx.Unanswered as exc:  # what the file does not cache: the component too
             log.info("not checked in a cycle at %s: %s", _where(cells[0]), exc)
         except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
@@ -557,10 +496,10 @@ def _cycle(members: list[Unit], shaped: list, taint: Taint, result: Evaluation,
                     hold=False)
         return
     result.cycles.extend(found)
-    for unit, shape in zip(members, shaped):
-        head = (unit.sheet, unit.first, unit.col)
+    for task, shape in zip(members, shaped):
+        head = (task.sheet, task.first, task.col)
         if taint or shape[1] or head in result.unsupported or head in result.volatile:
-            _spread(unit, shape, taint, result)
+            _spread(task, shape, taint, result)
     spoiled = next((c for c in cells if c in result.not_checked), None)
     if spoiled is not None:  # what reads what inside the component is not known: all of it
         why = result.not_checked[spoiled]
@@ -583,24 +522,24 @@ def _show_circular(store: Store, shown) -> None:
     store.forget_rects()
 
 
-def _settle_area(unit: Unit, store: Store, names: Names, dialect: str, clock: vol.Clock,
+def _settle_area(task: Task, store: Store, names: Names, dialect: str, clock: vol.Clock,
                  result: Evaluation) -> None:
     """An array formula that is just RANDARRAY: each cell's cached value checked against
     the call's contract (vol.check_array), and kept for the dependents to read."""
-    cell = (unit.sheet, unit.first, unit.col)
-    rows = [[clock.cached.get((unit.sheet, r, c)) for c in range(unit.col, unit.area[1] + 1)]
-            for r in range(unit.first, unit.area[0] + 1)]
-    resolver = SheetResolver(store, names, unit.sheet)
+    cell = (task.sheet, task.first, task.col)
+    rows = [[clock.cached.get((task.sheet, r, c)) for c in range(task.col, task.area[1] + 1)]
+            for r in range(task.first, task.area[0] + 1)]
+    resolver = SheetResolver(store, names, task.sheet)
     try:
-        outcomes = vol.check_array(unit.node, rows, lambda tree: evaluate(
+        outcomes = vol.check_array(task.node, rows, lambda tree: evaluate(
             tree, resolver, dialect=dialect, cell=cell))
     except (ArithmeticError, ValueError, TypeError, IndexError, KeyError,
             AttributeError, RecursionError) as exc:
         outcomes = None
         failure = vol.Outcome("unknown", f"evaluator failure: {type(exc).__name__}: {exc}")
-    for i, r in enumerate(range(unit.first, unit.area[0] + 1)):
-        for j, c in enumerate(range(unit.col, unit.area[1] + 1)):
-            key = (unit.sheet, r, c)
+    for i, r in enumerate(range(task.first, task.area[0] + 1)):
+        for j, c in enumerate(range(task.col, task.area[1] + 1)):
+            key = (task.sheet, r, c)
             if key not in result.not_checked:
                 outcome = failure if outcomes is None else outcomes[i][j]
                 if outcome.status == "unknown":
@@ -610,19 +549,19 @@ def _settle_area(unit: Unit, store: Store, names: Names, dialect: str, clock: vo
             store.put(*key, rows[i][j], value_scale(rows[i][j]))
 
 
-def _settle(unit: Unit, store: Store, names: Names, dialect: str, clock: vol.Clock,
+def _settle(task: Task, store: Store, names: Names, dialect: str, clock: vol.Clock,
             result: Evaluation) -> None:
     """A single cell calling TODAY/NOW/RAND/RANDBETWEEN: its cached value checked against
     the function's contract, and kept for its dependents to read."""
-    cell = (unit.sheet, unit.first, unit.col)
-    if unit.area not in (None, (unit.first, unit.col)):  # an area of draws (RANDARRAY)
-        _settle_area(unit, store, names, dialect, clock, result)
+    cell = (task.sheet, task.first, task.col)
+    if task.area not in (None, (task.first, task.col)):  # an area of draws (RANDARRAY)
+        _settle_area(task, store, names, dialect, clock, result)
         return
     cached = clock.cached[cell]
     if cell not in result.not_checked:  # not already a reader of a cell not checked
-        resolver = SheetResolver(store, names, unit.sheet)
+        resolver = SheetResolver(store, names, task.sheet)
         try:
-            outcome = vol.check(unit.node, cached, lambda tree: evaluate(
+            outcome = vol.check(task.node, cached, lambda tree: evaluate(
                 tree, resolver, dialect=dialect, cell=cell), clock)
         except fx.Unanswered as exc:
             outcome = vol.Outcome("unknown", str(exc))

@@ -1,11 +1,11 @@
-"""The dependency graph of evaluation units, in topological order, with cycles found.
+"""The dependency graph of evaluation tasks, in topological order, with cycles found.
 
-A unit computes a block of rows of one column (a single cell is a block of one).
-Its inputs are rectangles ``(sheet, row1, col1, row2, col2)``; the graph joins each unit
-to the units that produce any cell of its rectangles, found by bisection in each
+A task computes a block of rows of one column (a single cell is a block of one).
+Its inputs are rectangles ``(sheet, row1, col1, row2, col2)``; the graph joins each task
+to the tasks that produce any cell of its rectangles, found by bisection in each
 column's sorted blocks. :func:`order` is Tarjan's algorithm, iterative (no recursion
 limit on a 100,000-cell chain): strongly connected components come out dependencies
-first, which is the evaluation order, and a component of several units (or a unit
+first, which is the evaluation order, and a component of several tasks (or a task
 reading itself) is a cycle.
 """
 
@@ -18,15 +18,15 @@ Rect = tuple[str, int, int, int, int]
 
 
 class Producers:
-    """Which units write which cells: per (sheet, column), sorted disjoint row blocks."""
+    """Which tasks write which cells: per (sheet, column), sorted disjoint row blocks."""
 
     def __init__(self, blocks: list[tuple[str, int, int, int]], extra=()):
-        """``blocks[u] = (sheet, col, first, last)`` for unit ``u``; ``extra``: more
-        ``(unit, sheet, col, first, last)`` (an array formula fills several columns)."""
+        """``blocks[u] = (sheet, col, first, last)`` for task ``u``; ``extra``: more
+        ``(task, sheet, col, first, last)`` (an array formula fills several columns)."""
         per_col: dict[tuple[str, int], list[tuple[int, int, int]]] = defaultdict(list)
-        for unit, (sheet, col, first, last) in [*enumerate(blocks), *(
+        for task, (sheet, col, first, last) in [*enumerate(blocks), *(
                 (u, rest) for u, *rest in extra)]:
-            per_col[(sheet, col)].append((first, last, unit))
+            per_col[(sheet, col)].append((first, last, task))
         self.cols: dict[tuple[str, int], tuple[list[int], list[int], list[int]]] = {}
         self.sheet_cols: dict[str, list[int]] = defaultdict(list)
         for (sheet, col), items in per_col.items():
@@ -37,29 +37,29 @@ class Producers:
         for cols in self.sheet_cols.values():
             cols.sort()
 
-    def units(self, rect: Rect):
-        """The units that write any cell of ``rect``."""
+    def tasks(self, rect: Rect):
+        """The tasks that write any cell of ``rect``."""
         sheet, r1, c1, r2, c2 = rect
         cols = self.sheet_cols.get(sheet)
         if not cols:
             return
         lo, hi = bisect.bisect_left(cols, c1), bisect.bisect_right(cols, c2)
         for col in cols[lo:hi]:
-            starts, ends, units = self.cols[(sheet, col)]
+            starts, ends, tasks = self.cols[(sheet, col)]
             a = bisect.bisect_left(ends, r1)
             b = bisect.bisect_right(starts, r2)
-            yield from units[a:b]
+            yield from tasks[a:b]
 
 
 def build(blocks: list[tuple[str, int, int, int]], inputs: list[list[Rect]],
           extra=()) -> list[list[int]]:
-    """``deps[u]``: the units whose cells unit ``u`` reads (``u`` itself if it does)."""
+    """``deps[u]``: the tasks whose cells task ``u`` reads (``u`` itself if it does)."""
     producers = Producers(blocks, extra)
     deps = []
     for rects in inputs:
         seen: set[int] = set()
         for rect in rects:
-            seen.update(producers.units(rect))
+            seen.update(producers.tasks(rect))
         deps.append(sorted(seen))
     return deps
 
@@ -112,5 +112,5 @@ def order(deps: list[list[int]]) -> list[list[int]]:
 
 
 def is_cycle(component: list[int], deps: list[list[int]]) -> bool:
-    """A component of several units, or one unit that reads itself."""
+    """A component of several tasks, or one task that reads itself."""
     return len(component) > 1 or component[0] in deps[component[0]]

@@ -1,10 +1,11 @@
 """Operators and functions over blocks of rows, with the scalar evaluator's semantics.
 
-A block value is a :class:`Num` (numbers or booleans with error codes: the fast path
-through :mod:`workbook_gen.xlmath.kernels`), an :class:`Obj` (a list of arbitrary values: every element is
-computed by the scalar functions of ``formula.functions``), or a :class:`Const` (one
-value, or a Range, for every row). Whatever the fast path cannot prove equal to the
-scalar path goes element by element, so the two paths agree by construction.
+A block value is a :class:`NumBlock` (numbers or booleans with error codes: the fast path
+through :mod:`workbook_gen.xlmath.kernels`), an :class:`ObjBlock` (a list of arbitrary
+values: every element is computed by the scalar functions of ``formula.functions``), or a
+:class:`Const` (one value, or a Range, for every row). Whatever the fast path cannot
+prove equal to the scalar path goes element by element, so the two paths agree by
+construction.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from workbook_gen.xlmath import kernels as k
-from workbook_gen.evaluator.store import Num, Obj, error_codes, to_items, with_nan
+from workbook_gen.evaluator.store import NumBlock, ObjBlock, error_codes, to_items, with_nan
 from workbook_gen.formula import functions as fx
 from workbook_gen.formula import values as xv
 from workbook_gen.formula.functions import coerce
@@ -76,36 +77,36 @@ def scalar(v, n: int):
             if isinstance(x, Range):
                 x = fx.Context(cell=(sheet, first + i, col)).scalar(x)
             out.append(x)
-        return Obj(out)
+        return ObjBlock(out)
     return v
 
 
 def is_num(v) -> bool:
-    return isinstance(v, Num)
+    return isinstance(v, NumBlock)
 
 
-def _full(value, n: int) -> Num | None:
+def _full(value, n: int) -> NumBlock | None:
     if isinstance(value, ExcelError):
-        return Num(np.full(n, np.nan), np.full(n, value.code, np.uint8))
+        return NumBlock(np.full(n, np.nan), np.full(n, value.code, np.uint8))
     if isinstance(value, bool):
-        return Num(np.full(n, float(value)), np.zeros(n, np.uint8), True)
+        return NumBlock(np.full(n, float(value)), np.zeros(n, np.uint8), True)
     if isinstance(value, (int, float)):
-        return Num(np.full(n, float(value)), np.zeros(n, np.uint8))
+        return NumBlock(np.full(n, float(value)), np.zeros(n, np.uint8))
     return None
 
 
-def as_num(v, n: int) -> Num | None:
-    """``v`` as a Num block if it holds only numbers (or only booleans) and errors."""
-    if isinstance(v, Num):
+def as_num(v, n: int) -> NumBlock | None:
+    """``v`` as a NumBlock if it holds only numbers (or only booleans) and errors."""
+    if isinstance(v, NumBlock):
         return v
     if isinstance(v, Const):
         return _full(v.value, n)
     kinds = set(map(type, v.items))
     if kinds == {float}:  # (C loops: the usual block)
-        return Num(np.array(v.items, float), np.zeros(len(v.items), np.uint8), False)
+        return NumBlock(np.array(v.items, float), np.zeros(len(v.items), np.uint8), False)
     kinds.discard(ExcelError)
     if kinds <= {float, int} or kinds == {bool}:
-        return Num(np.array(with_nan(v.items), float), error_codes(v.items), kinds == {bool})
+        return NumBlock(np.array(with_nan(v.items), float), error_codes(v.items), kinds == {bool})
     return None
 
 
@@ -115,12 +116,12 @@ def items(v, n: int, as_ref: bool = False) -> list:
         return [v.value] * n
     if isinstance(v, RefObj):
         return v.items
-    out = to_items(v) if isinstance(v, Num) else v.items
+    out = to_items(v) if isinstance(v, NumBlock) else v.items
     return [Range(((x,),)) for x in out] if as_ref else out
 
 
-def _obj(values: list) -> Obj:
-    return Obj(values)
+def _obj(values: list) -> ObjBlock:
+    return ObjBlock(values)
 
 
 # -- operators --------------------------------------------------------------------------
@@ -135,7 +136,7 @@ def binary(op: str, a, b, n: int, dialect: str = "excel"):
                                            or x.boolean or y.boolean)
         if x is not None and y is not None and exact:  # else LibreOffice's ^ and booleans
             if op in _ARITH:
-                return Num(*k.arith(op, x.val, x.err, y.val, y.err))
+                return NumBlock(*k.arith(op, x.val, x.err, y.val, y.err))
             return _compare(op, x, y, n)
     if isinstance(a, Const) or isinstance(b, Const):  # one side varies: memoise on it
         left = isinstance(a, Const)
@@ -151,7 +152,7 @@ def binary(op: str, a, b, n: int, dialect: str = "excel"):
     return _obj([apply(op, p, q) for p, q in zip(items(a, n), items(b, n))])
 
 
-def _compare(op: str, x: Num, y: Num, n: int) -> Num:
+def _compare(op: str, x: NumBlock, y: NumBlock, n: int) -> NumBlock:
     err = k.first_error(x.err, y.err)
     if x.boolean == y.boolean:
         with np.errstate(all="ignore"):
@@ -159,7 +160,7 @@ def _compare(op: str, x: Num, y: Num, n: int) -> Num:
     else:  # numbers sort before booleans
         c = -1 if y.boolean else 1
         result = np.full(n, bool(_COMPARE[op](c, 0)))
-    return Num(np.where(err != 0, np.nan, result.astype(float)), err, True)
+    return NumBlock(np.where(err != 0, np.nan, result.astype(float)), err, True)
 
 
 def _unary_scalar(op: str, v):
@@ -180,8 +181,8 @@ def unary(op: str, a, n: int):
     x = as_num(a, n)
     if x is not None:
         if op == "-":
-            return Num(*k.finish(-x.val, x.err))
-        return Num(*k.arith("/", x.val, x.err, np.full(n, 100.0), np.zeros(n, np.uint8)))
+            return NumBlock(*k.finish(-x.val, x.err))
+        return NumBlock(*k.arith("/", x.val, x.err, np.full(n, 100.0), np.zeros(n, np.uint8)))
     return _obj([_unary_scalar(op, v) for v in items(a, n)])
 
 
@@ -195,8 +196,8 @@ def _range_reduce(name: str, rng: Range):
     return (min(xs) if name == "MIN" else max(xs)) if xs else None
 
 
-def _fast_args(entry, args: list, refs: list, n: int, dialect: str) -> list[Num] | None:
-    """The arguments as Num blocks when the fast path is exact for them, else None."""
+def _fast_args(entry, args: list, refs: list, n: int, dialect: str) -> list[NumBlock] | None:
+    """The arguments as NumBlocks when the fast path is exact for them, else None."""
     out = []
     skip_booleans = entry.range_numbers and dialect == "excel"
     for a, is_ref in zip(args, refs):
@@ -230,7 +231,7 @@ def call(name: str, args: list, refs: list, n: int, dialect: str = "excel",
             if not xs:  # every argument a constant range without numbers
                 return Const(cell_call(name, [a.value for a in args], dialect))
             val, err, boolean = entry.vector([(x.val, x.err) for x in xs], n)
-            return Num(val, err, boolean)
+            return NumBlock(val, err, boolean)
     if not args:
         return Const(cell_call(name, [], dialect))
     columns = [items(a, n, as_ref=(r is True)) for a, r in zip(args, refs)]
@@ -261,7 +262,7 @@ def choose(pick: np.ndarray, cerr: np.ndarray, then, other, n: int):
     if x is not None and y is not None and x.boolean == y.boolean:
         err = np.where(cerr != 0, cerr, np.where(pick, x.err, y.err)).astype(np.uint8)
         val = np.where(err != 0, np.nan, np.where(pick, x.val, y.val))
-        return Num(val, err, x.boolean)
+        return NumBlock(val, err, x.boolean)
     # per row, in C loops: object arrays hold the very values (text, numbers, ranges)
     out = np.where(pick, np.fromiter(items(then, n), object, n),
                    np.fromiter(items(other, n), object, n))

@@ -22,6 +22,7 @@ from workbook_gen.evaluator.external import ExternalBooks
 from workbook_gen.evaluator.keys import column_groups, pick
 from workbook_gen.formula import ast
 from workbook_gen.formula.parser import parse_name
+from workbook_gen.formula.resolver import Resolver
 from workbook_gen.formula.values import Range
 from workbook_gen.xlerror import ExcelError
 
@@ -30,8 +31,9 @@ _SUBTOTAL_CALL = re.compile(r"(?<![\w.])(?:_xlfn\.)?(?:SUBTOTAL|AGGREGATE)\s*\("
 
 
 @dataclass(slots=True)
-class Num:
-    """A block of numbers (or booleans when ``boolean``) with error codes."""
+class NumBlock:
+    """A block of numbers (or booleans when ``boolean``) with error codes: rows of a
+    column as the vectorised evaluator computes them (not ``expr.tree.Num``, a literal)."""
 
     val: np.ndarray
     err: np.ndarray
@@ -39,7 +41,7 @@ class Num:
 
 
 @dataclass(slots=True)
-class Obj:
+class ObjBlock:
     """A block of arbitrary values (text, booleans, empties, numbers, errors)."""
 
     items: list
@@ -96,6 +98,7 @@ class Store:
         self.array_formulas: Mapping[tuple[str, int, int], tuple] = {}  # (text, (r2, c2))
         self._subtotals: dict[str, list[tuple[int, int]]] | None = None
         self.unparsed: Mapping[tuple[str, int, int], str] = {}  # formulas not handed over
+        self.unreadable: set[str] = set()  # sheets listed without their part (lower case)
         self._array_cells: set[tuple[str, int, int]] | None = None
 
     def subtotal_cells(self, sheet: str) -> list[tuple[int, int]]:
@@ -209,8 +212,8 @@ class Store:
                 self.put(sheet, row_list[i], col, values[i])
 
     def put_block(self, sheet: str, col: int, first: int, block, scale: np.ndarray) -> None:
-        """Write a Num or a list of values to rows ``first ..``."""
-        if isinstance(block, Num) and not block.boolean:
+        """Write a NumBlock or a list of values to rows ``first ..``."""
+        if isinstance(block, NumBlock) and not block.boolean:
             n = len(block.val)
             c = self._column(sheet, col, first + n - 1)
             sl = slice(first, first + n)
@@ -218,7 +221,7 @@ class Store:
             for r in [r for r in c.objs if first <= r < first + n] if c.objs else ():
                 del c.objs[r]
             return
-        items = block.items if isinstance(block, Obj) else to_items(block)
+        items = block.items if isinstance(block, ObjBlock) else to_items(block)
         n = len(items)
         c = self._column(sheet, col, first + n - 1)
         sl = slice(first, first + n)
@@ -248,15 +251,23 @@ class Store:
         c = self.cols.get((sheet, col))
         return 0.0 if c is None or row >= len(c.val) else float(c.scale[row])
 
-    def block(self, sheet: str, col: int, first: int, last: int) -> Num | Obj:
-        """Rows ``first..last`` of a column: a Num view when all are numbers/errors."""
+    def block(self, sheet: str, col: int, first: int, last: int) -> NumBlock | ObjBlock:
+        """Rows ``first..last`` of a column: a NumBlock view when all are numbers/errors."""
         n = last - first + 1
         c = self.cols.get((sheet, col))
         if c is None:
-            return Obj([None] * n)
+            return ObjBlock([None] * n)
         if last < len(c.val) and not c.irr[first:last + 1].any():
-            return Num(c.val[first:last + 1], c.err[first:last + 1])
-        return Obj(_python_values(c, first, last))
+            return NumBlock(c.val[first:last + 1], c.err[first:last + 1])
+        return ObjBlock(_python_values(c, first, last))
+
+    def numbers(self, sheet: str, col: int, rows: np.ndarray
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Rows ``rows`` of a column holding values: (whether each is a number, neither
+        an error nor text, a boolean or nothing; the values, NaN where no number; the
+        operand scales)."""
+        c = self.cols[(sheet, col)]
+        return ~c.irr[rows] & (c.err[rows] == 0), c.val[rows], c.scale[rows]
 
     def column_values(self, sheet: str, col: int, r1: int, r2: int) -> list:
         """The values of rows ``r1..r2`` of a column, as Python values."""
@@ -264,7 +275,7 @@ class Store:
         if c is None:
             return [None] * (r2 - r1 + 1)
         if r2 < len(c.val) and not c.irr[r1:r2 + 1].any():
-            return to_items(Num(c.val[r1:r2 + 1], c.err[r1:r2 + 1]))
+            return to_items(NumBlock(c.val[r1:r2 + 1], c.err[r1:r2 + 1]))
         return _python_values(c, r1, r2)
 
     def rect(self, sheet: str, r1: int, c1: int, r2: int, c2: int) -> Range:
@@ -365,8 +376,8 @@ def with_nan(numbers: list) -> list:
     return list(map(_NAN_FOR_ERROR.get, numbers, numbers))
 
 
-def to_items(num: Num) -> list:
-    """Python values of a Num block."""
+def to_items(num: NumBlock) -> list:
+    """Python values of a NumBlock."""
     if not num.boolean and not num.err.any():
         return num.val.tolist()
     out = []
@@ -439,8 +450,9 @@ class Names:
         return None
 
 
-class SheetResolver:
-    """The scalar evaluator's view of the store from cells of one sheet."""
+class SheetResolver(Resolver):
+    """The scalar evaluator's view of the store from cells of one sheet: every
+    :class:`~workbook_gen.formula.resolver.Resolver` method answered from the store."""
 
     MAX_NAME_DEPTH = 16
 

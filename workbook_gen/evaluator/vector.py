@@ -21,9 +21,9 @@ from typing import Callable
 import numpy as np
 
 from workbook_gen.evaluator.ops import (
-    Const, Num, binary, call, choose, is_num, scalar, to_bool_mask, unary,
+    Const, NumBlock, binary, call, choose, is_num, scalar, to_bool_mask, unary,
 )
-from workbook_gen.evaluator.store import Num, value_scale
+from workbook_gen.evaluator.store import NumBlock, value_scale
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
 from workbook_gen.formula.functions.math.subtotal import READS_LAYOUT
@@ -56,7 +56,7 @@ class Block:
     col: int
     first: int
     last: int
-    run: Callable[[Env], object]         # -> Num | Obj | Const (scalar_of'd)
+    run: Callable[[Env], object]         # -> NumBlock | ObjBlock | Const (scalar_of'd)
     scale: Callable[[Env], np.ndarray]   # operand scale per row
 
 
@@ -124,7 +124,8 @@ class _Compiler:
         return sheet, ref.col, a, b
 
     def compile(self, node: ast.Node):
-        """``(fn, is_ref)``: fn(env) -> Num | Obj | Const; is_ref True, False or 'maybe'."""
+        """``(fn, is_ref)``: fn(env) -> NumBlock | ObjBlock | Const; is_ref True, False or
+        'maybe'."""
         is_ref = isinstance(node, (ast.CellRef, ast.RangeRef, ast.Name))
         if row_invariant(node):
             return (lambda env: Const(env.const(node))), is_ref
@@ -200,7 +201,7 @@ class _Compiler:
             value = float(self.col if ref is None else ref.col)
             return (lambda env: Const(value)), False
         top = self.first if ref is None else ref.row
-        return (lambda env: Num(np.arange(top, top + env.n, dtype=float),
+        return (lambda env: NumBlock(np.arange(top, top + env.n, dtype=float),
                                 np.zeros(env.n, np.uint8))), False
 
     def _lazy(self, node: ast.Func):
@@ -242,7 +243,7 @@ class _Compiler:
 
 
 def block_scale(b) -> np.ndarray:
-    if isinstance(b, Num):
+    if isinstance(b, NumBlock):
         return np.where(b.err == 0, np.abs(b.val), 0.0)
     return np.array([0.0 if v is None or type(v) is str else value_scale(v)  # (text: 0)
                      for v in b.items])

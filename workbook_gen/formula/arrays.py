@@ -109,7 +109,7 @@ class ArrayEvaluator(Evaluator):
     def func(self, node: ast.Func):
         entry = fx.REGISTRY.get(node.name)
         if entry is None or unavailable(node.name, node.prefix, self.dialect,
-                                        getattr(self.resolver, "stored", False)):
+                                        self.ctx.workbook.stored):
             return super().func(node)
         if node.name in ("IF", "IFERROR", "IFNA"):
             return self._conditional(node)

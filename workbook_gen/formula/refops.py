@@ -151,8 +151,7 @@ def _union_intersection(ev, node: ast.RefOp):
 
 def sheets_3d(ev, node: ast.Sheets3D):
     """The values of ``ref`` on every sheet from ``sheet`` to ``sheet2``, in one column."""
-    between = getattr(ev.resolver, "sheets_between", None)
-    sheets = between(node.sheet, node.sheet2) if between else None
+    sheets = ev.ctx.workbook.sheets_between(node.sheet, node.sheet2)
     if not sheets:
         return ExcelError.REF
     _, r1, c1, r2, c2 = rect_of(node.ref)

@@ -11,13 +11,14 @@ This is the reference path: the vectorised evaluator must agree with it.
 
 from __future__ import annotations
 
-from typing import Callable, Protocol
+from typing import Callable
 
 from workbook_gen.formula.functions.availability import unavailable
 from workbook_gen.formula import ast
 from workbook_gen.formula import functions as fx
 from workbook_gen.formula.functions.logical import lambdas
 from workbook_gen.formula import values as xv
+from workbook_gen.formula.resolver import Resolver
 from workbook_gen.formula.values import Range, Ref, Value
 from workbook_gen.formula.tokenizer import CELL_PARTS, column_number, split_sheet
 from workbook_gen.xlerror import ExcelError
@@ -40,19 +41,8 @@ def use_array_evaluator(cls) -> None:
     """Register the array-formula evaluator (called once, by formula/arrays.py)."""
     _ARRAY_EVALUATOR[:] = [cls]
 
-class Resolver(Protocol):
-    """What the evaluator needs from a workbook. Coordinates are 1-based."""
 
-    def cell(self, sheet: str | None, row: int, col: int) -> Value: ...
-
-    def range(self, sheet: str | None, row1: int, col1: int, row2: int, col2: int
-              ) -> list[list[Value]]: ...
-
-    def name(self, name: str, sheet: str | None) -> Value | list[list[Value]]:
-        """A defined name's value (a 2-D list for a range); #NAME? if undefined."""
-
-
-class DictResolver:
+class DictResolver(Resolver):
     """A resolver over dicts, for tests and small uses.
 
     ``cells`` maps ``"A1"`` or ``"Sheet!A1"`` to values (unqualified keys and
@@ -74,10 +64,6 @@ class DictResolver:
 
     def cell(self, sheet, row, col):
         return self.cells.get((sheet or self.sheet, row, col))
-
-    def range(self, sheet, row1, col1, row2, col2):
-        return [[self.cell(sheet, r, c) for c in range(col1, col2 + 1)]
-                for r in range(row1, row2 + 1)]
 
     def name(self, name, sheet):
         return self.names.get(name.upper(), ExcelError.NAME)
@@ -144,9 +130,8 @@ class Evaluator:
             return None
         if isinstance(node, (ast.CellRef, ast.RangeRef)):
             if node.sheet is not None and "]" not in node.sheet and (
-                    getattr(self.resolver, "sheet_number", None) is not None
-                    and self.resolver.sheet_count()
-                    and self.resolver.sheet_number(node.sheet) is None):
+                    self.ctx.workbook.sheet_count()
+                    and self.ctx.workbook.sheet_number(node.sheet) is None):
                 return ExcelError.REF  # no such sheet (Excel and LibreOffice alike)
             return self.reference(node)
         if isinstance(node, ast.Name):
@@ -260,7 +245,7 @@ class Evaluator:
     def func(self, node: ast.Func) -> Value | Range:
         entry = fx.REGISTRY.get(node.name)
         if entry is not None and unavailable(node.name, node.prefix, self.dialect,
-                                             getattr(self.resolver, "stored", False)):
+                                             self.ctx.workbook.stored):
             entry = None  # a future function without its _xlfn. prefix: an unknown name
         if entry is None:
             called = lambdas.named(self, node)  # a defined name holding a LAMBDA

@@ -28,6 +28,7 @@ import sys
 from dataclasses import dataclass
 from typing import Callable
 
+from workbook_gen.formula.resolver import NO_WORKBOOK, Resolver
 from workbook_gen.formula.values import Range, Ref, Value, scalar_of
 from workbook_gen.xlerror import ExcelError
 
@@ -56,15 +57,22 @@ class Context:
     """What a function may know about its call.
 
     ``cell`` is ``(sheet, row, col)`` of the formula (None when unknown); ``resolver``
-    reads cells and ranges (the scalar evaluator's Resolver); ``dialect`` is "excel" or
-    "libreoffice"; ``parse_ref`` turns text into a Ref or None (INDIRECT).
+    reads cells and ranges (a formula.resolver.Resolver; None without a workbook, where a
+    reference is #REF!); ``dialect`` is "excel" or "libreoffice"; ``parse_ref`` turns text
+    into a Ref or None (INDIRECT).
     """
 
     dialect: str = "excel"
     cell: tuple[str, int, int] | None = None
-    resolver: object = None
+    resolver: Resolver | None = None
     parse_ref: Callable[[str], Ref | None] | None = None
     intersect: bool = True
+
+    @property
+    def workbook(self) -> Resolver:
+        """What the workbook says of itself (hidden rows, sheets, caches...): the
+        resolver, or every Resolver default when there is none."""
+        return NO_WORKBOOK if self.resolver is None else self.resolver
 
     def read(self, ref: Ref) -> Range | ExcelError:
         """The values of ``ref`` (a Range carrying ``ref``), or #REF! if unreadable."""

@@ -45,8 +45,7 @@ class CubeMember(str):
 def _cache(ctx, name: str, connection):
     if isinstance(connection, ExcelError):
         return connection
-    olap = getattr(ctx.resolver, "olap", None)
-    cache = olap(str(connection)) if olap is not None and isinstance(connection, str) else None
+    cache = ctx.workbook.olap(connection) if isinstance(connection, str) else None
     if cache is None:
         raise Unanswered(f"{name}: no OLAP cache in the file for connection {connection!r}")
     return cache

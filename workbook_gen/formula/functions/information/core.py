@@ -55,7 +55,7 @@ def _isformula(ctx, v):
         return v
     if not isinstance(v, Range) or v.ref is None:
         return ExcelError.VALUE
-    ask = getattr(ctx.resolver, "has_formula", None) or (lambda sheet, row, col: False)
+    ask = ctx.workbook.has_formula
     ref = v.ref
     if ref.shape == (1, 1):
         return bool(ask(ref.sheet, ref.row1, ref.col1))

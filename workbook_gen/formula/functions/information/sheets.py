@@ -26,8 +26,8 @@ def _sheet(ctx, v=None):
     """The place of a sheet among all the workbook's sheets (chart sheets included):
     of the calling cell's sheet, of a reference's, or of the sheet a text names (any
     case); #N/A for a text naming no sheet and for a number (ironcalc tables.xlsx)."""
-    number = getattr(ctx.resolver, "sheet_number", None)
-    if number is None:
+    number = ctx.workbook.sheet_number
+    if ctx.workbook.sheet_count() is None:  # the workbook's sheets are not known
         return ExcelError.NA
     if v is None:
         found = number(ctx.cell[0] if ctx.cell else None)
@@ -46,8 +46,8 @@ def _sheet(ctx, v=None):
 def _sheets(ctx, v=None):
     """The number of sheets in the workbook (no argument) or in a reference (1)."""
     if v is None:
-        count = getattr(ctx.resolver, "sheet_count", None)
-        return ExcelError.NA if count is None else float(count())
+        count = ctx.workbook.sheet_count()
+        return ExcelError.NA if count is None else float(count)
     if isinstance(v, ExcelError):
         return v
     return 1.0 if isinstance(v, Range) and v.ref is not None else ExcelError.VALUE

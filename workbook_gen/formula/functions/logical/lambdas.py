@@ -40,8 +40,7 @@ def bound(evaluator, node: ast.Name):
 def named(evaluator, node: ast.Func):
     """The call ``NAME(args)`` of a defined name holding a LAMBDA, or None when no name
     visible from the calling sheet holds one (an unknown function)."""
-    lookup = getattr(evaluator.resolver, "name_node", None)
-    tree = lookup(node.name) if lookup is not None else None
+    tree = evaluator.ctx.workbook.name_node(node.name)
     while isinstance(tree, ast.Paren):
         tree = tree.inner
     if not (isinstance(tree, ast.Func) and tree.name == "LAMBDA"):

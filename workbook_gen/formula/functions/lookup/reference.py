@@ -202,9 +202,8 @@ def _formulatext(ctx, v):
         return v
     if not isinstance(v, Range) or v.ref is None:
         return ExcelError.VALUE
-    ask = getattr(ctx.resolver, "formula_text", None)
     ref = v.ref
-    found = ask(ref.sheet, ref.row1, ref.col1) if ask is not None else None
+    found = ctx.workbook.formula_text(ref.sheet, ref.row1, ref.col1)
     if found is None:
         return ExcelError.NA
     stored, array = found

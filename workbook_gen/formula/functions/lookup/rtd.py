@@ -24,8 +24,7 @@ def _rtd(ctx, progid, server, *topics):
     texts = ["" if a is None else to_text(a) for a in args]
     if any(isinstance(t, ExcelError) for t in texts):
         return next(t for t in texts if isinstance(t, ExcelError))
-    cached = getattr(ctx.resolver, "topics", None)
-    calls = cached(texts[0]) if cached is not None else None
+    calls = ctx.workbook.topics(texts[0])
     key = tuple(texts[1:])
     if calls is None or key not in calls:
         raise Unanswered("RTD: the call is not in the file's real-time data cache: "

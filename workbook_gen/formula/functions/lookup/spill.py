@@ -10,7 +10,7 @@
   intersected with the calling cell's row or column, an array's top-left value.
 
 The anchor's area comes from the evaluation context's resolver (``spill_area(sheet,
-row, col)``); a resolver without it knows no arrays.
+row, col)``); the Resolver default knows no arrays.
 """
 
 from __future__ import annotations
@@ -27,8 +27,7 @@ def _anchorarray(ctx, anchor):
     if not isinstance(anchor, Range) or anchor.ref is None:
         return ExcelError.VALUE
     ref = anchor.ref
-    area = getattr(ctx.resolver, "spill_area", None)
-    end = area(ref.sheet, ref.row1, ref.col1) if area is not None else None
+    end = ctx.workbook.spill_area(ref.sheet, ref.row1, ref.col1)
     if end is None:
         return ExcelError.REF
     return ctx.read(Ref(ref.sheet, ref.row1, ref.col1, *end))

@@ -23,8 +23,8 @@ Excel's documented rules:
 
 What the layout is comes from the evaluation context's resolver (``hidden_rows(sheet)``,
 ``filtered_rows(sheet)``, the hidden rows below a filtering autoFilter's header:
-:mod:`workbook_gen.xlsx.filters`, and ``subtotal_cells(sheet)``); a resolver without
-them (a bare value table) hides nothing.
+:mod:`workbook_gen.xlsx.filters`, and ``subtotal_cells(sheet)``); the Resolver defaults
+(a bare value table) hide nothing.
 """
 
 from __future__ import annotations
@@ -52,18 +52,18 @@ def _left_out(ctx, arg, hidden: bool, nested: bool, errors: bool, filtered: bool
     reference, error values (``errors``)."""
     if not isinstance(arg, Range):
         return None if errors and isinstance(arg, ExcelError) else arg
-    ref, resolver = arg.ref, ctx.resolver
+    ref, book = arg.ref, ctx.workbook
     drop: set[tuple[int, int]] = set()
-    if ref is not None and resolver is not None:
+    if ref is not None:
         n_rows, n_cols = arg.shape
-        rows_of = getattr(resolver, "hidden_rows" if hidden else "filtered_rows", None)
-        if rows_of is not None and (hidden or filtered):
+        if hidden or filtered:
+            rows_of = book.hidden_rows if hidden else book.filtered_rows
             rows = [r - ref.row1 for r in rows_of(ref.sheet)
                     if ref.row1 <= r <= ref.row2 and r - ref.row1 < n_rows]
             drop.update((i, j) for i in rows for j in range(n_cols))
-        if nested and hasattr(resolver, "subtotal_cells"):
+        if nested:
             drop.update((r - ref.row1, k - ref.col1)
-                        for r, k in resolver.subtotal_cells(ref.sheet)
+                        for r, k in book.subtotal_cells(ref.sheet)
                         if ref.row1 <= r < ref.row1 + n_rows
                         and ref.col1 <= k < ref.col1 + n_cols)
     if not drop and (not errors or ExcelError not in set(map(type, arg.flat()))):

@@ -209,8 +209,7 @@ def _charset(ctx) -> str:
     """Microsoft's CHAR page: the character set of the operating environment, Windows' ANSI
     (cp1252) or the Macintosh character set (Excel for Mac: the Excel-saved sheetjs
     formula_stress_test.xlsx caches CHAR(240) as U+F8FF and CODE of it as 240)."""
-    charset = getattr(ctx.resolver, "charset", None) if ctx is not None else None
-    return charset() if callable(charset) else "cp1252"
+    return "cp1252" if ctx is None else ctx.workbook.charset()
 
 
 @register("CHAR", 1, 1)

@@ -1,7 +1,7 @@
-"""A unit of evaluation (a run of R1C1-identical formulas, a single cell or an array
+"""A task of evaluation (a run of R1C1-identical formulas, a single cell or an array
 formula): which cells it reads (``shapes_of``, ``rects``) and how it is evaluated
-(``evaluate_unit``: a compiled block over the run's rows, the scalar evaluator for a cell,
-the array evaluator over an array formula's rectangle). :mod:`engine` orders the units and
+(``evaluate_task``: a compiled block over the run's rows, the scalar evaluator for a cell,
+the array evaluator over an array formula's rectangle). :mod:`engine` orders the tasks and
 decides what is checked."""
 
 from __future__ import annotations
@@ -11,7 +11,8 @@ from dataclasses import dataclass
 
 from workbook_gen.evaluator import graph
 from workbook_gen.evaluator.ops import Const
-from workbook_gen.evaluator.store import Names, Num, Obj, SheetResolver, Store, value_scale
+from workbook_gen.evaluator.store import (Names, NumBlock, ObjBlock, SheetResolver, Store,
+                                          value_scale)
 from workbook_gen.evaluator.taint import Shape
 from workbook_gen.evaluator.vector import Env
 from workbook_gen.formula import ast
@@ -24,7 +25,7 @@ REFERENCE_ONLY = frozenset({"ROW", "COLUMN", "ROWS", "COLUMNS", "ISREF", "AREAS"
 
 
 @dataclass
-class Unit:
+class Task:
     sheet: str
     col: int
     first: int
@@ -33,7 +34,7 @@ class Unit:
     block: object = None   # compiled vector Block, or None for a single cell
     area: tuple[int, int] | None = None  # an array formula: its last row and column
     # a run that reads its own column only above each row (``=A1+1`` filled down: a
-    # chain): evaluated row after row, cell by cell, without a unit per cell
+    # chain): evaluated row after row, cell by cell, without a task per cell
     sequential: bool = False
 
     def cells(self):
@@ -43,18 +44,18 @@ class Unit:
         return [(self.sheet, r, self.col) for r in range(self.first, self.last + 1)]
 
 
-def reads_only_above(unit: Unit, shapes: list[Shape]) -> bool:
+def reads_only_above(task: Task, shapes: list[Shape]) -> bool:
     """Does every rectangle the run reads in its own column end above the row reading
     it (so that its rows, computed in order, never read one not yet computed)?"""
-    return all(s.row2 < unit.first for s in shapes
-               if s.sheet == unit.sheet and s.col1 <= unit.col <= s.col2)
+    return all(s.row2 < task.first for s in shapes
+               if s.sheet == task.sheet and s.col1 <= task.col <= s.col2)
 
 
-def singles(unit: Unit):
+def singles(task: Task):
     """A run as single cells, each with its own (shifted) tree, made as they are asked
     for (``list(singles(u))`` for all at once)."""
-    return (Unit(unit.sheet, unit.col, r, r, ast.shift(unit.node, r - unit.first, 0))
-            for r in range(unit.first, unit.last + 1))
+    return (Task(task.sheet, task.col, r, r, ast.shift(task.node, r - task.first, 0))
+            for r in range(task.first, task.last + 1))
 
 
 def _reads(node: ast.Node):
@@ -100,13 +101,13 @@ def _indirect_reads(call: ast.Func):
         yield ref
 
 
-def shapes_of(unit: Unit, store: Store, names: Names) -> tuple[list[Shape], list[str]]:
-    """The rectangles of cells a unit reads at its first row (defined names followed),
+def shapes_of(task: Task, store: Store, names: Names) -> tuple[list[Shape], list[str]]:
+    """The rectangles of cells a task reads at its first row (defined names followed),
     and the names it uses that do not parse (or ``Sheet!``: a sheet it reads is
     unreadable)."""
     out: list[Shape] = []
     bad: list[str] = []
-    pending = [(unit.node, unit.sheet)]
+    pending = [(task.node, task.sheet)]
     seen_names: set[tuple] = set()
     while pending:
         node, home = pending.pop()
@@ -142,56 +143,56 @@ def shapes_of(unit: Unit, store: Store, names: Names) -> tuple[list[Shape], list
     return out, bad
 
 
-def rects(unit: Unit, shaped: tuple) -> list[graph.Rect]:
-    """The rectangles of cells a unit reads over all its rows."""
-    span = unit.last - unit.first
+def rects(task: Task, shaped: tuple) -> list[graph.Rect]:
+    """The rectangles of cells a task reads over all its rows."""
+    span = task.last - task.first
     return [(s.sheet, s.row1, s.col1, s.row2 + (span if s.rel2 else 0), s.col2)
             for s in shaped[0]]
 
 
-def evaluate_unit(unit: Unit, store: Store, names: Names, dialect: str = "excel",
+def evaluate_task(task: Task, store: Store, names: Names, dialect: str = "excel",
                   view=None) -> None:
-    """Evaluate a unit into ``store``; ``view``: what its formula reads instead of the store
+    """Evaluate a task into ``store``; ``view``: what its formula reads instead of the store
     (the on-demand view of a cycle, :mod:`cycles`; the operand scale still reads the store
     directly, so that it asks for no cell the formula does not read)."""
-    scaler = SheetResolver(store, names, unit.sheet)
-    resolver = scaler if view is None else SheetResolver(view, names, unit.sheet)
-    cell = (unit.sheet, unit.first, unit.col)
-    if unit.area is not None:
+    scaler = SheetResolver(store, names, task.sheet)
+    resolver = scaler if view is None else SheetResolver(view, names, task.sheet)
+    cell = (task.sheet, task.first, task.col)
+    if task.area is not None:
         from workbook_gen.formula.arrays import beyond, evaluate_array, spread
-        rows, cols = unit.area[0] - unit.first + 1, unit.area[1] - unit.col + 1
-        values = spread(evaluate_array(unit.node, resolver, dialect, cell), rows, cols,
-                        beyond(unit.node, dialect))
-        scale = cell_scale(unit.node, scaler)
+        rows, cols = task.area[0] - task.first + 1, task.area[1] - task.col + 1
+        values = spread(evaluate_array(task.node, resolver, dialect, cell), rows, cols,
+                        beyond(task.node, dialect))
+        scale = cell_scale(task.node, scaler)
         for i, row in enumerate(values):
             for j, value in enumerate(row):
-                store.put(unit.sheet, unit.first + i, unit.col + j, value, scale)
+                store.put(task.sheet, task.first + i, task.col + j, value, scale)
         return
-    if unit.sequential:  # each row's tree made when its turn comes, then dropped
-        for single in singles(unit):
-            evaluate_unit(single, store, names, dialect)
+    if task.sequential:  # each row's tree made when its turn comes, then dropped
+        for single in singles(task):
+            evaluate_task(single, store, names, dialect)
         return
-    if unit.block is None:
-        value = evaluate(unit.node, resolver, dialect=dialect, cell=cell)
-        store.put(unit.sheet, unit.first, unit.col, value, cell_scale(unit.node, scaler))
+    if task.block is None:
+        value = evaluate(task.node, resolver, dialect=dialect, cell=cell)
+        store.put(task.sheet, task.first, task.col, value, cell_scale(task.node, scaler))
         return
     reference = Evaluator(resolver, dialect, None, cell)
     reference.ctx.intersect = False  # a part computed once must not depend on the row
-    env = Env(unit.last - unit.first + 1, store.block, reference.arg, dialect)
+    env = Env(task.last - task.first + 1, store.block, reference.arg, dialect)
     try:
-        value = unit.block.run(env)
+        value = task.block.run(env)
     except fx.RowDependent:  # implicit intersection after all: cell by cell
-        for single in singles(unit):
-            evaluate_unit(single, store, names, dialect)
+        for single in singles(task):
+            evaluate_task(single, store, names, dialect)
         return
-    scale = unit.block.scale(env)
+    scale = task.block.scale(env)
     if isinstance(value, Const):
-        value = Obj([0.0 if value.value is None else value.value] * env.n)
-    elif isinstance(value, Obj):
-        value = Obj([0.0 if v is None else v for v in value.items])
-    elif not isinstance(value, Num):
+        value = ObjBlock([0.0 if value.value is None else value.value] * env.n)
+    elif isinstance(value, ObjBlock):
+        value = ObjBlock([0.0 if v is None else v for v in value.items])
+    elif not isinstance(value, NumBlock):
         raise TypeError(f"unexpected block value {type(value).__name__}")
-    store.put_block(unit.sheet, unit.col, unit.first, value, scale)
+    store.put_block(task.sheet, task.col, task.first, value, scale)
 
 
 def cell_scale(node: ast.Node, resolver: SheetResolver) -> float:
