@@ -5,7 +5,7 @@ function, and the count of differences the generator's KNOWN table explains.
 
     python bench/differential.py [--cases 5000] [--seed S] [--timeout 900] [--show 5]
 
-The suite runs a small seeded slice of the same (tests/test_differential_libreoffice.py).
+The suite runs a small seeded slice of the same (tests/formula/functions/test_dialect.py).
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """The biggest sheets read in a forked child (xlsx/apart.py, workbook_gen/forked.py): the
 Workbook is the one that reading every sheet in order gives, errors included.
 
-Run by tests/test_xlsx_apart.py in a fresh pytest process: the audit forks only a process
+Run by tests/xlsx/test_apart.py in a fresh pytest process: the audit forks only a process
 without other threads, and the suite's own process has some (the Dask client's)."""
 
 from __future__ import annotations

@@ -1,8 +1,21 @@
-"""Shared pytest fixtures."""
+"""Shared pytest fixtures.
+
+The tests mirror the package (tests/<package>/test_<module>.py, each folder a package so
+that two folders may hold test files of one name); the helpers they share
+(corpus_audits.py, lo_sheet.py, mp_reference.py...) sit at the top of tests/, which is
+put on the import path here.
+"""
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+
 import pytest
+
+_TESTS = str(Path(__file__).resolve().parent)
+if _TESTS not in sys.path:
+    sys.path.insert(0, _TESTS)
 
 from workbook_gen.engines.libreoffice import find_soffice
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 import multiprocessing
 import os
 from concurrent.futures import ProcessPoolExecutor
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 CORPUS = Path("/work/shared/corpus/xlsx")
@@ -28,6 +28,9 @@ class Outcome:
     detail: object      # the first disagreeing cells, or the error's text
     report: object = None  # the AuditReport, for WHOLE_REPORTS only
     sources: int = 0    # disagreements at their source (an array formula's once)
+    # every disagreeing cell -> the cell it follows from (itself at a source)
+    disagreeing: dict = field(default_factory=dict)
+    not_checked: dict = field(default_factory=dict)  # cell -> why it was not recomputed
 
 
 def corpus_files() -> list[Path]:
@@ -52,7 +55,18 @@ def audit_one(path: Path) -> Outcome:
         cls = "fully audited"
     return Outcome(cls, report.formula_cells, recomputed,
                    [m.cell for m in report.mismatches[:3]],
-                   report if path.name in WHOLE_REPORTS else None, report.disagreements)
+                   report if path.name in WHOLE_REPORTS else None, report.disagreements,
+                   _disagreeing(report), dict(report.not_checked))
+
+
+def _disagreeing(report) -> dict[str, str]:
+    """Each disagreeing cell (an array formula's every cell) -> its source's cell."""
+    cells: dict[str, str] = {}
+    for m in report.mismatches:
+        source = m.cell if m.root else (m.sources[0] if m.sources else m.cell)
+        for cell in (m.cell, *m.cells):
+            cells[cell] = source
+    return cells
 
 
 def _one_process() -> None:

@@ -1,5 +1,5 @@
 """Random well-typed formulas over random inputs, for the differential test against
-LibreOffice (tests/test_differential_libreoffice.py runs a seeded slice, bench/differential.py
+LibreOffice (tests/formula/functions/test_dialect.py runs a seeded slice, bench/differential.py
 thousands).
 
 ``cases(seed, n)`` draws ``n`` formulas from the families real workbooks use most: IF,
@@ -440,7 +440,7 @@ KNOWN: tuple[Known, ...] = (
           lambda d: re.search(r'"[<>]=?[^"]*[?*]', d.formula) is not None),
     Known("MROUND of different signs",
           "Microsoft: MROUND's number and multiple of different signs give #NUM!; "
-          "LibreOffice 7.4 rounds (MROUND(5,-2) is 6); test_functions_libreoffice.py "
+          "LibreOffice 7.4 rounds (MROUND(5,-2) is 6); formula/functions/test_registry_libreoffice.py "
           "LO_DIFFERS keeps the same.",
           lambda d: "MROUND(" in d.formula and _is_error(d.ours)
           and d.ours.value == "#NUM!"),

@@ -9,7 +9,7 @@ C + L e(theta_7) = D.  Six closure equations in six unknowns; the start is the l
 cosines at 50 digits for each four-bar and the beam read off C and D, polished by Newton
 with the analytic Jacobian.  Rates from the differentiated constraints, J q' = -Phi_t and
 J q'' = -d^2/dtau^2 Phi(q + q' tau, t + tau), written out by hand (and checked against
-mp_reference.rates' numerical derivatives in tests/test_limits_beam_actuator.py).
+mp_reference.rates' numerical derivatives in tests/mechanisms/test_walking_beam_limits.py).
 D is the copy's own coupler point, so x_D, y_D check the beam rather than restate it.
 """
 

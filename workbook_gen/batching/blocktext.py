@@ -94,7 +94,7 @@ def _repr_texts(floats: list[float]) -> list[str]:
     digits (Ryu) about eight times faster than ``repr``, and as ``repr`` spells them
     where ``repr`` writes no exponent (1e-4 <= |x| < 1e16); outside a narrower band
     (1e-3 <= |x| < 1e15, and zero), and for NaN and the infinities, ``repr`` itself
-    (tests/test_batch_summary_text.py compares the two on millions of floats)."""
+    (tests/batching/test_blocktext.py compares the two on millions of floats)."""
     if not floats:
         return []
     texts = orjson.dumps(floats).decode()[1:-1].split(",")

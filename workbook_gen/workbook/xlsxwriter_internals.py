@@ -5,10 +5,10 @@ calls or overrides one of their underscore methods, or sets an underscore attrib
 other module uses the public names below (``FastZipFile``, ``ZippedWorkbook``,
 ``WorksheetHooks``, ``RowsInMemory``, ``xf_index``, ``assemble_xml`` ...).  Each is a
 speed-up: XlsxWriter has no API for it.  ``PRIVATE`` lists every name relied on, with its
-parameters where it is called or overridden; tests/test_xlsxwriter_contract.py checks each
-against the installed libraries and fails naming the one that went or changed, and checks
-that no other module uses an underscore name of either library.  XlsxWriter is pinned to
-the tested range in pyproject.toml.
+parameters where it is called or overridden; tests/workbook/test_xlsxwriter_internals.py
+checks each against the installed libraries and fails naming the one that went or changed,
+and checks that no other module uses an underscore name of either library.  XlsxWriter is
+pinned to the tested range in pyproject.toml.
 
 Undocumented attributes without an underscore are listed (and tested) here too, but are
 still read where they are used: the worksheet state in workbook/rows.py's ``Sheet`` (a

@@ -4,7 +4,7 @@ One row per registered name: its family (the package that registers it) and modu
 many arguments it takes and of which kind, whether the column evaluator has a vectorised
 form, whether it is volatile, where LibreOffice's dialect differs, and a test file that
 calls it.  Made by
-``python scripts/functions_doc.py``; ``tests/test_functions_doc.py`` checks that the
+``python scripts/functions_doc.py``; ``tests/formula/functions/test_catalog.py`` checks that the
 file is what the registry says.
 """
 
@@ -22,7 +22,7 @@ from workbook_gen.formula.functions.registry import FAMILIES
 HEADER = """# Worksheet functions the audit recomputes
 
 Generated from the registry (`workbook_gen/formula/functions/`) by
-`python scripts/functions_doc.py`; `tests/test_functions_doc.py` checks it is current.
+`python scripts/functions_doc.py`; `tests/formula/functions/test_catalog.py` checks it is current.
 Kinds: `scalar` (one value; a larger reference is implicitly intersected), `range` (a
 range or array taken whole), `ref` (the reference itself: ROW, OFFSET), `lazy` (evaluated
 only if needed: IF, CHOOSE); the last kind repeats for further arguments. "vectorised":
@@ -54,10 +54,12 @@ def _tests(root: Path) -> dict[str, str]:
     """name -> the first test file (sorted) whose text calls it as NAME( ."""
     found: dict[str, str] = {}
     call = re.compile(r"(?<![\w.])(?:_xlfn\.|_xlws\.)?([A-Z][A-Z0-9.]*)\(")
-    paths = sorted((root / "tests").glob("*.py"), key=lambda p: (not p.name.startswith("test_"), p.name))
+    tests = root / "tests"   # tests/<package>/test_<module>.py: named by that path
+    paths = sorted(tests.rglob("*.py"), key=lambda p: (not p.name.startswith("test_"),
+                                                       p.relative_to(tests).as_posix()))
     for path in paths:
         for name in set(call.findall(path.read_text(errors="replace"))):
-            found.setdefault(name, path.name)
+            found.setdefault(name, path.relative_to(tests).as_posix())
     return found
 
 

@@ -130,7 +130,7 @@ def numbers(args, ctx=None, *, strict_text: bool | None = None) -> list[float] |
 def values_a(args) -> list[float] | ExcelError:
     """AVERAGEA/VARA-style numbers: in ranges text is 0, booleans 1/0, empty cells skipped;
     a direct argument converts (an omitted one is 0: LibreOffice gives AVERAGEA(1,,3) = 4/3,
-    VARA(1,,3) = 7/3, MAXA(-1,,-3) = 0, tests/test_functions_more.py)."""
+    VARA(1,,3) = 7/3, MAXA(-1,,-3) = 0, tests/formula/functions/test_registry_more.py)."""
     out: list[float] = []
     for a in args:
         if isinstance(a, Range):

@@ -88,7 +88,8 @@ LIBREOFFICE_ERRORS: dict[str, dict[ExcelError, ExcelError]] = {
     "VLOOKUP": {ExcelError.REF: ExcelError.VALUE},
     "HLOOKUP": {ExcelError.REF: ExcelError.VALUE},
     "INDEX": {ExcelError.REF: ExcelError.VALUE},
-    # measured on tests/test_functions_more.py's cases (a name and its aliases share the code)
+    # measured on tests/formula/functions/test_registry_more.py's cases (a name and its
+    # aliases share the code)
     **{name: _INVALID for name in (
         "BETA.DIST", "BETADIST", "BINOM.DIST", "BINOMDIST", "POISSON", "POISSON.DIST",
         "CHISQ.DIST", "EXPONDIST", "EXPON.DIST", "GAMMALN", "GAMMALN.PRECISE", "GAMMA",
