@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Install what the test suite needs: LibreOffice Calc (the engine the tests recalculate
 # workbooks with) and poppler-utils (pdftotext reads the PDF LibreOffice prints, in
-# tests/test_printing.py) when they are missing, then this package with its test extras
+# tests/workbook/test_layout.py) when they are missing, then this package with its test extras
 # (pytest, hypothesis, dask and distributed). Idempotent; non-interactive (works with CI=true
 # and no stdin). Debian/Ubuntu (apt-get).
 set -euo pipefail

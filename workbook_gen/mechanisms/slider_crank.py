@@ -42,7 +42,7 @@ PARAMETERS = (
 # (l_BC = l_AB + |e| at one crank angle) is a dead centre, flagged, its rates #DIV/0!,
 # never the square root of rounding (h_BC 3.8e-7 mm, v_C -1e10 mm/s; see
 # docs/stability.md, slider_crank).  The factor's terms round to a few ulps of l_BC + l_AB
-# + |e| + 2 l_AB; a true excess of 1e-12 of the lengths is kept (tests/test_extremes_slider.py).
+# + |e| + 2 l_AB; a true excess of 1e-12 of the lengths is kept (tests/mechanisms/test_slider_crank_extremes.py).
 REACH_ROUNDING = 16 * 2.0 ** -52
 
 
@@ -78,7 +78,7 @@ QUANTITIES = (
 # A row whose reach factor is within NEAR_REACH of the lengths is a dead centre too: the
 # factor's terms cancel there, and their rounding (a few ulps of the lengths, inherent in
 # the sine of a float angle) leaves the rates 8 digits, not 16, 1e-6 deg from a tangent
-# point or with the rod 1e-12 longer than the tangent length (tests/test_extremes_slider.py).
+# point or with the rod 1e-12 longer than the tangent length (tests/mechanisms/test_slider_crank_extremes.py).
 # Outside the band the rates keep better than 1e-9 of their magnitude.
 NEAR_REACH = 1e-6
 STATUS = if_(iserror(h_BC), "cannot assemble",
