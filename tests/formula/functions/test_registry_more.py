@@ -18,6 +18,7 @@ from workbook_gen.engines.libreoffice import recalculate
 from workbook_gen.evaluator import evaluate_cells
 from workbook_gen.formula import DictResolver, evaluate, parse
 from workbook_gen.xlerror import ExcelError as E
+from stored_formulas import stored
 
 # Data: A numbers, B second sample, C mixed, D dates, E holidays, F:H a small database,
 # J:K a 2x2 and L:N a 3x3 matrix, P:Q observed/expected
@@ -199,17 +200,6 @@ EXCEL = [
     ('ASC("ＥＸＣＥＬ")', "EXCEL"),
     ("BESSELK(1.5,1)", 0.277387804), ("BESSELY(2.5,1)", 0.145918138), ("PERMUTATIONA(3,2)", 9.0), ("MULTINOMIAL(2,3,4)", 1260.0),
 ]
-
-FUTURE = re.compile(
-    r"(?<![A-Z.])((?!NETWORKDAYS\.INTL|WORKDAY\.INTL)(?:[A-Z]+\.[A-Z0-9.]+)|BITAND|BITOR|BITXOR|BITLSHIFT|BITRSHIFT|IMCOSH|IMSINH|"
-    r"IMCOT|IMCSC|IMCSCH|IMSEC|IMSECH|IMTAN|COT|COTH|CSC|CSCH|SEC|SECH|ACOT|ACOTH|ARABIC|BASE|"
-    r"DECIMAL|MUNIT|GAMMA|GAUSS|PHI|PERMUTATIONA|SKEW\.P)\(")
-
-
-def stored(formula: str) -> str:
-    """Functions newer than Excel 2007 carry the _xlfn. prefix in the file."""
-    return FUTURE.sub(lambda m: "_xlfn." + m.group(1) + "(", formula)
-
 
 def _write_book(path):
     book = openpyxl.Workbook()
