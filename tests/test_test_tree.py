@@ -57,7 +57,6 @@ NOT_YET: set[str] = {
     "auditor/noise.py",
     "auditor/notes.py",
     "auditor/recomputed.py",
-    "auditor/structure.py",
     "batching/broadcast.py",
     "batching/charts.py",
     "batching/job.py",
