@@ -56,7 +56,6 @@ NOT_YET: set[str] = {
     "auditor/grid.py",
     "auditor/noise.py",
     "auditor/notes.py",
-    "auditor/recomputed.py",
     "batching/broadcast.py",
     "batching/charts.py",
     "batching/job.py",
