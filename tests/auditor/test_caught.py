@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import inspect
 import logging
-import sys
 import warnings
 
 from workbook_gen.auditor.caught import caught
@@ -58,4 +57,3 @@ def test_counts_survive_an_exception_in_the_block():
     except KeyError:
         pass
     assert sum(said.values()) == 1
-    assert "workbook_gen" in sys.modules
