@@ -92,7 +92,6 @@ NOT_YET: set[str] = {
     "formula/functions/information/sheets.py",
     "formula/functions/lookup/pivot.py",
     "formula/functions/lookup/rtd.py",
-    "formula/functions/math/reciprocal.py",
     "formula/functions/numfmt/sections.py",
     "formula/functions/numfmt/tokens.py",
     "mechanisms/__init__.py",
