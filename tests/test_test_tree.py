@@ -83,7 +83,6 @@ NOT_YET: set[str] = {
     "expr/magnitude.py",
     "expr/numeric.py",
     "formula/functions/arrayargs.py",
-    "formula/functions/availability.py",
     "formula/functions/callables.py",
     "formula/functions/calling.py",
     "formula/functions/cube/core.py",
