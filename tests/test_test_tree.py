@@ -82,7 +82,6 @@ NOT_YET: set[str] = {
     "evaluator/whatif.py",
     "expr/magnitude.py",
     "expr/numeric.py",
-    "formula/functions/calling.py",
     "formula/functions/cube/core.py",
     "formula/functions/financial/daycount.py",
     "formula/functions/financial/oddbonds.py",
