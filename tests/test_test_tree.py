@@ -85,7 +85,6 @@ NOT_YET: set[str] = {
     "formula/functions/cube/core.py",
     "formula/functions/financial/daycount.py",
     "formula/functions/financial/oddbonds.py",
-    "formula/functions/information/sheets.py",
     "formula/functions/lookup/pivot.py",
     "formula/functions/numfmt/sections.py",
     "formula/functions/numfmt/tokens.py",
