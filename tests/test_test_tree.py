@@ -87,7 +87,6 @@ NOT_YET: set[str] = {
     "formula/functions/financial/oddbonds.py",
     "formula/functions/lookup/pivot.py",
     "formula/functions/numfmt/sections.py",
-    "formula/functions/numfmt/tokens.py",
     "mechanisms/__init__.py",
     "mechanisms/actuator_halving.py",
     "mechanisms/balance.py",
