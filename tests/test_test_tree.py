@@ -86,7 +86,6 @@ NOT_YET: set[str] = {
     "formula/functions/financial/daycount.py",
     "formula/functions/financial/oddbonds.py",
     "formula/functions/lookup/pivot.py",
-    "formula/functions/numfmt/sections.py",
     "mechanisms/__init__.py",
     "mechanisms/actuator_halving.py",
     "mechanisms/balance.py",
