@@ -83,7 +83,6 @@ NOT_YET: set[str] = {
     "expr/magnitude.py",
     "expr/numeric.py",
     "mechanisms/__init__.py",
-    "mechanisms/balance.py",
     "mechanisms/base.py",
     "mechanisms/five_bar_newton.py",
     "mechanisms/listing.py",
