@@ -82,7 +82,6 @@ NOT_YET: set[str] = {
     "evaluator/whatif.py",
     "expr/magnitude.py",
     "expr/numeric.py",
-    "mechanisms/__init__.py",
     "mechanisms/base.py",
     "mechanisms/five_bar_newton.py",
     "mechanisms/listing.py",
