@@ -12,10 +12,10 @@ from pathlib import Path
 import mpmath
 import pytest
 
+from workbook_gen.expr import Var
 from workbook_gen.expr.precise import compile_mpmath
 from workbook_gen.mechanisms.actuator_halving import (constraint, halving_quantities,
                                                       lever_point)
-from workbook_gen.expr import Var
 from workbook_gen.xlerror import ExcelError
 
 import mp_reference as ref

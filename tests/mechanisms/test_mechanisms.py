@@ -57,8 +57,9 @@ def test_an_unknown_id_is_a_scene_error_naming_the_known():
 def test_templates_are_imported_on_first_use():
     code = ("import sys\n"
             "from workbook_gen.mechanisms import TEMPLATES\n"
-            "mods = lambda: sorted(m.rsplit('.', 1)[1] for m in sys.modules\n"
-            "    if m.startswith('workbook_gen.mechanisms.') and m.rsplit('.', 1)[1] in TEMPLATES)\n"
+            "names = lambda: [m.rsplit('.', 1)[1] for m in sys.modules\n"
+            "                 if m.startswith('workbook_gen.mechanisms.')]\n"
+            "mods = lambda: sorted(n for n in names() if n in TEMPLATES)\n"
             "before = mods(); TEMPLATES['four_bar']; after = mods()\n"
             "print(before, after, 'four_bar' in TEMPLATES, len(TEMPLATES), mods())\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,

@@ -1,9 +1,10 @@
 """formula/functions/callables.py: a LAMBDA's Closure and a worksheet function named where a
 LAMBDA is expected, called directly and through formulas, against Microsoft's documented
-behaviour (support.microsoft.com, "LAMBDA function" and "MAP function": "an incorrect number of parameters returns a
-#VALUE! error";
-"BYROW function": an eta-reduced lambda such as BYROW(A1:C2, SUM) calls the function on
-each row) and hand-derived values."""
+behaviour (support.microsoft.com, "LAMBDA function" and "MAP function": "an incorrect
+number of parameters returns a #VALUE! error"; "BYROW function": an eta-reduced lambda such
+as BYROW(A1:C2, SUM) calls the function on each row) and hand-derived values. (A LAMBDA
+called inline, LAMBDA(x,y,x+y)(1,2), is not read by the parser: its calls are made here
+through MAP.)"""
 
 from __future__ import annotations
 
