@@ -105,7 +105,6 @@ NOT_YET: set[str] = {
     "mechanisms/parallel_4dof_params.py",
     "tabulate/checks.py",
     "tabulate/evaluated.py",
-    "tabulate/table.py",
     "tradeoff/book.py",
     "tradeoff/common.py",
     "tradeoff/methods.py",
