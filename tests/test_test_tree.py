@@ -103,7 +103,7 @@ NOT_YET: set[str] = {
     "mechanisms/listing.py",
     "mechanisms/parallel_4dof_balance.py",
     "mechanisms/parallel_4dof_params.py",
-    "tabulate/checks.py",
+    
     "tabulate/evaluated.py",
     "tradeoff/book.py",
     "tradeoff/common.py",
