@@ -104,7 +104,6 @@ NOT_YET: set[str] = {
     "mechanisms/parallel_4dof_balance.py",
     "mechanisms/parallel_4dof_params.py",
     
-    "tabulate/evaluated.py",
     "tradeoff/book.py",
     "tradeoff/common.py",
     "tradeoff/methods.py",
