@@ -114,7 +114,6 @@ NOT_YET: set[str] = {
     "tradeoff/variants.py",
     "workbook/checks.py",
     "workbook/conditions.py",
-    "workbook/package.py",
     "xlsx/model.py",
     "xlsx/olap.py",
     "xlsx/sheetrows.py",
