@@ -67,7 +67,6 @@ NOT_YET: set[str] = {
     "batching/broadcast.py",
     "batching/charts.py",
     "batching/job.py",
-    "batching/rows.py",
     "batching/sheetzip.py",
     "batching/summary.py",
     "batching/summary_only.py",
