@@ -65,7 +65,6 @@ NOT_YET: set[str] = {
     "auditor/structure.py",
     "auditor/tally.py",
     "batching/charts.py",
-    "batching/job.py",
     "batching/sheetzip.py",
     "batching/summary.py",
     "batching/summary_only.py",
