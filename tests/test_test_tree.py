@@ -67,7 +67,6 @@ NOT_YET: set[str] = {
     "batching/charts.py",
     "batching/sheetzip.py",
     "batching/summary.py",
-    "batching/summary_only.py",
     "batching/table.py",
     "evaluator/calls.py",
     "evaluator/evaluation.py",
