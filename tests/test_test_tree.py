@@ -65,7 +65,6 @@ NOT_YET: set[str] = {
     "auditor/structure.py",
     "auditor/tally.py",
     "batching/charts.py",
-    "batching/sheetzip.py",
     "batching/summary.py",
     "batching/table.py",
     "evaluator/calls.py",
