@@ -66,7 +66,6 @@ NOT_YET: set[str] = {
     "auditor/tally.py",
     "batching/charts.py",
     "batching/summary.py",
-    "batching/table.py",
     "evaluator/calls.py",
     "evaluator/evaluation.py",
     "evaluator/ops.py",
