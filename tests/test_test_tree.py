@@ -65,7 +65,6 @@ NOT_YET: set[str] = {
     "auditor/structure.py",
     "auditor/tally.py",
     "batching/charts.py",
-    "batching/summary.py",
     "evaluator/calls.py",
     "evaluator/evaluation.py",
     "evaluator/ops.py",
