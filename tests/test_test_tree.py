@@ -64,7 +64,6 @@ NOT_YET: set[str] = {
     "auditor/sources.py",
     "auditor/structure.py",
     "auditor/tally.py",
-    "batching/charts.py",
     "evaluator/calls.py",
     "evaluator/evaluation.py",
     "evaluator/ops.py",
