@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import csv
 import zipfile
+from pathlib import Path
 
 import openpyxl
 import pyarrow.parquet as pq
@@ -107,7 +108,7 @@ def test_parquet(written):
 
 
 def test_blocks_out_of_order_give_the_same_files(tmp_path):
-    text = (__import__("pathlib").Path("templates/four_bar.toml")).read_text()
+    text = Path("templates/four_bar.toml").read_text()
     spec = JobSpec(text, "four_bar.toml", step=30.0, stem="four_bar")
     scene = load_scene("templates/four_bar.toml", step=30.0)
     design = from_specs(["l_O1A=30,35,40,45"], list(scene.parameters))

@@ -6,7 +6,6 @@ residuals and the derived values."""
 
 from __future__ import annotations
 
-import math
 
 import numpy as np
 import pytest
