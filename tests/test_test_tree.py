@@ -99,7 +99,6 @@ NOT_YET: set[str] = {
     "mechanisms/actuator_halving.py",
     "mechanisms/balance.py",
     "mechanisms/base.py",
-    "mechanisms/five_bar_newton.py",
     "mechanisms/listing.py",
     "mechanisms/parallel_4dof_balance.py",
     "mechanisms/parallel_4dof_params.py",
