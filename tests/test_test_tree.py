@@ -100,8 +100,6 @@ NOT_YET: set[str] = {
     "mechanisms/balance.py",
     "mechanisms/base.py",
     "mechanisms/listing.py",
-    "mechanisms/parallel_4dof_balance.py",
-    "mechanisms/parallel_4dof_params.py",
     "tabulate/checks.py",
     "tabulate/evaluated.py",
     "tabulate/table.py",
