@@ -99,7 +99,6 @@ NOT_YET: set[str] = {
     "mechanisms/actuator_halving.py",
     "mechanisms/balance.py",
     "mechanisms/base.py",
-    "mechanisms/listing.py",
     "tabulate/checks.py",
     "tabulate/evaluated.py",
     "tabulate/table.py",
