@@ -98,7 +98,6 @@ NOT_YET: set[str] = {
     "mechanisms/__init__.py",
     "mechanisms/actuator_halving.py",
     "mechanisms/balance.py",
-    "mechanisms/base.py",
     "tabulate/checks.py",
     "tabulate/evaluated.py",
     "tabulate/table.py",
