@@ -108,7 +108,6 @@ NOT_YET: set[str] = {
     "tradeoff/reference50.py",
     "tradeoff/report.py",
     "tradeoff/steps.py",
-    "tradeoff/variants.py",
     "workbook/checks.py",
     "workbook/conditions.py",
     "workbook/package.py",
