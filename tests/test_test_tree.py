@@ -102,7 +102,6 @@ NOT_YET: set[str] = {
     "tabulate/evaluated.py",
     "tabulate/table.py",
     "tradeoff/book.py",
-    "tradeoff/common.py",
     "tradeoff/methods.py",
     "tradeoff/precision.py",
     "tradeoff/reference50.py",
