@@ -105,7 +105,6 @@ NOT_YET: set[str] = {
     "tradeoff/methods.py",
     "tradeoff/precision.py",
     "tradeoff/reference50.py",
-    "tradeoff/report.py",
     "tradeoff/steps.py",
     "workbook/checks.py",
     "workbook/conditions.py",
