@@ -103,7 +103,6 @@ NOT_YET: set[str] = {
     "tabulate/table.py",
     "tradeoff/methods.py",
     "tradeoff/precision.py",
-    "tradeoff/steps.py",
     "workbook/checks.py",
     "workbook/conditions.py",
     "workbook/package.py",
