@@ -101,7 +101,6 @@ NOT_YET: set[str] = {
     "tabulate/checks.py",
     "tabulate/evaluated.py",
     "tabulate/table.py",
-    "tradeoff/precision.py",
     "workbook/checks.py",
     "workbook/conditions.py",
     "workbook/package.py",
