@@ -89,3 +89,24 @@ def test_refuses_to_overwrite(written):
     with pytest.raises(OutputExistsError):
         write_tradeoff_workbook(Tradeoff(SCENE, list(ROWS), {}, 5.0), written.parent)
     write_tradeoff_workbook(Tradeoff(SCENE, list(ROWS), {}, 5.0), written.parent, force=True)
+
+
+def test_a_unitless_input_has_its_step_too(tmp_path):
+    """The actuator's input is unitless ('-'): its step rows are labelled "0.0687 -" by
+    steps.step_label; their chart is error against the step all the same."""
+    from workbook_gen.scene import load_scene
+    from workbook_gen.tradeoff.steps import step_label, step_settings
+    scene = load_scene("templates/actuator_linkage.toml")
+    labels = [step_label(scene, s) for s in step_settings(scene)[:3]]
+    assert labels[0] == "0.0687 -"
+    assert [step_of(Row("step", x, 0, 0, 0, 0)) for x in labels] == [0.0687, 0.03435, 0.01374]
+    assert step_of(Row("derivative", "central, 6.87e-05 -", 0, 0, 0, 0)) == 6.87e-05
+    rows = [Row("step", x, 10.0 ** -k, 1.0 + k, 10, 10, 10) for k, x in enumerate(labels)]
+    demo = SimpleNamespace(name="act", title="A", source="a.toml",
+                           template=SimpleNamespace(id="actuator_linkage"))
+    path = write_tradeoff_workbook(Tradeoff(demo, rows, {}, 1.0), tmp_path)
+    sheet = openpyxl.load_workbook(path)["Tradeoff"]
+    assert [sheet.cell(i, 9).value for i in (2, 3, 4)] == [0.0687, 0.03435, 0.01374]
+    with zipfile.ZipFile(path) as z:
+        xml = z.read("xl/charts/chart1.xml").decode()
+    assert "Tradeoff!$I$2:$I$4" in xml
