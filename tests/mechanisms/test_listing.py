@@ -63,7 +63,7 @@ def test_the_listing_names_every_template_with_its_parameters(built):
             m = re.match(r"    (\S+)\s+= (\S+)", line)
             if m:
                 params[m.group(1)] = float(m.group(2))
-        assert params == pytest.approx(template.defaults, rel=1e-9)
+        assert params == pytest.approx(template.defaults, rel=1e-9, abs=0)
         outputs = next(x for x in lines if x.startswith("  outputs: "))
         assert outputs[len("  outputs: "):].split(", ") == [
             q.header for q in template.quantities if q.output]

@@ -72,15 +72,15 @@ def test_the_twelve_residuals_vanish_balanced_and_match_the_hand_sums(balanced):
     free = {cond.name: _ev(cond.expr, c) for cond in conditions(balance=False)}
     # by hand, from the parameters' definitions (module docstring)
     m12 = c["m_12"] * c["l_11"] * (c["l_12"] - c["xi_1"]) / c["l_12"]
-    assert free["leg1_xi"] == pytest.approx(float(c["m_11"] * c["u_11"] + m12), rel=1e-14)
-    assert free["leg2_eta"] == pytest.approx(float(c["m_21"] * c["v_21"]), rel=1e-14)
+    assert free["leg1_xi"] == pytest.approx(float(c["m_11"] * c["u_11"] + m12), rel=1e-14, abs=0)
+    assert free["leg2_eta"] == pytest.approx(float(c["m_21"] * c["v_21"]), rel=1e-14, abs=0)
     mus = {i: c[f"m_{i}2"] * c[f"xi_{i}"] / c[f"l_{i}2"] for i in mp4.LEGS}
-    assert _ev(mu(3), c) == pytest.approx(float(mus[3]), rel=1e-15)
+    assert _ev(mu(3), c) == pytest.approx(float(mus[3]), rel=1e-15, abs=0)
     plat_z = c["m_P"] * (c["w_P"] - c["c_5"]) + sum(mus[i] * (c[f"c_{i}"] - c["c_5"])
                                                      for i in mp4.LEGS)
-    assert free["platform_z"] == pytest.approx(float(plat_z), rel=1e-13)
+    assert free["platform_z"] == pytest.approx(float(plat_z), rel=1e-13, abs=0)
     leg5 = c["m_5"] * c["l_5c"] + c["l_5"] * (c["m_P"] + sum(mus.values()))
-    assert free["leg5"] == pytest.approx(float(leg5), rel=1e-14)
+    assert free["leg5"] == pytest.approx(float(leg5), rel=1e-14, abs=0)
 
 
 def test_figures_one_per_condition():

@@ -42,7 +42,7 @@ def _leg_of(name):
 def test_the_template_takes_these_defaults():
     t = get_template("parallel_4dof")
     assert {p.name: p.default for p in parameters()}.items() <= t.defaults.items()
-    i, (o, gamma, _, _, _, _, _, _) = 3, LEG_DEFAULTS[3]
+    o, gamma = LEG_DEFAULTS[3][:2]
     assert (t.defaults["x_30"], t.defaults["y_30"], t.defaults["gamma_3"]) == (o[0], o[1], gamma)
 
 

@@ -10,7 +10,6 @@ from pathlib import Path
 import mpmath
 import numpy as np
 import openpyxl
-import pytest
 
 from tests import mp_reference
 from workbook_gen.scene import load_scene

@@ -1,5 +1,6 @@
 """tradeoff.report: the terminal table, its lines derived by hand for a small result
-(Python's format mini-language: "{:.2e}", "{:,}", https://docs.python.org/3/library/string.html#formatspec)."""
+(Python's format mini-language: "{:.2e}", "{:,}",
+https://docs.python.org/3/library/string.html#formatspec)."""
 
 from __future__ import annotations
 
@@ -28,7 +29,8 @@ def test_the_table_by_hand():
     assert lines[6] == "step       10 deg    1.23e-03    0.500  0.250   1,234   56,789"
     assert lines[7] == "step       1 deg     2.00e-07     12.3      -  12,345  567,890  fine"
     assert lines[8] == ""  # a blank line between dimensions
-    assert lines[9] == "method     n/a              -        -      -       -        -  closed form only"
+    assert lines[9] == ("method     n/a              -        -      -       -        -  "
+                        "closed form only")
     assert lines[-1] == "measured in 12.3 s (2.2 s CPU)"
     assert lines[-2] == ""
 

@@ -69,7 +69,7 @@ def test_step_errors_are_the_grid_extremes_against_the_dead_centres(measured):
         s = [float(v) for v in _mp_column(scene.parameters, xs, "s_C")]
         true = extremes["s_C"]
         expected = max(true.maximum - max(s), min(s) - true.minimum) / true.magnitude
-        assert row.errors["s_C"] == pytest.approx(expected, rel=1e-9), row.setting
+        assert row.errors["s_C"] == pytest.approx(expected, rel=1e-9, abs=0), row.setting
         assert row.rows == len(xs) and row.cells > 0 and row.bytes > 0
     # the rod's extremes sit at 90 and 270 deg, on both grids: only rounding is left
     assert rows[0].errors["theta_2"] < 1e-14 and rows[1].errors["theta_2"] > 1e-6
@@ -91,8 +91,8 @@ def test_finite_differences_against_the_independent_rates(measured):
         forward = (s[1:] - s[:-1]) / h * w - v[:-1]
         expected_c = np.max(np.abs(central)) / np.max(np.abs(v[1:-1]))
         expected_f = np.max(np.abs(forward)) / np.max(np.abs(v[:-1]))
-        assert by[f"central, {h:g} deg"].errors["v_C"] == pytest.approx(expected_c, rel=1e-6)
-        assert by[f"forward, {h:g} deg"].errors["v_C"] == pytest.approx(expected_f, rel=1e-6)
+        assert by[f"central, {h:g} deg"].errors["v_C"] == pytest.approx(expected_c, rel=1e-6, abs=0)
+        assert by[f"forward, {h:g} deg"].errors["v_C"] == pytest.approx(expected_f, rel=1e-6, abs=0)
     # positions-only workbook plus a difference column per rate and row
     run = runs[0]
     assert by["central, 10 deg"].cells > 2 * 2 * run.result.rows
@@ -103,8 +103,8 @@ def test_find_extremes_refines_the_finest_grid():
     found = steps.find_extremes(scene, Precise(scene))
     hand = _hand_extremes(scene.parameters)
     for name in ("s_C", "theta_2"):
-        assert found[name].maximum == pytest.approx(hand[name].maximum, rel=1e-13)
-        assert found[name].minimum == pytest.approx(hand[name].minimum, rel=1e-13)
+        assert found[name].maximum == pytest.approx(hand[name].maximum, rel=1e-13, abs=0)
+        assert found[name].minimum == pytest.approx(hand[name].minimum, rel=1e-13, abs=0)
         assert found[name].at_max == pytest.approx(hand[name].at_max, abs=1e-5)
 
 
@@ -133,4 +133,4 @@ def test_each_side_of_the_range_counts(monkeypatch, side):
         expected = (hand.maximum - max(s)) / hand.maximum
     (row,), _ = steps.measure_steps(scene, {"s_C": true}, lambda label: None)
     assert expected > 1e-6
-    assert row.errors["s_C"] == pytest.approx(expected, rel=1e-9)
+    assert row.errors["s_C"] == pytest.approx(expected, rel=1e-9, abs=0)
