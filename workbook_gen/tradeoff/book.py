@@ -19,7 +19,7 @@ DOCUMENT_DATE = dt.datetime(2024, 1, 1)
 HEAD = ("dimension", "setting", "max error", "seconds", "cells", "bytes", "rows", "note",
         "step")
 STEP_COL = 8
-_STEP = re.compile(r"([0-9.]+(?:e-?[0-9]+)?)(?: deg)?$")
+_STEP = re.compile(r"([0-9.]+(?:e-?[0-9]+)?)(?: [^\s0-9.]+)?$")  # "10 deg", "0.0687 -"
 _COLORS = ("#1F77B4", "#D62728", "#2CA02C", "#9467BD", "#FF7F0E")
 
 
