@@ -38,8 +38,9 @@ class Row:
 
 ROW = Row()
 Piece = str | Row
-# A reference resolver: a quantity's name -> the pieces of its cell reference.
-Resolver = Callable[[str], tuple[Piece, ...]]
+# Where a quantity is placed: its name -> the pieces of its cell reference (not the
+# formula evaluator's Resolver, formula/resolver.py, which reads cells and names).
+PlaceOf = Callable[[str], tuple[Piece, ...]]
 
 
 def format_number(value: float) -> str:
@@ -62,7 +63,7 @@ def _precedence(node: Node) -> int:
     return _ATOM
 
 
-def _pieces(node: Node, resolve: Resolver, out: list[Piece]) -> None:
+def _pieces(node: Node, resolve: PlaceOf, out: list[Piece]) -> None:
     if isinstance(node, Num):
         out.append(format_number(node.value))
     elif isinstance(node, Text):
@@ -92,7 +93,7 @@ def _pieces(node: Node, resolve: Resolver, out: list[Piece]) -> None:
         raise TypeError(f"cannot print {node!r}")
 
 
-def _operand(node: Node, parenthesise: bool, resolve: Resolver, out: list[Piece]) -> None:
+def _operand(node: Node, parenthesise: bool, resolve: PlaceOf, out: list[Piece]) -> None:
     if parenthesise:
         out.append("(")
     _pieces(node, resolve, out)
@@ -118,7 +119,7 @@ class RowTemplate:
         return "".join(out)
 
 
-def row_template(node: Node, resolve: Resolver) -> RowTemplate:
+def row_template(node: Node, resolve: PlaceOf) -> RowTemplate:
     pieces: list[Piece] = ["="]
     _pieces(node, resolve, pieces)
     parts: list[str] = [""]
