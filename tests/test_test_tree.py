@@ -81,7 +81,6 @@ NOT_YET: set[str] = {
     "evaluator/vector.py",
     "evaluator/whatif.py",
     "expr/magnitude.py",
-    "expr/numeric.py",
     "formula/functions/arrayargs.py",
     "formula/functions/availability.py",
     "formula/functions/callables.py",
