@@ -80,7 +80,6 @@ NOT_YET: set[str] = {
     "evaluator/tasks.py",
     "evaluator/vector.py",
     "evaluator/whatif.py",
-    "expr/magnitude.py",
     "formula/functions/arrayargs.py",
     "formula/functions/availability.py",
     "formula/functions/callables.py",
