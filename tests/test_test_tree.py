@@ -76,7 +76,6 @@ NOT_YET: set[str] = {
     "evaluator/evaluation.py",
     "evaluator/ops.py",
     "evaluator/store.py",
-    "evaluator/taint.py",
     "evaluator/tasks.py",
     "evaluator/vector.py",
     "evaluator/whatif.py",
