@@ -115,7 +115,6 @@ NOT_YET: set[str] = {
     "workbook/conditions.py",
     "workbook/package.py",
     "xlsx/model.py",
-    "xlsx/olap.py",
     "xlsx/sheetrows.py",
 }
 
