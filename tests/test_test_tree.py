@@ -75,7 +75,6 @@ NOT_YET: set[str] = {
     "evaluator/calls.py",
     "evaluator/evaluation.py",
     "evaluator/ops.py",
-    "evaluator/store.py",
     "evaluator/tasks.py",
     "evaluator/vector.py",
     "evaluator/whatif.py",
