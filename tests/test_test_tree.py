@@ -73,7 +73,6 @@ NOT_YET: set[str] = {
     "batching/summary_only.py",
     "batching/table.py",
     "evaluator/calls.py",
-    "evaluator/ops.py",
     "evaluator/tasks.py",
     "evaluator/vector.py",
     "evaluator/whatif.py",
