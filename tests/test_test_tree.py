@@ -72,7 +72,6 @@ NOT_YET: set[str] = {
     "batching/summary.py",
     "batching/summary_only.py",
     "batching/table.py",
-    "evaluator/calls.py",
     "evaluator/tasks.py",
     "evaluator/vector.py",
     "evaluator/whatif.py",
