@@ -109,7 +109,6 @@ NOT_YET: set[str] = {
     "workbook/checks.py",
     "workbook/conditions.py",
     "workbook/package.py",
-    "xlsx/model.py",
     "xlsx/sheetrows.py",
 }
 
