@@ -72,7 +72,6 @@ NOT_YET: set[str] = {
     "batching/summary.py",
     "batching/summary_only.py",
     "batching/table.py",
-    "evaluator/tasks.py",
     "formula/functions/arrayargs.py",
     "formula/functions/availability.py",
     "formula/functions/callables.py",
