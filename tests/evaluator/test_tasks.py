@@ -101,3 +101,21 @@ def test_cell_scale_is_the_largest_number_read():
     assert cell_scale(parse("SUM(A1:A7)-0.5"), resolver) == 7.0
     assert cell_scale(parse("Big+A3"), resolver) == 100.0  # text counts 0
     assert evaluate(parse("SUM(A1:A7)"), resolver) == 1 + 2 + 4 + 5 + 6 + 7.0
+
+
+def test_a_range_whose_first_row_passes_its_fixed_last_row():
+    # B_r = SUM(C_r:C$3): below row 3 Excel reads C3:C_r, so the run reads down to C10
+    task = Task("S", 2, 1, 10, parse("SUM(C1:C$3)"))
+    assert rects(task, shapes_of(task, STORE, NAMES)) == [("S", 1, 3, 10, 3)]
+    # end to end: C4:C10 (another run than C1:C3) must be computed before B reads them
+    from workbook_gen.evaluator import evaluate_cells
+    constants = {("S", r, 1): float(r) for r in range(1, 11)}
+    formulas = {}
+    for r in range(1, 11):
+        formulas[("S", r, 2)] = f"SUM(C{r}:C$3)"
+        formulas[("S", r, 3)] = f"A{r}*2" if r <= 3 else f"A{r}*3"
+    c = {r: 2 * r if r <= 3 else 3 * r for r in range(1, 11)}
+    want = [float(sum(c[k] for k in range(min(r, 3), max(r, 3) + 1))) for r in range(1, 11)]
+    for vectorize in (True, False):
+        result = evaluate_cells(formulas, constants, {}, vectorize=vectorize)
+        assert [result.values[("S", r, 2)] for r in range(1, 11)] == want, vectorize
