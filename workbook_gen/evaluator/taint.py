@@ -85,16 +85,28 @@ class Taint:
             if not shape.col1 <= col <= shape.col2:
                 continue
             for t1, t2, origin in self.intervals[(shape.sheet, col)]:
-                lo, hi = 0, n - 1
-                # row1 + i*rel1 <= t2  and  row2 + i*rel2 >= t1
-                if shape.rel1:
-                    hi = min(hi, t2 - shape.row1)
-                elif shape.row1 > t2:
-                    continue
-                if shape.rel2:
-                    lo = max(lo, t1 - shape.row2)
-                elif shape.row2 < t1:
-                    continue
+                # row i reads rows a_i..b_i in either order (B1:B$3 filled down past
+                # row 3 is B3:B4, B3:B5 ...): it covers t1..t2 when one end is <= t2
+                # (rows up to a last one) and one end is >= t1 (rows from a first one)
+                hi = min(n - 1, max(_last_at_most(shape.row1, shape.rel1, t2, n),
+                                    _last_at_most(shape.row2, shape.rel2, t2, n)))
+                lo = max(0, min(_first_at_least(shape.row1, shape.rel1, t1, n),
+                                _first_at_least(shape.row2, shape.rel2, t1, n)))
                 if lo <= hi:
                     out.append((lo, hi, origin))
         return out
+
+
+def _last_at_most(row: int, rel: bool, bound: int, n: int) -> int:
+    """The last offset i (-1 if none) at which ``row`` (moving down with i if ``rel``)
+    is at most ``bound``."""
+    if rel:
+        return bound - row
+    return n - 1 if row <= bound else -1
+
+
+def _first_at_least(row: int, rel: bool, bound: int, n: int) -> int:
+    """The first offset i (``n`` if none) at which ``row`` is at least ``bound``."""
+    if rel:
+        return bound - row
+    return 0 if row >= bound else n

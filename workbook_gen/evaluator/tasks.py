@@ -146,7 +146,10 @@ def shapes_of(task: Task, store: Store, names: Names) -> tuple[list[Shape], list
 def rects(task: Task, shaped: tuple) -> list[graph.Rect]:
     """The rectangles of cells a task reads over all its rows."""
     span = task.last - task.first
-    return [(s.sheet, s.row1, s.col1, s.row2 + (span if s.rel2 else 0), s.col2)
+    # (row1 <= row2 at the first row; a moving row1 may pass a fixed row2: B1:B$3 filled
+    # down to row 9 reads B3:B9)
+    return [(s.sheet, s.row1, s.col1,
+             max(s.row1 + (span if s.rel1 else 0), s.row2 + (span if s.rel2 else 0)), s.col2)
             for s in shaped[0]]
 
 
