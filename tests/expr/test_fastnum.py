@@ -45,7 +45,7 @@ UNARY = [sin, cos, tan, asin, acos, atan, sqrt, abs_, sign, radians, degrees, no
 BINARY = [lambda a, b: a + b, lambda a, b: a - b, lambda a, b: a * b, lambda a, b: a / b,
           lambda a, b: a ** b, atan2, power, mod, lt, eq, ge, and_, or_,
           lambda a, b: Call("MAX", (a, b, a)), lambda a, b: Call("IFERROR", (a, b)),
-          lambda a, b: if_(lt(a, b), a, b), lambda a, b: Call("IF", (a, b)),
+          lambda a, b: if_(lt(a, b), a, b),
           lambda a, b: if_(eq(a, "ok"), b, "n/a")]
 
 

@@ -13,6 +13,8 @@ https://support.microsoft.com/en-us/office/calculation-operators-and-precedence-
 
 from __future__ import annotations
 
+import pytest
+
 import math
 
 import numpy as np
@@ -110,8 +112,10 @@ def test_if_takes_only_the_chosen_branchs_error():
     x, y = Var("x"), Var("y")
     _expect(if_(lt(x, y), x / y, y - x),
             lambda a, b: (ExcelError.DIV0 if b == 0 else a / b) if a < b else b - a)
-    # IF without a third argument: 0 where the condition is false
-    _expect(Call("IF", (gt(x, 0.0), x)), lambda a, b: a if a > 0 else 0.0)
+    # IF without a third argument is FALSE where the condition is false (Microsoft's IF
+    # page), not a number: trees refuse it rather than compute a 0
+    with pytest.raises(ValueError, match="IF takes 3..3 arguments"):
+        Call("IF", (gt(x, 0.0), x))
 
 
 def test_iserror_iferror_not_and_or():

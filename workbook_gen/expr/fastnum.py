@@ -320,9 +320,6 @@ def _print(tree: Node, names: dict | None = None, lines: list | None = None,
             raise NotImplementedError("text concatenation is not used in trees")
         elif node.fn == "PI":
             expr = "_const(np.pi, n)"
-        elif node.fn == "IF" and len(args) == 2:
-            zero = "_scalar(0.0)" if inner else "_const(0.0, n)"
-            expr = f"IF({args[0]}, {args[1]}, {zero})"
         elif node.fn in kernels.UNARY:
             expr = f"UNARY[{node.fn!r}]({args[0]})"
         else:

@@ -69,8 +69,8 @@ def _compile_call(node: Call) -> Compiled:
     if fn == "PI":
         return lambda cols, params, n: xm.const(np.pi, n)
     if fn == "IF":
-        cond, then = args[0], args[1]
-        otherwise = args[2] if len(args) == 3 else (lambda cols, params, n: xm.const(0.0, n))
+        # always three (expr/tree.py): Excel's IF(c, x) is FALSE where c is false, not 0
+        cond, then, otherwise = args
         return lambda cols, params, n: xm.where(cond(cols, params, n), then(cols, params, n),
                                                 otherwise(cols, params, n))
     if fn in _UNARY:
