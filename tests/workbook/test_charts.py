@@ -115,3 +115,34 @@ def test_batch_summary_charts_cache_their_points(tmp_path, vary, samples):
                     assert i not in points
             series += 1
     assert series >= 8
+
+
+def test_kept_charts_and_their_xml_are_dropped_together_between_workbooks(tmp_path):
+    """Chart objects are kept for the next workbook, with their XML.  When the kept XML
+    was dropped (at its limit, in the middle of a long run) while the charts were kept,
+    XlsxWriter assembled a kept chart a second time and its counters carried on: series
+    idx from 1, more axis ids, a rotated axis title (found by the full suite).  Now both
+    are dropped together, before a workbook: every build gives the same chart parts."""
+    import re
+    import zipfile
+
+    from workbook_gen.scene import load_scene
+    from workbook_gen.workbook import charts as chart_module, write_workbook
+
+    def chart_parts(path):
+        with zipfile.ZipFile(path) as z:
+            return {n: z.read(n).decode() for n in z.namelist() if n.startswith("xl/charts/")}
+
+    scene = load_scene("templates/slider_crank.toml", step=15.0)
+    first = chart_parts(write_workbook(scene, tmp_path / "a"))      # kept from here on
+    again = chart_parts(write_workbook(scene, tmp_path / "b"))      # kept charts, kept XML
+    kept_xml = chart_module._kept().xml                             # the XML at its limit
+    kept_xml.update({("other scene", i): "" for i in range(2 * chart_module._KEPT_LIMIT)})
+    fresh = chart_parts(write_workbook(scene, tmp_path / "c"))
+    assert first == again == fresh
+    assert ("other scene", 0) not in chart_module._kept().xml       # dropped before "c"
+    assert len(chart_module._kept().charts) == len(first)
+    for xml in fresh.values():        # ECMA-376 21.2.2: series idx from 0, two axes each
+        idx = [int(v) for v in re.findall(r'<c:idx val="(\d+)"/>', xml)]
+        assert idx == list(range(len(idx)))
+        assert len(set(re.findall(r'<c:axId val="(\d+)"/>', xml))) == 2

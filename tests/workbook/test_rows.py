@@ -236,8 +236,7 @@ def test_charts_kept_per_thread_give_the_fresh_bytes():
                            ("slider_crank", {"l_BC": 45.0, "e": 10.0}))]
     fresh = []
     for scene in scenes:
-        charts._KEPT.charts = {}
-        charts._XML.clear()
+        charts._KEPT.charts, charts._KEPT.xml = {}, {}
         fresh.append(workbook_bytes(scene, "x.xlsx"))
     assert charts._KEPT.charts   # kept for the next workbook
     kept = [workbook_bytes(scene, "x.xlsx") for scene in scenes + scenes]

@@ -30,8 +30,6 @@ _CHART_ROWS_PER_PAGE = 2
 # its id in the workbook (its axis ids): the same for every design variant of a scene
 # (the sheet's cells are not cached in the chart in constant_memory mode).  Each
 # process keeps the XML it assembled, by those, instead of assembling it again.
-_XML: dict[tuple[str, int], str] = {}
-_XML_LIMIT = 512
 
 
 # Each series' points, cached in the chart (<c:numCache>) as the cells hold them, so that
@@ -61,14 +59,13 @@ def _assemble_cached(chart, key: str, configure=None, caches=None) -> None:
     """The chart's XML, from the XML kept for ``key`` and its id, with the
     series' ``caches`` spliced in; ``configure()`` (the axes, title and legend, which only
     the XML reads) is called first when the XML must be assembled."""
-    found = _XML.get((key, chart.id))
+    kept_xml = _kept().xml
+    found = kept_xml.get((key, chart.id))
     if found is None:
         if configure is not None:
             configure()
         found = assemble_xml(chart)
-        if len(_XML) >= _XML_LIMIT:
-            _XML.clear()
-        _XML[(key, chart.id)] = found
+        kept_xml[(key, chart.id)] = found
     write_xml(chart, _with_caches(found, caches or {}))
 
 
@@ -77,15 +74,26 @@ def _assemble_cached(chart, key: str, configure=None, caches=None) -> None:
 # chart depends on the workbook it goes into but its id (set when packaged), the ranges'
 # cached data (none in constant_memory mode: reset to "not gathered") and the flag that
 # it is inserted.  Per thread: a chart is used by one workbook at a time.
+# A kept chart is only ever assembled once: XlsxWriter counts up while it assembles (series
+# idx, axis ids, axis titles' rotation), so the kept XML and the kept charts are dropped
+# together, and only between workbooks (``_kept(fresh=True)``), never while one is packaged.
 _KEPT = threading.local()
 _KEPT_LIMIT = 256
+
+
+def _kept(fresh: bool = False):
+    """This thread's kept charts (``.charts``) and their XML (``.xml``); ``fresh``: before
+    a workbook's charts, drop both when either has grown past its limit."""
+    if not hasattr(_KEPT, "xml") or (fresh and (len(_KEPT.charts) >= _KEPT_LIMIT
+                                                 or len(_KEPT.xml) >= 2 * _KEPT_LIMIT)):
+        _KEPT.charts, _KEPT.xml = {}, {}
+    return _KEPT
 
 
 def _kept_chart(workbook, n: int, key: str, caches: dict[str, str]):
     """The chart kept for (n, key), added to ``workbook`` as ``add_chart`` adds one, with
     this workbook's series ``caches``, or None."""
-    kept = getattr(_KEPT, "charts", None)
-    chart = None if kept is None else kept.get((n, key))
+    chart = _kept().charts.get((n, key))
     if chart is None or not reuse_chart(workbook, chart):
         return None
     assembly(chart).keywords["caches"] = caches
@@ -93,13 +101,11 @@ def _kept_chart(workbook, n: int, key: str, caches: dict[str, str]):
 
 
 def _keep_chart(n: int, key: str, chart) -> None:
-    kept = getattr(_KEPT, "charts", None)
-    if kept is None or len(kept) >= _KEPT_LIMIT:
-        kept = _KEPT.charts = {}
-    kept[(n, key)] = chart
+    _kept().charts[(n, key)] = chart
 
 
 def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
+    _kept(fresh=True)
     sheet = add_sheet(workbook, CHARTS)
     sheet.set_landscape()
     sheet.set_paper(A4)
@@ -153,7 +159,7 @@ def write_charts(workbook, result: Evaluated, layout: TableLayout) -> None:
         # a legend names the series where there are several (theta_3 and theta_4, vx and vy)
         legend = {"position": "bottom"} if len(series) > 1 else {"none": True}
         size = {"width": 560, "height": 380}
-        # everything the chart is given, as text: its key in _XML (with its id)
+        # everything the chart is given, as text: its key in the kept XML (with its id)
         key = repr((kind, series, x_axis, y_axis, title, legend, size))
         row, col = divmod(n, _COLUMNS)
         chart = _kept_chart(workbook, n, key, caches)

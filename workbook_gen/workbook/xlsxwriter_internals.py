@@ -40,7 +40,8 @@ The names, and why:
   ``embedded``, ``orientation`` (what a drawing's XML is made of), Chart ``id``; a chart
   object re-used by the next workbook (``reuse_chart``): Workbook ``charts``,
   ``date_1904``, ``remove_timezone``, Chart ``formula_data``, ``already_inserted``,
-  ``date_1904``, ``remove_timezone``.
+  ``date_1904``, ``remove_timezone``, and what its XML's assembly counts up: ``series_index``,
+  ``axis_ids``, ``axis2_ids``.
 - Rows written whole (workbook/rows.py): ``CellStringTuple``, ``CellFormulaTuple``,
   ``CellNumberTuple``, ``CellBlankTuple`` (the cells of the held row), ``_preserve_whitespace``
   and XMLwriter's ``_escape_control_characters`` (a string cell's XML), ``re_dynamic_function``
@@ -135,7 +136,7 @@ PRIVATE: tuple[Private, ...] = (
     Private("xlsxwriter.chart:Chart._assemble_xml_file", _S),
     *(Private(f"xlsxwriter.chart:Chart().{n}") for n in (
         "fh", "internal_fh", "id", "formula_data", "already_inserted", "date_1904",
-        "remove_timezone")),
+        "remove_timezone", "series_index", "axis_ids", "axis2_ids")),
     Private("xlsxwriter.drawing:Drawing._assemble_xml_file", _S),
     *(Private(f"xlsxwriter.drawing:Drawing().{n}") for n in (
         "fh", "internal_fh", "drawings", "embedded", "orientation")),
@@ -281,6 +282,10 @@ def reuse_chart(workbook, chart) -> bool:
         return False
     chart.already_inserted = False
     chart.formula_data = [None] * len(chart.formula_data)
+    # what assembling its XML counts up (series idx/order, axis ids): from the start again,
+    # else a chart assembled a second time numbers its series from 1 and adds axes
+    chart.series_index = 0
+    chart.axis_ids, chart.axis2_ids = [], []
     workbook.charts.append(chart)
     return True
 
