@@ -33,10 +33,13 @@ class Precise:
         self.model = select(scene.template, scene.outputs)
         self.input = scene.template.input.name
         self._compiled = [(q.name, compile_mpmath(q.expr)) for q in self.model.columns]
-        # the template's derived values (the four-bar's length gaps...), in their order:
-        # each may use the parameters and the ones before it
-        self._derived = [(d.name, compile_mpmath(d.expr)) for d in scene.template.derived]
         self._plans: dict[frozenset, list] = {}
+        with mpmath.workdps(dps):  # the parameters, then the template's derived values (the
+            # four-bar's length gaps...) in their order, each over those before it: once
+            self._params = {k: mpmath.mpf(v) for k, v in scene.parameters.items()}
+            for d in scene.template.derived:
+                value = compile_mpmath(d.expr)({}, self._params)
+                self._params[d.name] = value if isinstance(value, mpmath.mpf) else mpmath.nan
 
     def _plan(self, names: Iterable[str] | None) -> list:
         if names is None:
@@ -51,13 +54,9 @@ class Precise:
         """The columns ``names`` (and what they need; all if None) at input ``x``:
         mpf values or ExcelError."""
         with mpmath.workdps(self.dps):
-            params = {k: mpmath.mpf(v) for k, v in self.scene.parameters.items()}
-            for name, fn in self._derived:
-                value = fn({}, params)
-                params[name] = value if isinstance(value, mpmath.mpf) else mpmath.nan
             values: dict[str, object] = {self.input: mpmath.mpf(x)}
             for name, fn in self._plan(names):
-                values[name] = fn(values, params)
+                values[name] = fn(values, self._params)
         return values
 
     def column(self, name: str) -> Callable[[object], object]:
