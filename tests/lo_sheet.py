@@ -3,7 +3,8 @@ LibreOffice headless: the reference most audit tests compare with."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+import math
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 import openpyxl
@@ -22,3 +23,30 @@ def recalculated_sheet(folder: Path, title: str, cells: Mapping[str, object]) ->
     source = folder / f"{title.lower()}.xlsx"
     wb.save(source)
     return recalculate(source, folder / "out")
+
+
+def same(a, b) -> bool:
+    """A LibreOffice-cached value and ours agree: booleans exactly (TRUE is not 1 unless
+    both are numbers), numbers to 1e-9 relative (1e-12 absolute), empty and "" alike."""
+    if isinstance(a, bool) or isinstance(b, bool):
+        return a is b or (isinstance(a, (int, float)) and isinstance(b, (int, float)) and a == b)
+    if isinstance(a, (int, float)) and isinstance(b, (int, float)):
+        return math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-12)
+    if a in (None, "") and b in (None, ""):
+        return True
+    return type(a) is type(b) and a == b
+
+
+def family_disagreements(inputs, result, cases: Sequence[tuple[str, str]], family: str,
+                         differs=()) -> list[str]:
+    """The cases of ``family`` (row r of sheet Cases, column C, holds case r's formula)
+    whose LibreOffice-cached value and our recomputation disagree, ``differs`` left out."""
+    wrong = []
+    for r, (fam, formula) in enumerate(cases, start=1):
+        if fam != family or formula in differs:
+            continue
+        key = ("Cases", r, 3)
+        cached, ours = inputs.cached.get(key), result.values[key]
+        if not same(cached, ours):
+            wrong.append(f"={formula}: LibreOffice {cached!r}, ours {ours!r}")
+    return wrong

@@ -18,6 +18,7 @@ from workbook_gen.engines.libreoffice import recalculate
 from workbook_gen.evaluator import evaluate_cells
 from workbook_gen.formula import DictResolver, evaluate, parse
 from workbook_gen.xlerror import ExcelError as E
+from lo_sheet import family_disagreements, same
 from stored_formulas import stored
 
 # Data: A numbers, B second sample, C mixed, D dates, E holidays, F:H a small database,
@@ -255,27 +256,10 @@ def recalculated(libreoffice, tmp_path_factory):
     return inputs, result, excel
 
 
-def same(a, b) -> bool:
-    if isinstance(a, bool) or isinstance(b, bool):
-        return a is b or (isinstance(a, (int, float)) and isinstance(b, (int, float)) and a == b)
-    if isinstance(a, (int, float)) and isinstance(b, (int, float)):
-        return math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-12)
-    if a in (None, "") and b in (None, ""):
-        return True
-    return type(a) is type(b) and a == b
-
-
 @pytest.mark.parametrize("family", list(FAMILIES))
 def test_family_agrees_with_libreoffice(recalculated, family):
     inputs, result, _ = recalculated
-    wrong = []
-    for r, (fam, formula) in enumerate(CASES, start=1):
-        if fam != family or formula in LO_DIFFERS:
-            continue
-        key = ("Cases", r, 3)
-        cached, ours = inputs.cached.get(key), result.values[key]
-        if not same(cached, ours):
-            wrong.append(f"={formula}: LibreOffice {cached!r}, ours {ours!r}")
+    wrong = family_disagreements(inputs, result, CASES, family, LO_DIFFERS)
     assert not wrong, "\n".join(wrong)
 
 
